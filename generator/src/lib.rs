@@ -1,0 +1,1 @@
+//! mingen: minimal-solver generator.

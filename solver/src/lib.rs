@@ -1,0 +1,1 @@
+//! rspose: gyro-aided rolling-shutter relative pose.

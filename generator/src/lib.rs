@@ -9,3 +9,5 @@
 //! the prime fields used for Gröbner bases, `f64`, and traced expressions for code emission.
 
 pub mod algebra;
+pub mod problem;
+pub mod template;

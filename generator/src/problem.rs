@@ -1,0 +1,114 @@
+//! The checked form of a problem file: its symbols (unknowns and typed data) and equations.
+//!
+//! The parser (`lang`) produces a [`ProblemLayout`] plus the checked equations; the
+//! symbolic expansion (`expand`) evaluates those equations over any [`crate::algebra::Ring`].
+//! Variable numbering conventions, relied on by every later stage:
+//! - unknown scalars are numbered in declaration order, vector unknowns element by element;
+//!   `unknown a[3], t[3]` gives variables `a1 a2 a3 t1 t2 t3` (1-based suffixes);
+//! - data scalars are numbered in declaration order, arrays element by element, and within
+//!   an element by its kind's slots (see [`DataKind::slots`]).
+
+/// The kind of a data symbol; decides its shape, its scalar slots and how random instances
+/// are drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DataKind {
+    /// A real number (1 slot).
+    Scalar,
+    /// A 3-vector (3 slots).
+    Vec3,
+    /// An image point in normalised coordinates [x, y, 1]: a 3-vector whose third entry is
+    /// the constant 1 (2 slots: x, y).
+    Point,
+    /// A general 3x3 matrix (9 slots, row-major).
+    Mat3,
+    /// A 3x3 rotation matrix (9 slots, row-major); random instances are rotations.
+    Rotation,
+}
+
+impl DataKind {
+    /// Number of free scalar slots of one element of this kind.
+    pub fn slots(self) -> usize {
+        match self {
+            DataKind::Scalar => 1,
+            DataKind::Vec3 => 3,
+            DataKind::Point => 2,
+            DataKind::Mat3 | DataKind::Rotation => 9,
+        }
+    }
+    /// The keyword used in problem files.
+    pub fn keyword(self) -> &'static str {
+        match self {
+            DataKind::Scalar => "scalar",
+            DataKind::Vec3 => "vec3",
+            DataKind::Point => "point",
+            DataKind::Mat3 => "mat3",
+            DataKind::Rotation => "rotation",
+        }
+    }
+}
+
+/// A data symbol, e.g. `x1[5]: point`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DataSymbol {
+    /// Name as written in the problem file.
+    pub name: String,
+    /// Kind of each element.
+    pub kind: DataKind,
+    /// Array length for `name[n]`, `None` for a single element.
+    pub len: Option<usize>,
+    /// Index of its first scalar slot among all data scalars.
+    pub first_slot: usize,
+}
+
+impl DataSymbol {
+    /// Total number of scalar slots (elements times slots per element).
+    pub fn slot_count(&self) -> usize {
+        self.len.unwrap_or(1) * self.kind.slots()
+    }
+}
+
+/// An unknown symbol, e.g. `t[3]` (three scalar unknowns t1, t2, t3) or `x` (one).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UnknownSymbol {
+    /// Name as written in the problem file.
+    pub name: String,
+    /// Vector length for `name[n]`, `None` for a scalar unknown.
+    pub len: Option<usize>,
+    /// Index of its first scalar variable among all unknown scalars.
+    pub first_var: usize,
+}
+
+/// The symbols of a problem: what emitted solvers take as data and return as solutions.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ProblemLayout {
+    /// The problem's name (`problem NAME`), also the emitted module name.
+    pub name: String,
+    /// Unknown symbols in declaration order.
+    pub unknowns: Vec<UnknownSymbol>,
+    /// Data symbols in declaration order.
+    pub data: Vec<DataSymbol>,
+    /// Flat indices of the unknown scalars named by `eliminate` (empty if none).
+    pub eliminate: Vec<usize>,
+}
+
+impl ProblemLayout {
+    /// Names of the unknown scalars, e.g. `["a1", "a2", "a3", "t1", "t2", "t3"]`.
+    pub fn unknown_names(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        for u in &self.unknowns {
+            match u.len {
+                None => out.push(u.name.clone()),
+                Some(n) => out.extend((1..=n).map(|i| format!("{}{}", u.name, i))),
+            }
+        }
+        out
+    }
+    /// Number of unknown scalars.
+    pub fn unknown_count(&self) -> usize {
+        self.unknowns.iter().map(|u| u.len.unwrap_or(1)).sum()
+    }
+    /// Number of data scalar slots.
+    pub fn data_slot_count(&self) -> usize {
+        self.data.iter().map(DataSymbol::slot_count).sum()
+    }
+}

@@ -1,0 +1,59 @@
+//! Elimination templates: which monomial multiples of which equations, and how their
+//! reduction yields the action matrix.
+//!
+//! ## Convention (shared by the interpreter and the emitted solvers)
+//! A template is a matrix whose row `i` holds the coefficients of the polynomial
+//! `rows[i].multiplier * equations[rows[i].equation]`, one column per monomial of
+//! `columns`. Columns are ordered `excess | reducible | basis`:
+//! - `basis` (the last `basis.len()` columns) is the quotient-ring basis B, in the order of
+//!   [`EliminationTemplate::basis`];
+//! - `reducible` (the `n_reducible` columns before) are the monomials `action * b`, b in B,
+//!   that are not in B;
+//! - `excess` (the first `n_excess` columns) are all other monomials the rows contain.
+//!
+//! Gauss-Jordan elimination of the template with this column order leaves, for each
+//! reducible monomial r, a row `r + sum_k T[r,k] b_k` (zero on excess and other reducible
+//! columns). The action matrix M (|B| x |B|) is then defined row by row: for `b_j` with
+//! `action * b_j = b_k` in B, row j is the unit vector e_k; otherwise `action * b_j = r`
+//! reducible and row j is `-T[r, :]`. For every solution s, the vector
+//! `v = (b_0(s), ..., b_{n-1}(s))` satisfies `M v = action(s) v`: solutions are the
+//! eigenvectors of M, and each unknown is read off as `v[x_i] / v[1]` (B contains 1 and
+//! every unknown for all shipped problems; the builder reports an error otherwise).
+
+use crate::algebra::Monomial;
+
+/// One template row: `multiplier * equations[equation]`.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct TemplateRow {
+    /// Index into the problem's (possibly eliminated) equation list.
+    pub equation: usize,
+    /// Monomial in the unknowns that multiplies the equation.
+    pub multiplier: Monomial,
+}
+
+/// An elimination template with its action monomial and quotient basis
+/// (see the module documentation for the convention).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct EliminationTemplate {
+    /// Number of unknown scalars (variables of the monomials).
+    pub nvars: usize,
+    /// The template rows.
+    pub rows: Vec<TemplateRow>,
+    /// Column monomials, ordered `excess | reducible | basis`.
+    pub columns: Vec<Monomial>,
+    /// Number of excess columns (first block).
+    pub n_excess: usize,
+    /// Number of reducible columns (second block).
+    pub n_reducible: usize,
+    /// The quotient basis B (the last block of columns, same order).
+    pub basis: Vec<Monomial>,
+    /// The action monomial (usually a single unknown).
+    pub action: Monomial,
+}
+
+impl EliminationTemplate {
+    /// Template size as (rows, columns).
+    pub fn size(&self) -> (usize, usize) {
+        (self.rows.len(), self.columns.len())
+    }
+}

@@ -1,1 +1,7 @@
 //! rspose: gyro-aided rolling-shutter relative pose.
+
+// --- estimator side (camera model, geometry, simulator, robust estimation, methods) ---
+pub mod camera;
+pub mod geometry;
+pub mod rolling_shutter;
+// --- end estimator side ---

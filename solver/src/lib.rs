@@ -3,5 +3,7 @@
 // --- estimator side (camera model, geometry, simulator, robust estimation, methods) ---
 pub mod camera;
 pub mod geometry;
+pub mod pair_file;
 pub mod rolling_shutter;
+pub mod simulate;
 // --- end estimator side ---

@@ -84,9 +84,17 @@ pub fn translation_error_deg(t_gt: &Vector3<f64>, t: &Vector3<f64>) -> f64 {
 }
 
 /// Project a 3x3 matrix onto SO(3) (nearest rotation in Frobenius norm, det = +1).
+/// Non-finite or non-convergent input is returned unchanged (callers check finiteness).
 pub fn orthonormalize(m: &Matrix3<f64>) -> Matrix3<f64> {
-    let svd = m.svd(true, true);
-    let (u, vt) = (svd.u.unwrap(), svd.v_t.unwrap());
+    if !m.iter().all(|x| x.is_finite()) {
+        return *m;
+    }
+    let Some(svd) = m.try_svd(true, true, 1e-15, 200) else {
+        return *m;
+    };
+    let (Some(u), Some(vt)) = (svd.u, svd.v_t) else {
+        return *m;
+    };
     let mut d = Matrix3::identity();
     if (u * vt).determinant() < 0.0 {
         d[(2, 2)] = -1.0;
@@ -105,8 +113,12 @@ pub fn decompose_essential(e: &Matrix3<f64>) -> Vec<(Matrix3<f64>, Vector3<f64>)
     if !e.iter().all(|x| x.is_finite()) {
         return Vec::new();
     }
-    let svd = e.svd(true, true);
-    let (mut u, mut vt) = (svd.u.unwrap(), svd.v_t.unwrap());
+    let Some(svd) = e.try_svd(true, true, 1e-15, 200) else {
+        return Vec::new();
+    };
+    let (Some(mut u), Some(mut vt)) = (svd.u, svd.v_t) else {
+        return Vec::new();
+    };
     let mut s: Vec<f64> = svd.singular_values.iter().copied().collect();
     s.sort_by(|a, b| b.partial_cmp(a).unwrap_or(std::cmp::Ordering::Equal));
     if !(s[0] > 0.0) || s[1] < 1e-12 * s[0] {

@@ -208,8 +208,13 @@ pub struct Pose {
 impl Pose {
     /// From a rotation matrix (re-orthonormalised) and a translation (normalised).
     pub fn new(r: &Matrix3<f64>, t: &Vector3<f64>) -> Self {
+        // Closed-form conversion of the orthonormalised matrix (nalgebra's iterative
+        // `from_matrix` can fail to terminate on non-finite input).
+        let r = crate::geometry::orthonormalize(r);
         Pose {
-            rotation: UnitQuaternion::from_matrix(r),
+            rotation: UnitQuaternion::from_rotation_matrix(
+                &nalgebra::Rotation3::from_matrix_unchecked(r),
+            ),
             translation: t.normalize(),
         }
     }

@@ -120,7 +120,7 @@ impl Camera {
 
     /// Pixel of a camera-frame point `x` (`K x / x.z`); `None` if `x.z <= 0` or non-finite.
     pub fn project(&self, x: &Vector3<f64>) -> Option<Vector2<f64>> {
-        if !(x.z > 0.0) || !x.iter().all(|c| c.is_finite()) {
+        if x.z.is_nan() || x.z <= 0.0 || !x.iter().all(|c| c.is_finite()) {
             return None;
         }
         Some(Vector2::new(

@@ -121,7 +121,7 @@ pub fn decompose_essential(e: &Matrix3<f64>) -> Vec<(Matrix3<f64>, Vector3<f64>)
     };
     let mut s: Vec<f64> = svd.singular_values.iter().copied().collect();
     s.sort_by(|a, b| b.partial_cmp(a).unwrap_or(std::cmp::Ordering::Equal));
-    if !(s[0] > 0.0) || s[1] < 1e-12 * s[0] {
+    if s[0].is_nan() || s[0] <= 0.0 || s[1] < 1e-12 * s[0] {
         return Vec::new();
     }
     // Reorder so that the smallest singular value is the last.
@@ -164,7 +164,7 @@ pub fn triangulate_depths(
     let (aa, ab, bb) = (a.dot(&a), a.dot(b), b.dot(b));
     let (at, bt) = (a.dot(t), b.dot(t));
     let det = aa * bb - ab * ab;
-    if !(det.abs() > 1e-14 * aa * bb) {
+    if det.is_nan() || det.abs() <= 1e-14 * aa * bb {
         return None;
     }
     // Normal equations: [aa -ab; -ab bb] [d1 d2] = [-at, bt].
@@ -336,14 +336,14 @@ mod tests {
         assert_eq!(translation_error_deg(&t, &(t * 3.0)), 0.0);
     }
 
-    fn random_scene(
-        rng: &mut ChaCha8Rng,
-    ) -> (
+    type Scene = (
         Matrix3<f64>,
         Vector3<f64>,
         Vec<Vector3<f64>>,
         Vec<Vector3<f64>>,
-    ) {
+    );
+
+    fn random_scene(rng: &mut ChaCha8Rng) -> Scene {
         let r = exp_so3(&rand_vec(rng, 0.3));
         let t = rand_vec(rng, 1.0).normalize();
         let mut m1 = Vec::new();

@@ -9,14 +9,18 @@ mod plot;
 mod stats;
 mod sweep;
 
-pub use plot::write_svg;
+pub use plot::{render_svg, write_svg};
 pub use stats::{median, summarize};
 pub use sweep::{Level, Sweep, UnknownSweep};
 
+use crate::evaluate::pose_errors;
+use crate::simulate::{simulate, SimulationOptions};
+use crate::{estimate_relative_pose, EstimateOptions, Method};
 use std::io::Write;
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
+use std::time::Instant;
 
 /// The outcome of one method on one simulated scene.
 #[derive(Clone, Debug, PartialEq)]
@@ -77,6 +81,57 @@ impl Default for ExperimentOptions {
                 .unwrap_or(1),
         }
     }
+}
+
+/// Simulates one scene at `level` from `seed` and runs each of `methods` on it with the
+/// options `options_for(method)`, timing each estimate and measuring its errors against the
+/// simulated ground truth. A method that returns an error is recorded as a failure.
+pub fn scene_trial(
+    level: &Level,
+    seed: u64,
+    methods: &[Method],
+    options_for: impl Fn(Method) -> EstimateOptions,
+) -> Vec<MethodOutcome> {
+    let sim = SimulationOptions {
+        angular_velocity: level.angular,
+        linear_velocity: level.linear,
+        pixel_noise: level.pixel_noise,
+        gyro_noise: level.gyro_noise,
+        seed,
+        ..SimulationOptions::default()
+    };
+    let pair = simulate(&sim);
+    methods
+        .iter()
+        .map(|&m| {
+            let failed = MethodOutcome {
+                method: m.name().to_string(),
+                rotation_error_deg: None,
+                translation_error_deg: None,
+                seconds: 0.0,
+            };
+            let Ok(pair) = &pair else { return failed };
+            let Some(gt) = &pair.ground_truth else {
+                return failed;
+            };
+            let (v1, v2) = pair.views();
+            let start = Instant::now();
+            let est = estimate_relative_pose(&v1, &v2, &pair.matches, &options_for(m));
+            let seconds = start.elapsed().as_secs_f64();
+            match est {
+                Ok(e) => {
+                    let err = pose_errors(&e, gt);
+                    MethodOutcome {
+                        method: m.name().to_string(),
+                        rotation_error_deg: Some(err.rotation_error_deg),
+                        translation_error_deg: Some(err.translation_error_deg),
+                        seconds,
+                    }
+                }
+                Err(_) => MethodOutcome { seconds, ..failed },
+            }
+        })
+        .collect()
 }
 
 /// The seed of trial `trial` at level `level` (SplitMix64 mixing of the three numbers).

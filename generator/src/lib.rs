@@ -11,4 +11,5 @@
 pub mod algebra;
 pub mod groebner;
 pub mod problem;
+pub mod quotient;
 pub mod template;

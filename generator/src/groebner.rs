@@ -32,7 +32,9 @@ pub const MAX_EXPONENT: u32 = 127;
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
 pub enum GroebnerError {
     /// The equations have no common solution: the reduced Gröbner basis is `{1}`.
-    #[error("inconsistent system: the Gröbner basis is {{1}}, the equations have no common solution")]
+    #[error(
+        "inconsistent system: the Gröbner basis is {{1}}, the equations have no common solution"
+    )]
     Inconsistent,
     /// The ideal is not zero-dimensional (infinitely many solutions).
     #[error(
@@ -94,9 +96,6 @@ impl Mon {
             key |= (prefix[n - j] as u128) << (8 * (15 - j));
         }
         Mon { key, exps }
-    }
-    pub(crate) fn exps(&self, n: usize) -> Vec<u32> {
-        (0..n).map(|i| self.exp(i)).collect()
     }
     #[inline]
     pub(crate) fn exp(&self, i: usize) -> u32 {
@@ -187,7 +186,7 @@ pub(crate) fn to_spoly<const P: u32>(p: &Poly<Fp<P>>) -> Result<SPoly, GroebnerE
     for (m, c) in p.terms() {
         v.push((Mon::from_monomial(m)?, c.0));
     }
-    v.sort_by(|a, b| b.0.cmp(&a.0));
+    v.sort_by_key(|t| std::cmp::Reverse(t.0));
     Ok(v)
 }
 
@@ -352,12 +351,12 @@ pub fn groebner_with<const P: u32>(
     let mut active: Vec<usize> = Vec::new();
     let mut pairs: Vec<Pair> = Vec::new();
 
-    let mut add = |h: SPoly,
-                   sugar: u32,
-                   g: &mut Vec<SPoly>,
-                   g_sugar: &mut Vec<u32>,
-                   active: &mut Vec<usize>,
-                   pairs: &mut Vec<Pair>|
+    let add = |h: SPoly,
+               sugar: u32,
+               g: &mut Vec<SPoly>,
+               g_sugar: &mut Vec<u32>,
+               active: &mut Vec<usize>,
+               pairs: &mut Vec<Pair>|
      -> Result<(), GroebnerError> {
         if h[0].0.degree() == 0 {
             return Err(GroebnerError::Inconsistent);
@@ -456,7 +455,9 @@ pub fn groebner_with<const P: u32>(
         if s.is_empty() {
             continue;
         }
-        if s.iter().any(|t| (0..nvars).any(|v| t.0.exp(v) > MAX_EXPONENT)) {
+        if s.iter()
+            .any(|t| (0..nvars).any(|v| t.0.exp(v) > MAX_EXPONENT))
+        {
             return Err(GroebnerError::DegreeTooLarge(opts.max_degree));
         }
         let (h, sugar) = reduce_full::<P>(s, pr.sugar, &g, &g_sugar, &active);
@@ -477,7 +478,10 @@ pub fn groebner_with<const P: u32>(
         full.extend(normal_form_raw::<P>(p[1..].to_vec(), &basis, &others));
         basis[k] = full;
     }
-    Ok(GroebnerBasis { nvars, polys: basis })
+    Ok(GroebnerBasis {
+        nvars,
+        polys: basis,
+    })
 }
 
 /// Remainder of `p` on division by `basis[k]`, `k in idx` (not normalised).
@@ -589,7 +593,10 @@ mod tests {
         let all = Monomial::all_up_to_degree(4, 4, MonomialOrder::Grevlex);
         for a in &all {
             for b in &all {
-                let (pa, pb) = (Mon::from_monomial(a).unwrap(), Mon::from_monomial(b).unwrap());
+                let (pa, pb) = (
+                    Mon::from_monomial(a).unwrap(),
+                    Mon::from_monomial(b).unwrap(),
+                );
                 assert_eq!(pa.cmp(&pb), MonomialOrder::Grevlex.cmp(a, b));
                 assert_eq!(pa.divides(&pb), a.divides(b));
                 assert_eq!(pa.mul(&pb).to_monomial(4), a.mul(b));

@@ -95,6 +95,10 @@ pub struct TemplateOptions {
     pub require_distinct_eigenvalues: bool,
     /// Number of fresh instances [`generate`] validates the chosen template on.
     pub validate_instances: usize,
+    /// How many exponent caps below the degree to try as extra candidate families
+    /// (products with every exponent `<= d - 1, d - 2, ...`); 0 by default (no gain seen
+    /// on the shipped problems).
+    pub exponent_caps: usize,
     /// Seed of all random choices (instances).
     pub seed: u64,
 }
@@ -106,6 +110,7 @@ impl Default for TemplateOptions {
             actions: Vec::new(),
             require_distinct_eigenvalues: true,
             validate_instances: 10,
+            exponent_caps: 0,
             seed: 2024,
         }
     }
@@ -256,29 +261,53 @@ pub fn build_template<const P: u32>(
         .chain(blocks.reducible.iter().map(|m| m.degree()))
         .max()
         .unwrap_or(0);
-    let mut history = Vec::new();
-    let mut found = None;
+    // Candidate families: all multiples up to degree d, optionally with every exponent of
+    // the products capped; each family that reduces is shrunk, the smallest result kept.
+    let maxdeg = eqs.iter().filter_map(|f| f.degree()).max().unwrap_or(0);
+    let mut best: Option<(usize, Vec<Candidate>, Vec<ShrinkStep>)> = None;
+    let mut full_ok = false;
     for d in d0..=d0 + opts.max_extra_degree {
-        let cands = candidates(eqs, d);
-        let refs: Vec<&Candidate> = cands.iter().collect();
-        if blocks.reducible_by::<P>(&refs) {
+        for cap in (maxdeg.max(1)..=d).rev().take(opts.exponent_caps + 1) {
+            let cands: Vec<Candidate> = candidates(eqs, d)
+                .into_iter()
+                .filter(|c| {
+                    c.terms
+                        .iter()
+                        .all(|(m, _)| m.0.iter().all(|&e| e as u32 <= cap))
+                })
+                .collect();
+            let refs: Vec<&Candidate> = cands.iter().collect();
+            if !blocks.reducible_by::<P>(&refs) {
+                break;
+            }
+            full_ok = true;
             let ne = blocks.excess_of(cands.iter()).len();
-            history.push((
-                format!("all multiples up to degree {d}"),
+            let mut history = vec![(
+                if cap < d {
+                    format!("all multiples up to degree {d}, exponents <= {cap}")
+                } else {
+                    format!("all multiples up to degree {d}")
+                },
                 cands.len(),
                 ne + blocks.reducible.len() + basis.len(),
-            ));
-            found = Some(cands);
+            )];
+            let kept = shrink::<P>(&blocks, cands, &mut history);
+            let score = kept.len()
+                * (blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + basis.len());
+            if best.as_ref().map_or(true, |b| score < b.0) {
+                best = Some((score, kept, history));
+            }
+        }
+        if full_ok {
             break;
         }
     }
-    let Some(cands) = found else {
+    let Some((_, kept, history)) = best else {
         return Err(TemplateError::NotReducible {
             action: show(&action),
             max_degree: d0 + opts.max_extra_degree,
         });
     };
-    let kept = shrink::<P>(&blocks, cands, &mut history);
     let template = assemble::<P>(nvars, &blocks, &kept, &action);
     debug_assert!(blocks.reducible_by::<P>(&kept.iter().collect::<Vec<_>>()));
     // Distinct eigenvalues of the action matrix on this instance.
@@ -314,7 +343,12 @@ pub(crate) fn assemble<const P: u32>(
     let mut rows: Vec<(usize, &Candidate)> = kept
         .iter()
         .map(|c| {
-            let first = c.terms.iter().map(|(m, _)| idx[m]).min().unwrap_or(usize::MAX);
+            let first = c
+                .terms
+                .iter()
+                .map(|(m, _)| idx[m])
+                .min()
+                .unwrap_or(usize::MAX);
             (first, c)
         })
         .collect();
@@ -343,7 +377,13 @@ pub fn best_template<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     basis: &[Monomial],
     opts: &TemplateOptions,
-) -> Result<(BuiltTemplate, Vec<(usize, Result<BuiltTemplate, TemplateError>)>), TemplateError> {
+) -> Result<
+    (
+        BuiltTemplate,
+        Vec<(usize, Result<BuiltTemplate, TemplateError>)>,
+    ),
+    TemplateError,
+> {
     let nvars = basis.first().map(|b| b.nvars()).unwrap_or(0);
     let actions: Vec<usize> = if opts.actions.is_empty() {
         (0..nvars).collect()
@@ -447,8 +487,12 @@ impl EliminationTemplate {
     /// Errors with [`TemplateError::MissingColumn`] if a product has a monomial that is not
     /// a column (the instance is not of the family the template was built for).
     pub fn fill<C: Ring>(&self, eqs: &[Poly<C>]) -> Result<Vec<Vec<C>>, TemplateError> {
-        let idx: BTreeMap<&Monomial, usize> =
-            self.columns.iter().enumerate().map(|(i, m)| (m, i)).collect();
+        let idx: BTreeMap<&Monomial, usize> = self
+            .columns
+            .iter()
+            .enumerate()
+            .map(|(i, m)| (m, i))
+            .collect();
         self.rows
             .iter()
             .map(|r| {

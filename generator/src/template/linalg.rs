@@ -47,7 +47,11 @@ fn axpy<const P: u32>(dst: &mut [u32], c: u32, src: &[u32], nz: &[usize]) {
 /// With `full`, entries above pivots are eliminated too (reduced row echelon form).
 /// Pivots are searched in the first `ncols` columns only; row operations act on whole
 /// rows. Returns the pivot column of each of the first `rank` rows.
-pub(crate) fn gauss_jordan<const P: u32>(m: &mut [Vec<u32>], ncols: usize, full: bool) -> Vec<usize> {
+pub(crate) fn gauss_jordan<const P: u32>(
+    m: &mut [Vec<u32>],
+    ncols: usize,
+    full: bool,
+) -> Vec<usize> {
     let nrows = m.len();
     let width = m.first().map_or(0, |r| r.len());
     let mut pivots = Vec::new();
@@ -63,9 +67,9 @@ pub(crate) fn gauss_jordan<const P: u32>(m: &mut [Vec<u32>], ncols: usize, full:
         m.swap(r, i);
         let inv = invmod::<P>(m[r][c]);
         nz.clear();
-        for k in c..width {
-            if m[r][k] != 0 {
-                m[r][k] = mulmod::<P>(m[r][k], inv);
+        for (k, x) in m[r].iter_mut().enumerate().take(width).skip(c) {
+            if *x != 0 {
+                *x = mulmod::<P>(*x, inv);
                 nz.push(k);
             }
         }
@@ -188,9 +192,9 @@ pub(crate) fn charpoly<const P: u32>(m: &[Vec<u32>]) -> Vec<u32> {
                 continue;
             }
             // Row i -= u * row j+1; column j+1 += u * column i.
-            for k in 0..n {
-                let v = mulmod::<P>(u, h[j + 1][k]);
-                h[i][k] = submod::<P>(h[i][k], v);
+            let pivot_row = h[j + 1].clone();
+            for (x, &y) in h[i].iter_mut().zip(&pivot_row) {
+                *x = submod::<P>(*x, mulmod::<P>(u, y));
             }
             for row in h.iter_mut() {
                 let v = mulmod::<P>(u, row[i]);

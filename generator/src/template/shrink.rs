@@ -35,8 +35,7 @@ fn ncols(blocks: &Blocks, rows: &[Candidate]) -> usize {
 }
 
 /// Drops linearly dependent rows, keeping rows early in `order` (matroid greedy).
-fn independent_rows<const P: u32>(blocks: &Blocks, mut rows: Vec<Candidate>) -> Vec<Candidate> {
-    rows.sort_by(keep_order);
+fn independent_rows<const P: u32>(blocks: &Blocks, rows: Vec<Candidate>) -> Vec<Candidate> {
     let excess = blocks.excess_of(rows.iter());
     let refs: Vec<&Candidate> = rows.iter().collect();
     let dense = blocks.dense_er(&refs, &excess);
@@ -68,8 +67,79 @@ fn excess_rank<const P: u32>(blocks: &Blocks, rows: &[Candidate]) -> usize {
     gauss_jordan::<P>(&mut dense, excess.len(), false).len()
 }
 
-/// Shrinks a reducing candidate set; appends one history entry per step.
+/// A removal-priority strategy: rows are kept preferentially in increasing key order.
+#[derive(Clone, Copy, Debug)]
+enum Strategy {
+    /// Total degree, then multiplier degree, equation, multiplier.
+    Degree,
+    /// Total degree, then the number of excess monomials of the row.
+    DegreeExcess,
+    /// Number of excess monomials of the row, then total degree.
+    Excess,
+}
+
+impl Strategy {
+    fn name(self) -> &'static str {
+        match self {
+            Strategy::Degree => "highest degree first",
+            Strategy::DegreeExcess => "highest degree, then most excess monomials, first",
+            Strategy::Excess => "most excess monomials first",
+        }
+    }
+}
+
+fn order_rows(blocks: &Blocks, rows: &mut [Candidate], s: Strategy) {
+    let n_exc = |c: &Candidate| {
+        c.terms
+            .iter()
+            .filter(|(m, _)| !blocks.red_set.contains(m) && !blocks.basis_set.contains(m))
+            .count()
+    };
+    match s {
+        Strategy::Degree => rows.sort_by(keep_order),
+        Strategy::DegreeExcess => rows.sort_by(|a, b| {
+            (a.degree, n_exc(a))
+                .cmp(&(b.degree, n_exc(b)))
+                .then_with(|| keep_order(a, b))
+        }),
+        Strategy::Excess => rows.sort_by(|a, b| {
+            (n_exc(a), a.degree)
+                .cmp(&(n_exc(b), b.degree))
+                .then_with(|| keep_order(a, b))
+        }),
+    }
+}
+
+/// Shrinks a reducing candidate set with each removal strategy and keeps the smallest
+/// result (fewest rows * cols; ties to the earlier strategy); appends its history.
 pub(crate) fn shrink<const P: u32>(
+    blocks: &Blocks,
+    cands: Vec<Candidate>,
+    history: &mut Vec<ShrinkStep>,
+) -> Vec<Candidate> {
+    let strategies = [Strategy::Degree, Strategy::DegreeExcess, Strategy::Excess];
+    let mut best: Option<(usize, Vec<Candidate>, Vec<ShrinkStep>, &str)> = None;
+    for s in strategies {
+        let mut rows = cands.clone();
+        order_rows(blocks, &mut rows, s);
+        let mut h = Vec::new();
+        let rows = shrink_ordered::<P>(blocks, rows, &mut h);
+        let score = rows.len() * ncols(blocks, &rows);
+        if best.as_ref().map_or(true, |b| score < b.0) {
+            best = Some((score, rows, h, s.name()));
+        }
+    }
+    let (_, rows, h, name) = best.expect("at least one strategy");
+    let mut h = h;
+    if let Some(first) = h.first_mut() {
+        first.0 = format!("drop linearly dependent rows (removal order: {name})");
+    }
+    history.extend(h);
+    rows
+}
+
+/// Shrinks with the rows already in keep-preference order.
+fn shrink_ordered<const P: u32>(
     blocks: &Blocks,
     cands: Vec<Candidate>,
     history: &mut Vec<ShrinkStep>,
@@ -97,7 +167,9 @@ pub(crate) fn shrink<const P: u32>(
     let ne = blocks.excess_of(rows.iter()).len();
     if rank_e != ne {
         history.push((
-            format!("note: excess block rank {rank_e} < {ne} excess columns (left block not square)"),
+            format!(
+                "note: excess block rank {rank_e} < {ne} excess columns (left block not square)"
+            ),
             rows.len(),
             cols2,
         ));

@@ -28,9 +28,7 @@ fn dot<const P: u32>(a: &P3<P>, b: &P3<P>) -> Poly<Fp<P>> {
 fn matvec<const P: u32>(m: &[[Fp<P>; 3]; 3], v: &P3<P>) -> P3<P> {
     let n = v[0].nvars();
     std::array::from_fn(|i| {
-        (0..3).fold(Poly::zero(n), |acc, j| {
-            acc.add(&v[j].mul(&cst(n, m[i][j])))
-        })
+        (0..3).fold(Poly::zero(n), |acc, j| acc.add(&v[j].mul(&cst(n, m[i][j]))))
     })
 }
 fn constvec<const P: u32>(n: usize, v: [Fp<P>; 3]) -> P3<P> {

@@ -10,5 +10,7 @@
 
 pub mod algebra;
 pub mod eliminate;
+pub mod groebner;
 pub mod problem;
+pub mod quotient;
 pub mod template;

@@ -11,3 +11,11 @@
 pub mod algebra;
 pub mod problem;
 pub mod template;
+
+// Problem language and its symbolic expansion.
+pub mod expand;
+pub mod instance;
+pub mod lang;
+
+pub use expand::{Problem, ProblemError};
+pub use lang::LangError;

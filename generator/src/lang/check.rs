@@ -776,8 +776,8 @@ impl Checker {
                 let mut v = self.expr(base)?;
                 for p in ops {
                     v = match p {
-                        Postfix::Transpose(pos) => {
-                            let n = self.to_node(v, *pos)?;
+                        Postfix::Transpose(_) => {
+                            let n = self.to_node(v, base.pos)?;
                             let s = self.shape(n);
                             Val::Node(self.mk(
                                 Op::Transpose(n),

@@ -14,3 +14,11 @@ pub mod groebner;
 pub mod problem;
 pub mod quotient;
 pub mod template;
+
+// Problem language and its symbolic expansion.
+pub mod expand;
+pub mod instance;
+pub mod lang;
+
+pub use expand::{Problem, ProblemError};
+pub use lang::LangError;

@@ -19,6 +19,7 @@ pub mod template;
 pub mod expand;
 pub mod instance;
 pub mod lang;
+pub mod pipeline;
 
 pub use expand::{Problem, ProblemError};
 pub use lang::LangError;

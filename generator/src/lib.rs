@@ -9,5 +9,6 @@
 //! the prime fields used for Gröbner bases, `f64`, and traced expressions for code emission.
 
 pub mod algebra;
+pub mod emit;
 pub mod problem;
 pub mod template;

@@ -497,3 +497,20 @@ fn invalid_templates_are_rejected() {
     bad.layout.data[1].name = "e1".into();
     assert!(emit_solver(&bad).is_err(), "field name collision");
 }
+
+/// Templates above 40 rows are allocated on the heap (here: the 5-point rows repeated to 45
+/// rows; the extra rows reduce to zero and do not change the solutions).
+#[test]
+fn large_templates_use_the_heap() {
+    let (mut spec, _t) = five_point_spec();
+    spec.layout.name = "fivept_big".into();
+    spec.problem_path = String::new();
+    let rows = spec.template.rows.clone();
+    spec.template.rows = (0..45).map(|i| rows[i % 10].clone()).collect();
+    let a = emit_solver(&spec).unwrap();
+    syn::parse_file(&a).expect("emitted code parses");
+    assert!(a.starts_with(&generated_header("fivept_big")));
+    assert!(a.contains("let mut m = vec![0.0f64; 900];"));
+    assert!(a.contains("crate::runtime::gauss_jordan(&mut m, 45, 20, 10)"));
+    std::fs::write(out_dir().join("fivept_big.rs"), &a).unwrap();
+}

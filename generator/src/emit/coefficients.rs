@@ -355,7 +355,7 @@ mod tests {
         let t = Tracer::new();
         let d = t.inputs(2);
         let x = d[0].mul(&d[1]);
-        let p = Program::build(&[Traced::from_i64(-3)], &[x.clone()], 2).unwrap();
+        let p = Program::build(&[Traced::from_i64(-3)], std::slice::from_ref(&x), 2).unwrap();
         assert_eq!(p.stmts.len(), 1);
         assert_eq!(p.outputs[0], Expr::Const(-3.0));
         assert_eq!(p.outputs[1], Expr::Var(0));

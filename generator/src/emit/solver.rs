@@ -807,6 +807,12 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let docs: Vec<TokenStream> = docs.iter().map(doc).collect();
     let solve = quote! {
         #(#docs)*
+        #[must_use]
+        #[allow(
+            clippy::similar_names,
+            clippy::many_single_char_names,
+            clippy::too_many_lines
+        )]
         pub fn solve(data: &Data) -> Solutions {
             let mut out = Solutions::new();
             let d: [f64; #n_slots_l] = [#(#slot_expr),*];

@@ -493,6 +493,9 @@ fn invalid_templates_are_rejected() {
     bad.template.columns.swap(0, 1);
     bad.template.columns.swap(0, 15);
     assert!(emit_solver(&bad).is_err());
+    let mut bad = spec.clone();
+    bad.layout.name = "five-point".into();
+    assert!(emit_solver(&bad).is_err(), "not a module name");
     let mut bad = spec;
     bad.layout.data[1].name = "e1".into();
     assert!(emit_solver(&bad).is_err(), "field name collision");

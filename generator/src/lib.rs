@@ -11,6 +11,7 @@
 pub mod algebra;
 pub mod eliminate;
 pub mod groebner;
+pub mod emit;
 pub mod problem;
 pub mod quotient;
 pub mod template;

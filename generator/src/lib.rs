@@ -10,14 +10,15 @@
 
 pub mod algebra;
 pub mod eliminate;
-pub mod groebner;
 pub mod emit;
+pub mod groebner;
 pub mod problem;
 pub mod quotient;
 pub mod template;
 
 // Problem language and its symbolic expansion.
 pub mod expand;
+pub mod generate;
 pub mod instance;
 pub mod lang;
 pub mod pipeline;

@@ -3,6 +3,8 @@
 
 use clap::{Parser, Subcommand};
 use mingen::algebra::MonomialOrder;
+use mingen::generate::{plan_file, problem_files, workspace_root, GenerateError};
+use mingen::template::TemplateOptions;
 use mingen::{Problem, ProblemError};
 use serde_json::{json, Map, Value};
 use std::path::PathBuf;
@@ -26,12 +28,32 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Emit solver/src/generated/<name>.rs for problem files (or all of templates/*.mp).
+    Generate {
+        /// Problem files.
+        files: Vec<PathBuf>,
+        /// Every problem file in templates/ (and the module list generated/mod.rs).
+        #[arg(long)]
+        all: bool,
+        /// Write nothing; exit 1 naming each stale or missing generated file.
+        #[arg(long)]
+        check: bool,
+    },
 }
 
 /// A failure reported on one line of stderr with an exit code.
 struct CliError {
     message: String,
     code: u8,
+}
+
+impl From<GenerateError> for CliError {
+    fn from(e: GenerateError) -> Self {
+        CliError {
+            message: e.to_string(),
+            code: 2,
+        }
+    }
 }
 
 impl From<ProblemError> for CliError {
@@ -47,6 +69,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Inspect { file, json } => inspect(&file, json),
+        Command::Generate { files, all, check } => generate(files, all, check),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -116,7 +139,11 @@ fn problem_summary(p: &Problem) -> Map<String, Value> {
 
 fn inspect(file: &PathBuf, as_json: bool) -> Result<(), CliError> {
     let p = Problem::from_file(file)?;
-    let summary = problem_summary(&p);
+    let mut summary = problem_summary(&p);
+    let plan = plan_file(file, &TemplateOptions::default())?;
+    if let Value::Object(algebra) = plan.summary_json() {
+        summary.extend(algebra);
+    }
     if as_json {
         println!(
             "{}",
@@ -158,6 +185,93 @@ fn inspect(file: &PathBuf, as_json: bool) -> Result<(), CliError> {
             data_terms,
             support.join(" ")
         );
+    }
+    print_plan(&plan);
+    Ok(())
+}
+
+/// The algebra part of `inspect`: count, basis, template and how it was shrunk.
+fn print_plan(plan: &mingen::pipeline::SolverPlan) {
+    let names = plan.variable_names();
+    let g = &plan.generated;
+    let t = &g.built.template;
+    println!("solutions: {}", g.count);
+    println!(
+        "basis ({}): {}",
+        t.basis.len(),
+        t.basis
+            .iter()
+            .map(|m| m.display_with(&names))
+            .collect::<Vec<_>>()
+            .join(" ")
+    );
+    println!("action: {}", t.action.display_with(&names));
+    let (rows, cols) = t.size();
+    println!(
+        "template: {rows} x {cols} ({} excess, {} reducible, {} basis columns)",
+        t.n_excess,
+        t.n_reducible,
+        t.basis.len()
+    );
+    println!("shrinking:");
+    for (step, r, c) in &g.built.history {
+        println!("  {r:>5} x {c:<5} {step}");
+    }
+    println!("template per action variable:");
+    for (v, size) in &g.per_action {
+        let name = names.get(*v).cloned().unwrap_or_default();
+        match size {
+            Some((r, c)) => println!("  {name:<6} {r} x {c}"),
+            None => println!("  {name:<6} failed"),
+        }
+    }
+    if let Some(v) = &g.validation {
+        println!("validation: {v:?}");
+    }
+    println!(
+        "seconds: {:.3} (analysis {:.3}, templates {:.3}, validation {:.3})",
+        plan.seconds, g.seconds.0, g.seconds.1, g.seconds.2
+    );
+}
+
+fn generate(files: Vec<PathBuf>, all: bool, check: bool) -> Result<(), CliError> {
+    let root = workspace_root()?;
+    if all && !files.is_empty() {
+        return Err(CliError {
+            message: "give problem files or --all, not both".into(),
+            code: 2,
+        });
+    }
+    if !all && files.is_empty() {
+        return Err(CliError {
+            message: "nothing to generate: give problem files or --all".into(),
+            code: 2,
+        });
+    }
+    let files = if all { problem_files(&root)? } else { files };
+    let report = mingen::generate::generate(&root, &files, all, check)?;
+    let stale: Vec<_> = report.iter().filter(|f| !f.fresh).collect();
+    for f in &report {
+        let rel = f
+            .path
+            .strip_prefix(&root)
+            .unwrap_or(&f.path)
+            .display()
+            .to_string();
+        match (check, f.fresh) {
+            (_, true) => eprintln!("fresh   {rel}"),
+            (true, false) => eprintln!("stale   {rel}"),
+            (false, false) => eprintln!("wrote   {rel}"),
+        }
+    }
+    if check && !stale.is_empty() {
+        return Err(CliError {
+            message: format!(
+                "{} generated file(s) are stale; run `cargo run --release -p mingen -- generate --all`",
+                stale.len()
+            ),
+            code: 1,
+        });
     }
     Ok(())
 }

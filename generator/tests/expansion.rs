@@ -31,10 +31,7 @@ fn templates() -> Vec<(PathBuf, Problem)> {
 }
 
 fn mono_f64(m: &Monomial, x: &[f64]) -> f64 {
-    m.0.iter()
-        .zip(x)
-        .map(|(&e, v)| v.powi(e as i32))
-        .product()
+    m.0.iter().zip(x).map(|(&e, v)| v.powi(e as i32)).product()
 }
 
 fn mono_fp(m: &Monomial, x: &[F]) -> F {

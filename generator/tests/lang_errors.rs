@@ -240,7 +240,9 @@ fn malformed_files_give_positioned_errors() {
             e.message
         );
         assert_eq!(e.file, "case.mp");
-        assert!(e.to_string().starts_with(&format!("case.mp:{line}:{col}: ")));
+        assert!(e
+            .to_string()
+            .starts_with(&format!("case.mp:{line}:{col}: ")));
     }
 }
 
@@ -280,7 +282,10 @@ fn language_features_parse() {
                [x, 0, 0] = (R * u[1])\n";
     let p = Problem::parse(src, "f.mp").unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(p.equation_count(), 6 + 1 + 1 + 3);
-    assert_eq!(p.unknown_names(), ["a1", "a2", "a3", "q1", "q2", "q3", "q4", "x"]);
+    assert_eq!(
+        p.unknown_names(),
+        ["a1", "a2", "a3", "q1", "q2", "q3", "q4", "x"]
+    );
     assert_eq!(p.layout.data_slot_count(), 1 + 9 + 6 + 9);
     assert_eq!(p.data_slot_names()[1], "R[0][0]");
     assert_eq!(p.data_slot_names()[10], "u[0].x");

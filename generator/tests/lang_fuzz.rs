@@ -10,9 +10,32 @@ use rand_chacha::ChaCha8Rng;
 
 const ALPHABET: &[u8] = b"[](){}'*+-/=,:;.#0123456789 \n\tabcIkxtv_";
 const WORDS: &[&str] = &[
-    "problem", "unknown", "data", "eliminate", "let", "for", "in", "skew", "det", "trace",
-    "I", "point", "rotation", "..", "0..5", "99999999999999999999", "0.5", "[", "]", "(", ")",
-    "{", "}", "'", "=", "\n",
+    "problem",
+    "unknown",
+    "data",
+    "eliminate",
+    "let",
+    "for",
+    "in",
+    "skew",
+    "det",
+    "trace",
+    "I",
+    "point",
+    "rotation",
+    "..",
+    "0..5",
+    "99999999999999999999",
+    "0.5",
+    "[",
+    "]",
+    "(",
+    ")",
+    "{",
+    "}",
+    "'",
+    "=",
+    "\n",
 ];
 
 fn mutate(src: &[u8], rng: &mut ChaCha8Rng) -> Vec<u8> {

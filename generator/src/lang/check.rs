@@ -584,10 +584,10 @@ impl Checker {
     /// The node of a value, or an error for an unindexed array.
     fn value(&mut self, e: &Expr) -> Result<NodeId, LangError> {
         let v = self.expr(e)?;
-        self.to_node(v, e.pos)
+        self.node_of(v, e.pos)
     }
 
-    fn to_node(&mut self, v: Val, pos: Pos) -> Result<NodeId, LangError> {
+    fn node_of(&mut self, v: Val, pos: Pos) -> Result<NodeId, LangError> {
         match v {
             Val::Node(n) => Ok(n),
             Val::DataArray(i) => {
@@ -745,7 +745,7 @@ impl Checker {
                                 return Err(self.err(
                                     *pos,
                                     format!(
-                                        "cannot multiply {} by {}: {} columns against {} rows",
+                                        "cannot multiply {} by {}: inner dimensions {} and {} differ",
                                         a.describe(),
                                         b.describe(),
                                         a.cols,
@@ -777,7 +777,7 @@ impl Checker {
                 for p in ops {
                     v = match p {
                         Postfix::Transpose(_) => {
-                            let n = self.to_node(v, base.pos)?;
+                            let n = self.node_of(v, base.pos)?;
                             let s = self.shape(n);
                             Val::Node(self.mk(
                                 Op::Transpose(n),

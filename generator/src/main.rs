@@ -43,6 +43,31 @@ impl From<ProblemError> for CliError {
     }
 }
 
+/// `writeln!` into a `String` (infallible).
+macro_rules! outln {
+    ($out:expr, $($arg:tt)*) => {{
+        use std::fmt::Write as _;
+        let _ = writeln!($out, $($arg)*);
+    }};
+}
+
+/// Writes to stdout; a closed pipe (`mingen inspect F | head`) is not an error.
+fn emit(text: &str) -> Result<(), CliError> {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    match stdout
+        .write_all(text.as_bytes())
+        .and_then(|_| stdout.flush())
+    {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        Err(e) => Err(CliError {
+            message: format!("cannot write the output: {e}"),
+            code: 1,
+        }),
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
@@ -118,15 +143,13 @@ fn inspect(file: &PathBuf, as_json: bool) -> Result<(), CliError> {
     let p = Problem::from_file(file)?;
     let summary = problem_summary(&p);
     if as_json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&Value::Object(summary)).unwrap_or_default()
-        );
-        return Ok(());
+        let text = serde_json::to_string_pretty(&Value::Object(summary)).unwrap_or_default();
+        return emit(&format!("{text}\n"));
     }
     let names = p.unknown_names();
-    println!("problem {}", p.name());
-    println!("unknowns ({}): {}", names.len(), names.join(" "));
+    let mut out = String::new();
+    outln!(out, "problem {}", p.name());
+    outln!(out, "unknowns ({}): {}", names.len(), names.join(" "));
     if !p.layout.eliminate.is_empty() {
         let el: Vec<&str> = p
             .layout
@@ -134,16 +157,16 @@ fn inspect(file: &PathBuf, as_json: bool) -> Result<(), CliError> {
             .iter()
             .filter_map(|&i| names.get(i).map(String::as_str))
             .collect();
-        println!("eliminate: {}", el.join(" "));
+        outln!(out, "eliminate: {}", el.join(" "));
     }
-    println!("data ({} slots):", p.layout.data_slot_count());
+    outln!(out, "data ({} slots):", p.layout.data_slot_count());
     for d in &p.layout.data {
         let len = d.len.map(|n| format!("[{n}]")).unwrap_or_default();
-        println!("  {}{}: {}", d.name, len, d.kind.keyword());
+        outln!(out, "  {}{}: {}", d.name, len, d.kind.keyword());
     }
     let lines = p.equation_lines();
     let equations = p.expand();
-    println!("equations: {}", equations.len());
+    outln!(out, "equations: {}", equations.len());
     for (i, (e, line)) in equations.iter().zip(&lines).enumerate() {
         let support: Vec<String> = e
             .support(MonomialOrder::Grevlex)
@@ -151,7 +174,8 @@ fn inspect(file: &PathBuf, as_json: bool) -> Result<(), CliError> {
             .map(|m| m.display_with(&names))
             .collect();
         let data_terms: usize = e.terms().map(|(_, c)| c.len()).sum();
-        println!(
+        outln!(
+            out,
             "  [{i}] line {line}: degree {}, {} monomials, {} data terms: {}",
             e.degree().unwrap_or(0),
             support.len(),
@@ -159,5 +183,5 @@ fn inspect(file: &PathBuf, as_json: bool) -> Result<(), CliError> {
             support.join(" ")
         );
     }
-    Ok(())
+    emit(&out)
 }

@@ -86,6 +86,13 @@ impl<T: Ring> Mat<T> {
             e: self.e.iter().zip(&o.e).map(|(a, b)| f(a, b)).collect(),
         }
     }
+    fn add_sub(&self, o: &Self, sub: bool) -> Self {
+        if sub {
+            self.zip(o, sub_skip)
+        } else {
+            self.zip(o, |a, b| a.add(b))
+        }
+    }
     fn map(&self, f: impl Fn(&T) -> T) -> Self {
         Mat {
             shape: self.shape,
@@ -93,37 +100,7 @@ impl<T: Ring> Mat<T> {
         }
     }
     fn mul(&self, o: &Self) -> Self {
-        if self.shape.is_scalar() {
-            let s = &self.e[0];
-            return o.map(|x| mul_skip(s, x));
-        }
-        if o.shape.is_scalar() {
-            let s = &o.e[0];
-            return self.map(|x| mul_skip(x, s));
-        }
-        let (r, n, c) = (self.shape.rows, self.shape.cols, o.shape.cols);
-        let mut e = Vec::with_capacity(r * c);
-        for i in 0..r {
-            for j in 0..c {
-                let mut acc: Option<T> = None;
-                for k in 0..n {
-                    let (a, b) = (self.at(i, k), o.at(k, j));
-                    if a.is_zero() || b.is_zero() {
-                        continue;
-                    }
-                    let p = a.mul(b);
-                    acc = Some(match acc {
-                        None => p,
-                        Some(s) => s.add(&p),
-                    });
-                }
-                e.push(acc.unwrap_or_else(T::zero));
-            }
-        }
-        Mat {
-            shape: Shape { rows: r, cols: c },
-            e,
-        }
+        mat_mul(self, o, |a, b| a.mul(b))
     }
     fn transpose(&self) -> Self {
         let s = self.shape;
@@ -172,6 +149,166 @@ impl<T: Ring> Mat<T> {
     fn trace(&self) -> T {
         self.at(0, 0).add(self.at(1, 1)).add(self.at(2, 2))
     }
+}
+
+/// The product of two small matrices over possibly different rings `A`, `B` with values in
+/// `R` (`f` multiplies entries): the matrix product, or scaling when one side is 1x1.
+/// Products with a zero factor are skipped.
+fn mat_mul<A: Ring, B: Ring, R: Ring>(a: &Mat<A>, b: &Mat<B>, f: impl Fn(&A, &B) -> R) -> Mat<R> {
+    let g = |x: &A, y: &B| {
+        if x.is_zero() || y.is_zero() {
+            R::zero()
+        } else {
+            f(x, y)
+        }
+    };
+    if a.shape.is_scalar() {
+        let s = &a.e[0];
+        return Mat {
+            shape: b.shape,
+            e: b.e.iter().map(|y| g(s, y)).collect(),
+        };
+    }
+    if b.shape.is_scalar() {
+        let s = &b.e[0];
+        return Mat {
+            shape: a.shape,
+            e: a.e.iter().map(|x| g(x, s)).collect(),
+        };
+    }
+    let (r, n, c) = (a.shape.rows, a.shape.cols, b.shape.cols);
+    let mut e = Vec::with_capacity(r * c);
+    for i in 0..r {
+        for j in 0..c {
+            let mut acc: Option<R> = None;
+            for k in 0..n {
+                let (x, y) = (a.at(i, k), b.at(k, j));
+                if x.is_zero() || y.is_zero() {
+                    continue;
+                }
+                let p = f(x, y);
+                acc = Some(match acc {
+                    None => p,
+                    Some(s) => s.add(&p),
+                });
+            }
+            e.push(acc.unwrap_or_else(R::zero));
+        }
+    }
+    Mat {
+        shape: Shape { rows: r, cols: c },
+        e,
+    }
+}
+
+/// A tape value during polynomial evaluation: free of unknowns (kept in the coefficient
+/// ring, cheap) or a matrix of polynomials in the unknowns.
+enum Mixed<C> {
+    K(Mat<C>),
+    P(Mat<Poly<C>>),
+}
+
+impl<C: Ring> Mixed<C> {
+    fn lift(&self, n: usize) -> std::borrow::Cow<'_, Mat<Poly<C>>> {
+        match self {
+            Mixed::P(m) => std::borrow::Cow::Borrowed(m),
+            Mixed::K(m) => std::borrow::Cow::Owned(Mat {
+                shape: m.shape,
+                e: m.e.iter().map(|c| Poly::constant(n, c.clone())).collect(),
+            }),
+        }
+    }
+    /// Applies `k` if unknown-free, else `p` on the polynomial matrix.
+    fn map(
+        &self,
+        k: impl Fn(&Mat<C>) -> Mat<C>,
+        p: impl Fn(&Mat<Poly<C>>) -> Mat<Poly<C>>,
+    ) -> Self {
+        match self {
+            Mixed::K(m) => Mixed::K(k(m)),
+            Mixed::P(m) => Mixed::P(p(m)),
+        }
+    }
+}
+
+/// Runs the tape with polynomial values only where unknowns enter.
+fn run_mixed<C: Ring>(
+    nodes: &[Node],
+    needed: &[bool],
+    n: usize,
+    data: &[C],
+) -> Result<Vec<Option<Mixed<C>>>, EvalError> {
+    let mut vals: Vec<Option<Mixed<C>>> = Vec::with_capacity(nodes.len());
+    for (id, node) in nodes.iter().enumerate() {
+        if !needed.get(id).copied().unwrap_or(false) {
+            vals.push(None);
+            continue;
+        }
+        let get = |x: &NodeId| -> &Mixed<C> {
+            vals[*x]
+                .as_ref()
+                .expect("operands precede their users and are needed")
+        };
+        // Entrywise sum or difference, in the ring when both sides are unknown-free.
+        let add_sub = |a: &NodeId, b: &NodeId, sub: bool| match (get(a), get(b)) {
+            (Mixed::K(x), Mixed::K(y)) => Mixed::K(x.add_sub(y, sub)),
+            (x, y) => Mixed::P(x.lift(n).add_sub(&y.lift(n), sub)),
+        };
+        let v = match &node.op {
+            Op::Const(q) => Mixed::K(Mat::scalar(
+                C::from_rational(q).ok_or(EvalError::Constant(q.clone()))?,
+            )),
+            Op::Data(s) => Mixed::K(Mat::scalar(data[*s].clone())),
+            Op::Unknown(i) => Mixed::P(Mat::scalar(Poly::var(n, *i))),
+            Op::Build(shape, entries) => {
+                if entries.iter().all(|x| matches!(get(x), Mixed::K(_))) {
+                    Mixed::K(Mat {
+                        shape: *shape,
+                        e: entries
+                            .iter()
+                            .map(|x| match get(x) {
+                                Mixed::K(m) => m.e[0].clone(),
+                                Mixed::P(_) => C::zero(),
+                            })
+                            .collect(),
+                    })
+                } else {
+                    Mixed::P(Mat {
+                        shape: *shape,
+                        e: entries
+                            .iter()
+                            .map(|x| get(x).lift(n).e[0].clone())
+                            .collect(),
+                    })
+                }
+            }
+            Op::Identity => Mixed::K(Mat {
+                shape: Shape::MAT,
+                e: (0..9)
+                    .map(|k| if k % 4 == 0 { C::one() } else { C::zero() })
+                    .collect(),
+            }),
+            Op::Add(a, b) => add_sub(a, b, false),
+            Op::Sub(a, b) => add_sub(a, b, true),
+            Op::Mul(a, b) => match (get(a), get(b)) {
+                (Mixed::K(x), Mixed::K(y)) => Mixed::K(x.mul(y)),
+                (Mixed::P(x), Mixed::K(y)) => Mixed::P(mat_mul(x, y, |p, c| p.scale(c))),
+                (Mixed::K(x), Mixed::P(y)) => Mixed::P(mat_mul(x, y, |c, p| p.scale(c))),
+                (Mixed::P(x), Mixed::P(y)) => Mixed::P(x.mul(y)),
+            },
+            Op::Neg(a) => get(a).map(|m| m.map(C::neg), |m| m.map(Ring::neg)),
+            Op::Transpose(a) => get(a).map(Mat::transpose, Mat::transpose),
+            Op::Skew(a) => get(a).map(Mat::skew, Mat::skew),
+            Op::Det(a) => get(a).map(|m| Mat::scalar(m.det()), |m| Mat::scalar(m.det())),
+            Op::Trace(a) => get(a).map(|m| Mat::scalar(m.trace()), |m| Mat::scalar(m.trace())),
+            Op::Entry(a, i, j) => get(a).map(
+                |m| Mat::scalar(m.at(*i, *j).clone()),
+                |m| Mat::scalar(m.at(*i, *j).clone()),
+            ),
+        };
+        vals.push(Some(v));
+    }
+    Ok(vals)
 }
 
 fn mul_skip<T: Ring>(a: &T, b: &T) -> T {
@@ -329,28 +466,17 @@ impl Problem {
             });
         }
         let n = self.layout.unknown_count();
-        let zero = Poly::zero(n);
-        let one = Poly::constant(n, C::one());
-        let vals = run_tape(&self.checked.nodes, &self.needed, (&zero, &one), |op| {
-            Ok(match op {
-                Op::Const(q) => Poly::constant(
-                    n,
-                    C::from_rational(q).ok_or(EvalError::Constant(q.clone()))?,
-                ),
-                Op::Unknown(i) => Poly::var(n, *i),
-                Op::Data(s) => Poly::constant(n, data[*s].clone()),
-                _ => unreachable!("only leaves are passed to the leaf function"),
-            })
-        })?;
+        let vals = run_mixed(&self.checked.nodes, &self.needed, n, data)?;
         Ok(self
             .checked
             .equations
             .iter()
             .map(|eq| {
-                let p = vals[eq.node]
-                    .as_ref()
-                    .map(|m| m.at(eq.row, eq.col).clone())
-                    .unwrap_or_else(|| Poly::zero(n));
+                let p = match vals[eq.node].as_ref() {
+                    Some(Mixed::K(m)) => Poly::constant(n, m.at(eq.row, eq.col).clone()),
+                    Some(Mixed::P(m)) => m.at(eq.row, eq.col).clone(),
+                    None => Poly::zero(n),
+                };
                 if p.nvars() < n {
                     p.widen(n)
                 } else {

@@ -65,6 +65,31 @@ impl From<ProblemError> for CliError {
     }
 }
 
+/// `writeln!` into a `String` (infallible).
+macro_rules! outln {
+    ($out:expr, $($arg:tt)*) => {{
+        use std::fmt::Write as _;
+        let _ = writeln!($out, $($arg)*);
+    }};
+}
+
+/// Writes to stdout; a closed pipe (`mingen inspect F | head`) is not an error.
+fn emit(text: &str) -> Result<(), CliError> {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    match stdout
+        .write_all(text.as_bytes())
+        .and_then(|_| stdout.flush())
+    {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        Err(e) => Err(CliError {
+            message: format!("cannot write the output: {e}"),
+            code: 1,
+        }),
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
@@ -145,15 +170,13 @@ fn inspect(file: &PathBuf, as_json: bool) -> Result<(), CliError> {
         summary.extend(algebra);
     }
     if as_json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&Value::Object(summary)).unwrap_or_default()
-        );
-        return Ok(());
+        let text = serde_json::to_string_pretty(&Value::Object(summary)).unwrap_or_default();
+        return emit(&format!("{text}\n"));
     }
     let names = p.unknown_names();
-    println!("problem {}", p.name());
-    println!("unknowns ({}): {}", names.len(), names.join(" "));
+    let mut out = String::new();
+    outln!(out, "problem {}", p.name());
+    outln!(out, "unknowns ({}): {}", names.len(), names.join(" "));
     if !p.layout.eliminate.is_empty() {
         let el: Vec<&str> = p
             .layout
@@ -161,16 +184,16 @@ fn inspect(file: &PathBuf, as_json: bool) -> Result<(), CliError> {
             .iter()
             .filter_map(|&i| names.get(i).map(String::as_str))
             .collect();
-        println!("eliminate: {}", el.join(" "));
+        outln!(out, "eliminate: {}", el.join(" "));
     }
-    println!("data ({} slots):", p.layout.data_slot_count());
+    outln!(out, "data ({} slots):", p.layout.data_slot_count());
     for d in &p.layout.data {
         let len = d.len.map(|n| format!("[{n}]")).unwrap_or_default();
-        println!("  {}{}: {}", d.name, len, d.kind.keyword());
+        outln!(out, "  {}{}: {}", d.name, len, d.kind.keyword());
     }
     let lines = p.equation_lines();
     let equations = p.expand();
-    println!("equations: {}", equations.len());
+    outln!(out, "equations: {}", equations.len());
     for (i, (e, line)) in equations.iter().zip(&lines).enumerate() {
         let support: Vec<String> = e
             .support(MonomialOrder::Grevlex)
@@ -178,7 +201,8 @@ fn inspect(file: &PathBuf, as_json: bool) -> Result<(), CliError> {
             .map(|m| m.display_with(&names))
             .collect();
         let data_terms: usize = e.terms().map(|(_, c)| c.len()).sum();
-        println!(
+        outln!(
+            out,
             "  [{i}] line {line}: degree {}, {} monomials, {} data terms: {}",
             e.degree().unwrap_or(0),
             support.len(),
@@ -186,17 +210,18 @@ fn inspect(file: &PathBuf, as_json: bool) -> Result<(), CliError> {
             support.join(" ")
         );
     }
-    print_plan(&plan);
-    Ok(())
+    print_plan(&mut out, &plan);
+    emit(&out)
 }
 
 /// The algebra part of `inspect`: count, basis, template and how it was shrunk.
-fn print_plan(plan: &mingen::pipeline::SolverPlan) {
+fn print_plan(out: &mut String, plan: &mingen::pipeline::SolverPlan) {
     let names = plan.variable_names();
     let g = &plan.generated;
     let t = &g.built.template;
-    println!("solutions: {}", g.count);
-    println!(
+    outln!(out, "solutions: {}", g.count);
+    outln!(
+        out,
         "basis ({}): {}",
         t.basis.len(),
         t.basis
@@ -205,32 +230,37 @@ fn print_plan(plan: &mingen::pipeline::SolverPlan) {
             .collect::<Vec<_>>()
             .join(" ")
     );
-    println!("action: {}", t.action.display_with(&names));
+    outln!(out, "action: {}", t.action.display_with(&names));
     let (rows, cols) = t.size();
-    println!(
+    outln!(
+        out,
         "template: {rows} x {cols} ({} excess, {} reducible, {} basis columns)",
         t.n_excess,
         t.n_reducible,
         t.basis.len()
     );
-    println!("shrinking:");
+    outln!(out, "shrinking:");
     for (step, r, c) in &g.built.history {
-        println!("  {r:>5} x {c:<5} {step}");
+        outln!(out, "  {r:>5} x {c:<5} {step}");
     }
-    println!("template per action variable:");
+    outln!(out, "template per action variable:");
     for (v, size) in &g.per_action {
         let name = names.get(*v).cloned().unwrap_or_default();
         match size {
-            Some((r, c)) => println!("  {name:<6} {r} x {c}"),
-            None => println!("  {name:<6} failed"),
+            Some((r, c)) => outln!(out, "  {name:<6} {r} x {c}"),
+            None => outln!(out, "  {name:<6} failed"),
         }
     }
     if let Some(v) = &g.validation {
-        println!("validation: {v:?}");
+        outln!(out, "validation: {v:?}");
     }
-    println!(
+    outln!(
+        out,
         "seconds: {:.3} (analysis {:.3}, templates {:.3}, validation {:.3})",
-        plan.seconds, g.seconds.0, g.seconds.1, g.seconds.2
+        plan.seconds,
+        g.seconds.0,
+        g.seconds.1,
+        g.seconds.2
     );
 }
 

@@ -253,4 +253,26 @@ fn expand_timing_grsrp() {
         .map(|q| q.terms().map(|(_, c)| c.len()).sum())
         .collect();
     println!("grsrp expand: {dt:?}, data terms per equation {sizes:?}");
+    let mut rng = ChaCha8Rng::seed_from_u64(1);
+    let data = random_data_fp::<P1>(&p.layout, &mut rng);
+    let start = std::time::Instant::now();
+    for _ in 0..1000 {
+        std::hint::black_box(p.evaluate::<F>(&data));
+    }
+    println!(
+        "grsrp evaluate::<Fp>: {:?} per call",
+        start.elapsed() / 1000
+    );
+    for (file, q) in templates() {
+        let start = std::time::Instant::now();
+        let e = q.expand();
+        let sizes: Vec<usize> = e
+            .iter()
+            .map(|x| x.terms().map(|(_, c)| c.len()).sum())
+            .collect();
+        println!(
+            "{file:?}: expand {:?}, data terms per equation {sizes:?}",
+            start.elapsed()
+        );
+    }
 }

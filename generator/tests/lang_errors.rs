@@ -267,6 +267,8 @@ fn deep_nesting_is_an_error_not_a_crash() {
     // Long flat chains are fine (no recursion on chain length).
     let chain = format!("problem p\nunknown x\nx = 0{}\n", " + x".repeat(20_000));
     assert!(Problem::parse(&chain, "chain.mp").is_ok());
+    let high = format!("problem p\nunknown x\nx{} = 1\n", " * x".repeat(300));
+    assert!(parse_err(&high).message.contains("degree too high"));
     let huge = "problem p\nunknown x\nfor i in 0..100000 {\n for j in 0..100000 {\n x = 1\n }\n}\n";
     assert!(parse_err(huge).message.contains("too many"));
 }

@@ -20,6 +20,9 @@ const MAX_ARRAY_LEN: usize = 100_000;
 const MAX_NODES: usize = 2_000_000;
 const MAX_ITERATIONS: usize = 1_000_000;
 const MAX_EQUATIONS: usize = 100_000;
+/// Bound on the total degree (unknowns and data) of an equation, far above any minimal
+/// problem and far below the exponent range of [`crate::algebra::Exponent`].
+pub const MAX_DEGREE: u32 = 255;
 
 /// Index of a node in [`Checked::nodes`].
 pub type NodeId = usize;
@@ -105,6 +108,8 @@ pub struct Node {
     pub op: Op,
     /// The shape of its value.
     pub shape: Shape,
+    /// An upper bound on the total degree of its entries in unknowns and data together.
+    pub degree: u32,
 }
 
 /// One scalar equation: entry (row, col) of node `node`, which is `lhs - rhs`.
@@ -477,6 +482,13 @@ impl Checker {
             ));
         };
         let shape = self.shape(diff);
+        let degree = self.nodes.get(diff).map_or(0, |n| n.degree);
+        if degree > MAX_DEGREE {
+            return Err(self.err(
+                eq,
+                format!("equation degree too high (up to {degree} in unknowns and data; at most {MAX_DEGREE})"),
+            ));
+        }
         if self.equations.len() + shape.len() > MAX_EQUATIONS {
             return Err(self.err(
                 eq,
@@ -561,9 +573,21 @@ impl Checker {
         if let Some(&id) = self.intern.get(&op) {
             return id;
         }
+        let deg = |n: &NodeId| self.nodes.get(*n).map_or(0, |n| n.degree);
+        let degree = match &op {
+            Op::Const(_) | Op::Identity => 0,
+            Op::Unknown(_) | Op::Data(_) => 1,
+            Op::Build(_, e) => e.iter().map(deg).max().unwrap_or(0),
+            Op::Add(a, b) | Op::Sub(a, b) => deg(a).max(deg(b)),
+            Op::Mul(a, b) => deg(a).saturating_add(deg(b)),
+            Op::Det(a) => deg(a).saturating_mul(3),
+            Op::Neg(a) | Op::Transpose(a) | Op::Skew(a) | Op::Trace(a) | Op::Entry(a, _, _) => {
+                deg(a)
+            }
+        };
         let id = self.nodes.len();
         self.intern.insert(op.clone(), id);
-        self.nodes.push(Node { op, shape });
+        self.nodes.push(Node { op, shape, degree });
         id
     }
 
@@ -584,10 +608,10 @@ impl Checker {
     /// The node of a value, or an error for an unindexed array.
     fn value(&mut self, e: &Expr) -> Result<NodeId, LangError> {
         let v = self.expr(e)?;
-        self.to_node(v, e.pos)
+        self.node_of(v, e.pos)
     }
 
-    fn to_node(&mut self, v: Val, pos: Pos) -> Result<NodeId, LangError> {
+    fn node_of(&mut self, v: Val, pos: Pos) -> Result<NodeId, LangError> {
         match v {
             Val::Node(n) => Ok(n),
             Val::DataArray(i) => {
@@ -745,7 +769,7 @@ impl Checker {
                                 return Err(self.err(
                                     *pos,
                                     format!(
-                                        "cannot multiply {} by {}: {} columns against {} rows",
+                                        "cannot multiply {} by {}: inner dimensions {} and {} differ",
                                         a.describe(),
                                         b.describe(),
                                         a.cols,
@@ -777,7 +801,7 @@ impl Checker {
                 for p in ops {
                     v = match p {
                         Postfix::Transpose(_) => {
-                            let n = self.to_node(v, base.pos)?;
+                            let n = self.node_of(v, base.pos)?;
                             let s = self.shape(n);
                             Val::Node(self.mk(
                                 Op::Transpose(n),

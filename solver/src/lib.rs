@@ -1,1 +1,2 @@
 //! rspose: gyro-aided rolling-shutter relative pose.
+pub mod runtime;

@@ -9,5 +9,7 @@
 //! the prime fields used for Gröbner bases, `f64`, and traced expressions for code emission.
 
 pub mod algebra;
+pub mod audit;
+pub mod interpret;
 pub mod problem;
 pub mod template;

@@ -90,12 +90,21 @@ fn worst_residual(equations: &[Poly<f64>], s: &[Complex<f64>]) -> f64 {
     equations
         .iter()
         .map(|e| normalized_residual(e, s))
-        .fold(0.0, |a, r| if r.is_nan() || a.is_nan() { f64::NAN } else { a.max(r) })
+        .fold(0.0, |a, r| {
+            if r.is_nan() || a.is_nan() {
+                f64::NAN
+            } else {
+                a.max(r)
+            }
+        })
 }
 
 /// Outcome of one instance: (log10 worst residual, finite solutions, real solutions), or
 /// `None` if the instance could not be solved.
-fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<(f64, usize, usize)> {
+fn run_instance(
+    template: &EliminationTemplate,
+    inst: &AuditInstance,
+) -> Option<(f64, usize, usize)> {
     let sols = solve_template(template, &inst.equations).ok()?;
     let mut worst: f64 = 0.0;
     let mut finite = 0;
@@ -114,7 +123,11 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
                 let mut full = Vec::with_capacity(n);
                 let (mut si, mut ei) = (s.iter(), e.iter());
                 for pos in 0..n {
-                    let next = if el.positions.contains(&pos) { ei.next() } else { si.next() };
+                    let next = if el.positions.contains(&pos) {
+                        ei.next()
+                    } else {
+                        si.next()
+                    };
                     full.push(*next?);
                 }
                 full
@@ -122,11 +135,18 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
         };
         finite += 1;
         let big = full.iter().map(|z| z.norm()).fold(1.0, f64::max);
-        if full.iter().all(|z| z.im.abs() <= crate::interpret::REAL_TOL * big) {
+        if full
+            .iter()
+            .all(|z| z.im.abs() <= crate::interpret::REAL_TOL * big)
+        {
             real += 1;
         }
         let r = worst_residual(&inst.original, &full);
-        worst = if r.is_nan() { f64::INFINITY } else { worst.max(r) };
+        worst = if r.is_nan() {
+            f64::INFINITY
+        } else {
+            worst.max(r)
+        };
     }
     let lg = if worst == 0.0 {
         LOG10_FLOOR
@@ -272,7 +292,11 @@ impl fmt::Display for AuditReport {
         writeln!(f, "instances:              {}", self.instances)?;
         writeln!(f, "solutions expected:     {}", self.solutions_expected)?;
         writeln!(f, "mean real solutions:    {:.2}", self.mean_real_solutions)?;
-        writeln!(f, "median log10 residual:  {:.2}", self.median_log10_residual)?;
+        writeln!(
+            f,
+            "median log10 residual:  {:.2}",
+            self.median_log10_residual
+        )?;
         writeln!(f, "p99 log10 residual:     {:.2}", self.p99_log10_residual)?;
         let pct = if self.instances > 0 {
             100.0 * self.failures as f64 / self.instances as f64

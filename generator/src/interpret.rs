@@ -38,7 +38,9 @@ pub enum InterpretError {
         expected: usize,
     },
     /// `multiplier * equation` has a term whose monomial is not a template column.
-    #[error("template row {row} (equation {equation}) has the term {monomial}, which is not a column")]
+    #[error(
+        "template row {row} (equation {equation}) has the term {monomial}, which is not a column"
+    )]
     TermOutsideColumns {
         /// Template row.
         row: usize,
@@ -415,7 +417,9 @@ pub fn recover_eliminated(
     if coefficient_matrix.iter().any(|row| row.len() != k) {
         return None;
     }
-    let a = DMatrix::from_fn(r, k, |i, j| eval_complex(&coefficient_matrix[i][j], remaining));
+    let a = DMatrix::from_fn(r, k, |i, j| {
+        eval_complex(&coefficient_matrix[i][j], remaining)
+    });
     let mut v = complex_null_vector(&a)?;
     let s: Complex<f64> = v.iter().map(|z| z * z).sum();
     if s.norm() > 1e-8 {
@@ -441,7 +445,12 @@ mod tests {
         let t = |e: &[u16], c: f64| (mono(e), c);
         let e0 = Poly::from_terms(
             2,
-            [t(&[2, 0], 3.0), t(&[1, 0], -11.0), t(&[0, 0], 7.0), t(&[0, 1], 1.0)],
+            [
+                t(&[2, 0], 3.0),
+                t(&[1, 0], -11.0),
+                t(&[0, 0], 7.0),
+                t(&[0, 1], 1.0),
+            ],
         );
         let e1 = Poly::from_terms(
             2,
@@ -457,9 +466,18 @@ mod tests {
         let template = EliminationTemplate {
             nvars: 2,
             rows: vec![
-                TemplateRow { equation: 1, multiplier: mono(&[0, 0]) },
-                TemplateRow { equation: 0, multiplier: mono(&[1, 0]) },
-                TemplateRow { equation: 0, multiplier: mono(&[0, 0]) },
+                TemplateRow {
+                    equation: 1,
+                    multiplier: mono(&[0, 0]),
+                },
+                TemplateRow {
+                    equation: 0,
+                    multiplier: mono(&[1, 0]),
+                },
+                TemplateRow {
+                    equation: 0,
+                    multiplier: mono(&[0, 0]),
+                },
             ],
             columns: vec![
                 mono(&[3, 0]),
@@ -485,7 +503,10 @@ mod tests {
         sols.sort_by(|a, b| a[0].total_cmp(&b[0]));
         let want = [[1.0, 1.0], [2.0, 3.0], [3.0, -1.0]];
         for (s, w) in sols.iter().zip(&want) {
-            assert!((s[0] - w[0]).abs() < 1e-12 && (s[1] - w[1]).abs() < 1e-12, "{s:?}");
+            assert!(
+                (s[0] - w[0]).abs() < 1e-12 && (s[1] - w[1]).abs() < 1e-12,
+                "{s:?}"
+            );
         }
         for s in solve_template(&template, &eqs).unwrap() {
             for e in &eqs {
@@ -531,10 +552,7 @@ mod tests {
         // matrix [[s, -2, 0], [0, s, -2*s]] has null vector (2, s, s/2)/|.| = (2,2,1)/3.
         let x = |c: f64| Poly::from_terms(1, [(mono(&[1]), c)]);
         let k = |c: f64| Poly::constant(1, c);
-        let m = vec![
-            vec![x(1.0), k(-2.0), k(0.0)],
-            vec![k(0.0), x(1.0), x(-2.0)],
-        ];
+        let m = vec![vec![x(1.0), k(-2.0), k(0.0)], vec![k(0.0), x(1.0), x(-2.0)]];
         let v = recover_eliminated(&m, &[Complex::new(2.0, 0.0)]).unwrap();
         let sign = v[0].re.signum();
         for (z, w) in v.iter().zip([2.0 / 3.0, 2.0 / 3.0, 1.0 / 3.0]) {

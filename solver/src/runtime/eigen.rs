@@ -30,8 +30,7 @@ pub fn real_eigenpairs<const N: usize>(
 ) -> SolutionSet<(f64, SVector<f64, N>), N>
 where
     Const<N>: DimSub<U1>,
-    DefaultAllocator:
-        Allocator<Const<N>, DimDiff<Const<N>, U1>> + Allocator<DimDiff<Const<N>, U1>>,
+    DefaultAllocator: Allocator<Const<N>, DimDiff<Const<N>, U1>> + Allocator<DimDiff<Const<N>, U1>>,
 {
     let mut out = SolutionSet::filled_with((0.0, SVector::zeros()));
     if N == 0 {
@@ -48,7 +47,9 @@ where
     if scale == 0.0 {
         return out;
     }
-    let Some(schur) = Schur::<f64, Const<N>>::try_new(*m, f64::EPSILON, SWEEPS_PER_EIGENVALUE * N + 10) else {
+    let Some(schur) =
+        Schur::<f64, Const<N>>::try_new(*m, f64::EPSILON, SWEEPS_PER_EIGENVALUE * N + 10)
+    else {
         return out;
     };
     let (q, t) = schur.unpack();
@@ -130,7 +131,14 @@ impl<const N: usize> Ctx<'_, N> {
     }
 
     /// Solves `(T - lam I) y = 0` for rows above `k0`, given `y[k0..=k1]` (zero after `k1`).
-    fn back_substitute(&self, second: &[bool; N], y: &mut [f64; N], k0: usize, k1: usize, lam: f64) {
+    fn back_substitute(
+        &self,
+        second: &[bool; N],
+        y: &mut [f64; N],
+        k0: usize,
+        k1: usize,
+        lam: f64,
+    ) {
         let t = self.t;
         let mut r = k0;
         while r > 0 {
@@ -238,7 +246,9 @@ mod tests {
         for trial in 0..50 {
             // D: 8 real eigenvalues plus a pair 0.3 +- 0.7i.
             let mut d = SMatrix::<f64, 10, 10>::zeros();
-            let reals: Vec<f64> = (0..8).map(|k| k as f64 - 3.5 + 0.1 * trial as f64).collect();
+            let reals: Vec<f64> = (0..8)
+                .map(|k| k as f64 - 3.5 + 0.1 * trial as f64)
+                .collect();
             for (k, &r) in reals.iter().enumerate() {
                 d[(k, k)] = r;
             }
@@ -247,7 +257,9 @@ mod tests {
             d[(8, 9)] = 0.7;
             d[(9, 8)] = -0.7;
             let p = random::<10>(&mut rng) + SMatrix::<f64, 10, 10>::identity() * 2.0;
-            let Some(pinv) = p.try_inverse() else { continue };
+            let Some(pinv) = p.try_inverse() else {
+                continue;
+            };
             let m = p * d * pinv;
             let pairs = real_eigenpairs(&m);
             assert_eq!(pairs.len(), 8, "trial {trial}");

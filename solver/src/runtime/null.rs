@@ -205,7 +205,10 @@ mod tests {
         assert_eq!(null_vector3(&[[1.0, 2.0, 3.0], [2.0, 4.0, 6.0]]), None);
         assert_eq!(null_vector3(&[[0.0; 3]; 5]), None);
         assert_eq!(null_vector3(&[[1.0, f64::NAN, 3.0], [0.0, 1.0, 0.0]]), None);
-        assert_eq!(null_vector3(&[[1.0, 0.0, 0.0], [f64::INFINITY, 1.0, 0.0]]), None);
+        assert_eq!(
+            null_vector3(&[[1.0, 0.0, 0.0], [f64::INFINITY, 1.0, 0.0]]),
+            None
+        );
         let v = null_vector3(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]).unwrap();
         assert_eq!(v[2].abs(), 1.0);
         let v = null_vector3(&[[1e300, 0.0, 0.0], [0.0, 1e-300, 0.0]]);

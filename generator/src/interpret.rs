@@ -203,7 +203,7 @@ pub fn reduce_template(
                 p = i;
             }
         }
-        if !(best > INTERPRET_PIVOT_TOL) {
+        if best <= INTERPRET_PIVOT_TOL {
             if j < template.n_excess {
                 continue;
             }

@@ -134,10 +134,10 @@ fn five_point_instance(rng: &mut ChaCha8Rng) -> (Vec<P>, [f64; 3]) {
         })
         .collect();
     let tr = eet[0][0].add(&eet[1][1]).add(&eet[2][2]);
-    for i in 0..3 {
-        for j in 0..3 {
+    for (i, row) in em.iter().enumerate() {
+        for (j, eij) in row.iter().enumerate() {
             let eete = (0..3).fold(Poly::zero(3), |acc, k| acc.add(&eet[i][k].mul(&em[k][j])));
-            eqs.push(eete.scale(&2.0).sub(&tr.mul(&em[i][j])));
+            eqs.push(eete.scale(&2.0).sub(&tr.mul(eij)));
         }
     }
     (eqs, truth)

@@ -39,7 +39,7 @@ where
     let mut scale = 0.0f64;
     for &x in m.iter() {
         let a = x.abs();
-        if !(a <= f64::MAX) {
+        if !a.is_finite() {
             return out;
         }
         scale = scale.max(a);

@@ -19,7 +19,7 @@ fn scale_of(m: &[f64]) -> Option<f64> {
     let mut s = 0.0f64;
     for &x in m {
         let a = x.abs();
-        if !(a <= f64::MAX) {
+        if !a.is_finite() {
             return None;
         }
         if a > s {

@@ -44,7 +44,7 @@ pub fn null_vector3(rows: &[[f64; 3]]) -> Option<[f64; 3]> {
     for r in rows {
         for &x in r {
             let a = x.abs();
-            if !(a <= f64::MAX) {
+            if !a.is_finite() {
                 return None;
             }
             s = s.max(a);
@@ -83,7 +83,7 @@ pub fn null_vector3(rows: &[[f64; 3]]) -> Option<[f64; 3]> {
             }
         }
     }
-    if !(bn.sqrt() > RANK_TOL) {
+    if bn.is_nan() || bn.sqrt() <= RANK_TOL {
         return None;
     }
     let mut v = scaled(best, 1.0 / bn.sqrt());

@@ -13,20 +13,32 @@
 /// (over the whole input) makes the elimination fail.
 pub const PIVOT_TOL: f64 = 1e-14;
 
-/// Largest magnitude of the first `rows * cols` entries, or `None` if one is not finite.
+/// Largest magnitude of the entries, or `None` if one is not finite. Branch-free over
+/// four lanes so that it vectorises (non-finite entries make the lane sums non-finite; a
+/// finite matrix whose entries sum beyond `f64::MAX` is rejected as well).
 #[inline]
 fn scale_of(m: &[f64]) -> Option<f64> {
-    let mut s = 0.0f64;
-    for &x in m {
-        let a = x.abs();
-        if !a.is_finite() {
-            return None;
-        }
-        if a > s {
-            s = a;
+    let mut mx = [0.0f64; 4];
+    let mut sum = [0.0f64; 4];
+    let chunks = m.chunks_exact(4);
+    let rest = chunks.remainder();
+    for c in chunks {
+        for k in 0..4 {
+            let a = c[k].abs();
+            mx[k] = if a > mx[k] { a } else { mx[k] };
+            sum[k] += a;
         }
     }
-    Some(s)
+    for (k, &x) in rest.iter().enumerate() {
+        let a = x.abs();
+        mx[k] = if a > mx[k] { a } else { mx[k] };
+        sum[k] += a;
+    }
+    let total = (sum[0] + sum[1]) + (sum[2] + sum[3]);
+    if !total.is_finite() {
+        return None;
+    }
+    Some(mx[0].max(mx[1]).max(mx[2].max(mx[3])))
 }
 
 /// Row index of the largest `|m[i][j]|` over `i in j..rows`, and that magnitude.

@@ -1,6 +1,6 @@
 //! Fast real eigenpairs of small fixed-size matrices: eigenvalues of the Hessenberg form by
 //! the Francis double-shift QR iteration (no Schur vectors accumulated), eigenvectors by
-//! inverse iteration on the original matrix.
+//! inverse iteration on the Hessenberg form, mapped back through the similarity.
 
 use super::{SolutionSet, NEAR_REAL_TOL};
 use nalgebra::{SMatrix, SVector};
@@ -8,9 +8,37 @@ use nalgebra::{SMatrix, SVector};
 /// Maximum Francis iterations per eigenvalue (as in EISPACK `hqr`).
 const MAX_ITS: usize = 30;
 
+/// The similarity `T` of [`hessenberg`] (`H = T^-1 A T`), kept to map eigenvectors back:
+/// step `m` swapped rows/columns `m` and `perm[m]`, then eliminated with multipliers
+/// `mult[i][m]`, `i > m`.
+struct HessTransform<const N: usize> {
+    perm: [usize; N],
+    mult: [[f64; N]; N],
+}
+
+impl<const N: usize> HessTransform<N> {
+    /// `y <- T y` (an eigenvector of `H` to one of `A`).
+    fn apply(&self, y: &mut [f64; N]) {
+        for m in (1..N.saturating_sub(1)).rev() {
+            let ym = y[m];
+            if ym != 0.0 {
+                for (yi, row) in y.iter_mut().zip(&self.mult).skip(m + 1) {
+                    *yi += row[m] * ym;
+                }
+            }
+            y.swap(m, self.perm[m]);
+        }
+    }
+}
+
 /// Reduces `a` (row-major, `a[i][j]`) to upper Hessenberg form by stabilised elementary
-/// similarity transformations (Gaussian elimination with pivoting); zeroes the rest.
-fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) {
+/// similarity transformations (Gaussian elimination with pivoting, EISPACK `elmhes`);
+/// zeroes the rest and returns the transformation.
+fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) -> HessTransform<N> {
+    let mut tr = HessTransform {
+        perm: [0; N],
+        mult: [[0.0; N]; N],
+    };
     for m in 1..N.saturating_sub(1) {
         let mut x = 0.0f64;
         let mut i = m;
@@ -20,6 +48,7 @@ fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) {
                 i = j;
             }
         }
+        tr.perm[m] = i;
         if i != m {
             a.swap(i, m);
             for row in a.iter_mut() {
@@ -31,6 +60,7 @@ fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) {
                 let mut y = a[i][m - 1];
                 if y != 0.0 {
                     y /= x;
+                    tr.mult[i][m] = y;
                     a[i][m - 1] = 0.0;
                     let (top, bottom) = a.split_at_mut(i);
                     for (dst, &src) in bottom[0][m..].iter_mut().zip(&top[m][m..]) {
@@ -43,6 +73,69 @@ fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) {
             }
         }
     }
+    tr
+}
+
+/// Unit eigenvector of the upper Hessenberg `h` for the (approximate) real eigenvalue
+/// `lam`, by two steps of inverse iteration: LU with partial pivoting of `h - lam I`
+/// (O(N^2): only adjacent rows compete for a pivot; tiny pivots replaced by
+/// `eps * scale`), solves from the all-ones vector.
+fn hessenberg_inverse_iteration<const N: usize>(
+    h: &[[f64; N]; N],
+    lam: f64,
+    scale: f64,
+) -> Option<[f64; N]> {
+    let mut u = *h;
+    for (i, row) in u.iter_mut().enumerate() {
+        row[i] -= lam;
+    }
+    let tiny = (f64::EPSILON * scale).max(f64::MIN_POSITIVE);
+    let mut swapped = [false; N];
+    let mut l = [0.0; N];
+    for j in 0..N {
+        if j + 1 < N && u[j + 1][j].abs() > u[j][j].abs() {
+            let (top, bottom) = u.split_at_mut(j + 1);
+            top[j][j..].swap_with_slice(&mut bottom[0][j..]);
+            swapped[j] = true;
+        }
+        if u[j][j].abs() < tiny {
+            u[j][j] = if u[j][j] < 0.0 { -tiny } else { tiny };
+        }
+        if j + 1 < N {
+            let f = u[j + 1][j] / u[j][j];
+            l[j] = f;
+            if f != 0.0 {
+                let (top, bottom) = u.split_at_mut(j + 1);
+                for (d, &s) in bottom[0][j + 1..].iter_mut().zip(&top[j][j + 1..]) {
+                    *d -= f * s;
+                }
+            }
+        }
+    }
+    let mut x = [1.0; N];
+    for _ in 0..2 {
+        for j in 0..N.saturating_sub(1) {
+            if swapped[j] {
+                x.swap(j, j + 1);
+            }
+            x[j + 1] -= l[j] * x[j];
+        }
+        for i in (0..N).rev() {
+            let mut s = x[i];
+            for k in i + 1..N {
+                s -= u[i][k] * x[k];
+            }
+            x[i] = s / u[i][i];
+        }
+        let n = x.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if !(n > 0.0 && n.is_finite()) {
+            return None;
+        }
+        for v in x.iter_mut() {
+            *v /= n;
+        }
+    }
+    Some(x)
 }
 
 /// Eigenvalues (re, im) of an upper Hessenberg matrix (destroyed), by the Francis
@@ -225,78 +318,14 @@ fn hqr<const N: usize>(
     Some(total)
 }
 
-/// Unit eigenvector for the (approximate) real eigenvalue `lam` of `a` by two steps of
-/// inverse iteration: LU with partial pivoting of `a - lam I` (tiny pivots replaced by
-/// `eps * scale`), solves from the all-ones vector.
-fn inverse_iteration<const N: usize>(a: &[[f64; N]; N], lam: f64, scale: f64) -> Option<[f64; N]> {
-    let mut lu = *a;
-    for (i, row) in lu.iter_mut().enumerate() {
-        row[i] -= lam;
-    }
-    let tiny = (f64::EPSILON * scale).max(f64::MIN_POSITIVE);
-    let mut perm = [0usize; N];
-    for j in 0..N {
-        let mut p = j;
-        for i in j + 1..N {
-            if lu[i][j].abs() > lu[p][j].abs() {
-                p = i;
-            }
-        }
-        lu.swap(j, p);
-        perm[j] = p;
-        if lu[j][j].abs() < tiny {
-            lu[j][j] = if lu[j][j] < 0.0 { -tiny } else { tiny };
-        }
-        let inv = 1.0 / lu[j][j];
-        let (top, bottom) = lu.split_at_mut(j + 1);
-        let prow = &top[j];
-        for row in bottom.iter_mut() {
-            let f = row[j] * inv;
-            if f != 0.0 {
-                row[j] = f;
-                for (d, &s) in row[j + 1..].iter_mut().zip(&prow[j + 1..]) {
-                    *d -= f * s;
-                }
-            }
-        }
-    }
-    let mut x = [1.0; N];
-    for _ in 0..2 {
-        for (j, &p) in perm.iter().enumerate() {
-            x.swap(j, p);
-        }
-        for i in 0..N {
-            let mut s = x[i];
-            for k in 0..i {
-                s -= lu[i][k] * x[k];
-            }
-            x[i] = s;
-        }
-        for i in (0..N).rev() {
-            let mut s = x[i];
-            for k in i + 1..N {
-                s -= lu[i][k] * x[k];
-            }
-            x[i] = s / lu[i][i];
-        }
-        let n = x.iter().map(|v| v * v).sum::<f64>().sqrt();
-        if !(n > 0.0 && n.is_finite()) {
-            return None;
-        }
-        for v in x.iter_mut() {
-            *v /= n;
-        }
-    }
-    Some(x)
-}
-
 /// Same contract as [`super::real_eigenpairs`] (real eigenvalues with unit eigenvectors,
 /// at most `N`, empty on non-finite/zero input or non-convergence, near-real pairs per
 /// [`NEAR_REAL_TOL`] taken as one real eigenvalue), by a different, faster algorithm:
 /// reduction to Hessenberg form by stabilised elementary similarities, eigenvalues by the
 /// Francis double-shift QR iteration without accumulating Schur vectors (EISPACK/NR
 /// `elmhes` + `hqr`, at most 30 iterations per eigenvalue), then each real eigenvalue's
-/// eigenvector by two steps of inverse iteration on `m - lambda I`. Order: as the
+/// eigenvector by two steps of inverse iteration on the Hessenberg form (O(N^2) each),
+/// mapped back through the similarity. Order: as the
 /// iteration deflates them. No heap, no panic, no trait bounds beyond `N`.
 pub fn real_eigenpairs_hqr<const N: usize>(
     m: &SMatrix<f64, N, N>,
@@ -316,8 +345,8 @@ pub fn real_eigenpairs_hqr<const N: usize>(
     if N == 0 || scale == 0.0 {
         return out;
     }
+    let tr = hessenberg(&mut a);
     let mut h = a;
-    hessenberg(&mut h);
     let (mut wr, mut wi) = ([0.0; N], [0.0; N]);
     if hqr(&mut h, &mut wr, &mut wi).is_none() {
         return out;
@@ -328,8 +357,12 @@ pub fn real_eigenpairs_hqr<const N: usize>(
         let real = wi[k] == 0.0;
         let near = !real && wi[k].abs() <= NEAR_REAL_TOL * scale;
         if real || near {
-            if let Some(v) = inverse_iteration(&a, lam, scale) {
-                out.push((lam, SVector::from(v)));
+            if let Some(mut y) = hessenberg_inverse_iteration(&a, lam, scale) {
+                tr.apply(&mut y);
+                let n = y.iter().map(|v| v * v).sum::<f64>().sqrt();
+                if n > 0.0 && n.is_finite() {
+                    out.push((lam, SVector::from(y) / n));
+                }
             }
         }
         // A complex (or near-real) pair occupies two consecutive slots.

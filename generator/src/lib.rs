@@ -10,6 +10,20 @@
 
 pub mod algebra;
 pub mod audit;
+pub mod eliminate;
+pub mod emit;
+pub mod groebner;
 pub mod interpret;
 pub mod problem;
+pub mod quotient;
 pub mod template;
+
+// Problem language and its symbolic expansion.
+pub mod expand;
+pub mod generate;
+pub mod instance;
+pub mod lang;
+pub mod pipeline;
+
+pub use expand::{Problem, ProblemError};
+pub use lang::LangError;

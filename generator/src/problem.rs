@@ -35,6 +35,32 @@ impl DataKind {
             DataKind::Mat3 | DataKind::Rotation => 9,
         }
     }
+    /// The kind named by a problem-file keyword (`scalar`, `vec3`, `point`, `mat3`,
+    /// `rotation`).
+    pub fn from_keyword(word: &str) -> Option<DataKind> {
+        DataKind::ALL.into_iter().find(|k| k.keyword() == word)
+    }
+    /// All kinds.
+    pub const ALL: [DataKind; 5] = [
+        DataKind::Scalar,
+        DataKind::Vec3,
+        DataKind::Point,
+        DataKind::Mat3,
+        DataKind::Rotation,
+    ];
+    /// Display names of the slots of one element, appended to the element's name:
+    /// `[""]` for a scalar, `[".x", ".y", ".z"]` for a vec3, `[".x", ".y"]` for a point,
+    /// `["[0][0]", "[0][1]", ..., "[2][2]"]` (row-major) for a matrix.
+    pub fn slot_suffixes(self) -> Vec<String> {
+        match self {
+            DataKind::Scalar => vec![String::new()],
+            DataKind::Vec3 => vec![".x".into(), ".y".into(), ".z".into()],
+            DataKind::Point => vec![".x".into(), ".y".into()],
+            DataKind::Mat3 | DataKind::Rotation => {
+                (0..9).map(|k| format!("[{}][{}]", k / 3, k % 3)).collect()
+            }
+        }
+    }
     /// The keyword used in problem files.
     pub fn keyword(self) -> &'static str {
         match self {
@@ -106,6 +132,23 @@ impl ProblemLayout {
     /// Number of unknown scalars.
     pub fn unknown_count(&self) -> usize {
         self.unknowns.iter().map(|u| u.len.unwrap_or(1)).sum()
+    }
+    /// Display names of the data slots in slot order, e.g. `x1[0].x`, `x1[0].y`, `v1[0]`,
+    /// `w1.x`, `R0[2][1]`.
+    pub fn data_slot_names(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        for d in &self.data {
+            let suffixes = d.kind.slot_suffixes();
+            match d.len {
+                None => out.extend(suffixes.iter().map(|s| format!("{}{s}", d.name))),
+                Some(n) => {
+                    for i in 0..n {
+                        out.extend(suffixes.iter().map(|s| format!("{}[{i}]{s}", d.name)));
+                    }
+                }
+            }
+        }
+        out
     }
     /// Number of data scalar slots.
     pub fn data_slot_count(&self) -> usize {

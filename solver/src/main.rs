@@ -1,1 +1,20 @@
-fn main() {}
+//! The `rspose` command line: simulate pairs, estimate poses, run the paper's experiments.
+//!
+//! Exit codes: 0 success; 2 bad input (unreadable or malformed file, invalid option, too few
+//! matches, ...), with one line on stderr naming what and where; 1 when valid input has no
+//! answer (e.g. every RANSAC hypothesis failed).
+
+mod cli;
+
+use clap::Parser;
+
+fn main() {
+    let args = cli::Cli::parse();
+    match cli::run(args) {
+        Ok(()) => {}
+        Err(e) => {
+            eprintln!("rspose: {}", e.message);
+            std::process::exit(e.code);
+        }
+    }
+}

@@ -22,6 +22,19 @@
 
 use crate::algebra::Monomial;
 
+pub mod build;
+mod linalg;
+pub mod shrink;
+pub mod validate;
+
+pub use build::{
+    best_template, build_template, generate, BuiltTemplate, Generated, ShrinkStep, TemplateError,
+    TemplateOptions,
+};
+pub use validate::{
+    check_readoff, gb_action_matrix, template_action_matrix, validate, ValidationReport,
+};
+
 /// One template row: `multiplier * equations[equation]`.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct TemplateRow {

@@ -1,0 +1,266 @@
+//! Linear elimination of unknowns (the `eliminate` directive).
+//!
+//! Equations that are linear and homogeneous in the eliminated unknowns `t` read
+//! `A(u) t = 0`, with `A` a matrix whose entries are polynomials in the remaining unknowns
+//! `u`. A non-zero `t` exists exactly where every maximal minor of `A` vanishes, so those
+//! minors replace the equations; the normalisation equation of `t` (one involving only the
+//! eliminated unknowns, such as `t't = 1`) is dropped, and a solver recovers `t` as the unit
+//! null vector of `A(u)` at each solution `u`. For G-RSRP this turns 6 unknowns and 20
+//! solutions (the 10 with both signs of `t`) into 3 unknowns and 10 solutions.
+
+use crate::algebra::{Monomial, Poly, Ring};
+use thiserror::Error;
+
+/// Why a set of unknowns cannot be eliminated linearly.
+#[derive(Debug, Error, Clone, PartialEq, Eq)]
+pub enum EliminateError {
+    /// An equation mixes the eliminated unknowns non-linearly with the others.
+    #[error("equation {equation} is neither linear homogeneous in the eliminated unknowns ({names}) nor free of the other unknowns, so it cannot be eliminated")]
+    NotLinear {
+        /// Index of the offending equation.
+        equation: usize,
+        /// The eliminated unknowns, comma separated.
+        names: String,
+    },
+    /// Fewer linear equations than eliminated unknowns: the minors do not constrain anything.
+    #[error("only {rows} equations are linear homogeneous in the {k} eliminated unknowns; at least {k} are needed")]
+    TooFewRows {
+        /// Number of linear homogeneous equations found.
+        rows: usize,
+        /// Number of eliminated unknowns.
+        k: usize,
+    },
+    /// No unknown is left after elimination.
+    #[error("eliminating every unknown leaves nothing to solve for")]
+    NothingLeft,
+}
+
+/// The result of eliminating unknowns from a system.
+#[derive(Clone, Debug)]
+pub struct Eliminated<C: Ring> {
+    /// The new system in the remaining unknowns: equations free of the eliminated unknowns,
+    /// followed by the non-zero maximal minors of [`Eliminated::coefficient_matrix`] (rows
+    /// chosen in lexicographic order of their indices).
+    pub equations: Vec<Poly<C>>,
+    /// Original flat indices of the remaining unknowns, in their new variable order.
+    pub remaining: Vec<usize>,
+    /// Original flat indices of the eliminated unknowns (column order of the matrix).
+    pub eliminated: Vec<usize>,
+    /// `A(u)`: one row per linear homogeneous equation, one column per eliminated unknown,
+    /// entries polynomials in the remaining unknowns. The eliminated unknowns are its unit
+    /// null vector at a solution.
+    pub coefficient_matrix: Vec<Vec<Poly<C>>>,
+    /// Original indices of the equations that were dropped as normalisations.
+    pub dropped: Vec<usize>,
+}
+
+/// Eliminates the unknowns `eliminated` (flat indices) from `equations` (polynomials in
+/// `nvars` unknowns). See the module documentation.
+pub fn eliminate_linear<C: Ring>(
+    equations: &[Poly<C>],
+    nvars: usize,
+    eliminated: &[usize],
+) -> Result<Eliminated<C>, EliminateError> {
+    let mut elim: Vec<usize> = eliminated.to_vec();
+    elim.sort_unstable();
+    elim.dedup();
+    let remaining: Vec<usize> = (0..nvars).filter(|i| !elim.contains(i)).collect();
+    if remaining.is_empty() {
+        return Err(EliminateError::NothingLeft);
+    }
+    let k = elim.len();
+    let nrem = remaining.len();
+    // Maps a monomial in all unknowns to one in the remaining unknowns.
+    let project = |m: &Monomial| Monomial(remaining.iter().map(|&i| m.0[i]).collect());
+    let names = elim
+        .iter()
+        .map(|i| format!("#{i}"))
+        .collect::<Vec<_>>()
+        .join(", ");
+
+    let mut kept = Vec::new();
+    let mut matrix: Vec<Vec<Poly<C>>> = Vec::new();
+    let mut dropped = Vec::new();
+    for (idx, eq) in equations.iter().enumerate() {
+        let elim_degree = |m: &Monomial| elim.iter().map(|&i| m.0[i] as u32).sum::<u32>();
+        let degrees: Vec<u32> = eq.terms().map(|(m, _)| elim_degree(m)).collect();
+        if degrees.iter().all(|&d| d == 0) {
+            kept.push(Poly::from_terms(
+                nrem,
+                eq.terms().map(|(m, c)| (project(m), c.clone())),
+            ));
+        } else if degrees.iter().all(|&d| d == 1) {
+            let mut row = vec![Poly::zero(nrem); k];
+            for (m, c) in eq.terms() {
+                let j = elim
+                    .iter()
+                    .position(|&i| m.0[i] == 1)
+                    .expect("degree one in eliminated");
+                row[j].add_term(project(m), c.clone());
+            }
+            matrix.push(row);
+        } else if eq
+            .terms()
+            .all(|(m, _)| remaining.iter().all(|&i| m.0[i] == 0))
+        {
+            dropped.push(idx);
+        } else {
+            return Err(EliminateError::NotLinear {
+                equation: idx,
+                names,
+            });
+        }
+    }
+    if matrix.len() < k {
+        return Err(EliminateError::TooFewRows {
+            rows: matrix.len(),
+            k,
+        });
+    }
+    let mut equations_out = kept;
+    for rows in combinations(matrix.len(), k) {
+        let sub: Vec<Vec<Poly<C>>> = rows.iter().map(|&r| matrix[r].clone()).collect();
+        let minor = determinant(&sub, nrem);
+        if !minor.is_zero() {
+            equations_out.push(minor);
+        }
+    }
+    Ok(Eliminated {
+        equations: equations_out,
+        remaining,
+        eliminated: elim,
+        coefficient_matrix: matrix,
+        dropped,
+    })
+}
+
+/// All `k`-subsets of `0..n` in lexicographic order.
+fn combinations(n: usize, k: usize) -> Vec<Vec<usize>> {
+    let mut out = Vec::new();
+    let mut cur = Vec::with_capacity(k);
+    fn rec(start: usize, n: usize, k: usize, cur: &mut Vec<usize>, out: &mut Vec<Vec<usize>>) {
+        if cur.len() == k {
+            out.push(cur.clone());
+            return;
+        }
+        for i in start..n {
+            cur.push(i);
+            rec(i + 1, n, k, cur, out);
+            cur.pop();
+        }
+    }
+    rec(0, n, k, &mut cur, &mut out);
+    out
+}
+
+/// Determinant of a square matrix of polynomials by Laplace expansion along the first row
+/// (division-free, so it works over any ring; the eliminated blocks are tiny).
+fn determinant<C: Ring>(m: &[Vec<Poly<C>>], nvars: usize) -> Poly<C> {
+    let n = m.len();
+    match n {
+        0 => Poly::constant(nvars, C::one()),
+        1 => m[0][0].clone(),
+        _ => {
+            let mut acc = Poly::zero(nvars);
+            for j in 0..n {
+                if m[0][j].is_zero() {
+                    continue;
+                }
+                let minor: Vec<Vec<Poly<C>>> = m[1..]
+                    .iter()
+                    .map(|row| {
+                        row.iter()
+                            .enumerate()
+                            .filter(|(c, _)| *c != j)
+                            .map(|(_, p)| p.clone())
+                            .collect()
+                    })
+                    .collect();
+                let term = m[0][j].mul(&determinant(&minor, nvars));
+                acc = if j % 2 == 0 {
+                    acc.add(&term)
+                } else {
+                    acc.sub(&term)
+                };
+            }
+            acc
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::{Fp, P1};
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    type F = Fp<P1>;
+
+    /// Random system: rows linear in (t1, t2, t3) (vars 1..4) with coefficients linear in
+    /// u (var 0), plus the normalisation t't = 1.
+    fn system(rng: &mut ChaCha8Rng, rows: usize) -> Vec<Poly<F>> {
+        let mut eqs = Vec::new();
+        for _ in 0..rows {
+            let mut p = Poly::zero(4);
+            for j in 1..4 {
+                let mut m0 = Monomial::var(4, j);
+                p.add_term(m0.clone(), F::new(rng.gen_range(1..1000)));
+                m0.0[0] = 1;
+                p.add_term(m0, F::new(rng.gen_range(1..1000)));
+            }
+            eqs.push(p);
+        }
+        let mut n = Poly::constant(4, -F::one());
+        for j in 1..4 {
+            n = n.add(&Poly::var(4, j).mul(&Poly::var(4, j)));
+        }
+        eqs.push(n);
+        eqs
+    }
+
+    #[test]
+    fn minors_vanish_at_the_solutions_and_null_vector_solves() {
+        let mut rng = ChaCha8Rng::seed_from_u64(2);
+        let eqs = system(&mut rng, 4);
+        let e = eliminate_linear(&eqs, 4, &[1, 2, 3]).unwrap();
+        assert_eq!(e.remaining, vec![0]);
+        assert_eq!(e.dropped, vec![4]);
+        assert_eq!(e.coefficient_matrix.len(), 4);
+        assert_eq!(e.equations.len(), 4); // C(4,3) minors, each cubic in u
+        assert!(e.equations.iter().all(|p| p.degree() == Some(3)));
+        // Each minor evaluated at u equals the determinant of the numeric 3x3 block.
+        let u = F::new(12345);
+        let a: Vec<Vec<F>> = e
+            .coefficient_matrix
+            .iter()
+            .map(|r| r.iter().map(|p| p.eval(&[u])).collect())
+            .collect();
+        let det3 = |r: [usize; 3]| {
+            let m = |i: usize, j: usize| a[r[i]][j];
+            m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1))
+                - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0))
+                + m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0))
+        };
+        assert_eq!(e.equations[0].eval(&[u]), det3([0, 1, 2]));
+        assert_eq!(e.equations[3].eval(&[u]), det3([1, 2, 3]));
+    }
+
+    #[test]
+    fn non_linear_mixing_is_an_error() {
+        // u * t1^2 mixes the eliminated unknown quadratically with u.
+        let mut p = Poly::<F>::zero(2);
+        p.add_term(Monomial(vec![1, 2]), F::one());
+        let err = eliminate_linear(&[p], 2, &[1]).unwrap_err();
+        assert!(matches!(err, EliminateError::NotLinear { equation: 0, .. }));
+        assert!(matches!(
+            eliminate_linear::<F>(&[], 1, &[0]),
+            Err(EliminateError::NothingLeft)
+        ));
+        let lin = Poly::<F>::var(2, 1);
+        assert!(matches!(
+            eliminate_linear(&[lin], 2, &[1]).map(|e| e.equations.len()),
+            Ok(1)
+        ));
+    }
+}

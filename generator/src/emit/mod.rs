@@ -1,0 +1,84 @@
+//! Code emission: from a problem's traced coefficients and its elimination template to one
+//! Rust source file, `solver/src/generated/<name>.rs`, compiled into `rspose`.
+//!
+//! - [`traced`]: the [`Traced`] ring — evaluating the problem with traced data records a
+//!   hash-consed expression DAG (common subexpressions shared) for every coefficient.
+//! - [`coefficients`]: the needed part of the DAG as straight-line code ([`Program`]),
+//!   with an f64 interpreter that computes exactly what the emitted code computes.
+//! - `solver`: [`emit_solver`] — data/solution structs and `solve` (template fill,
+//!   Gauss-Jordan, action matrix, real eigenvectors, read-out, null-vector recovery of
+//!   eliminated unknowns), built with `quote!` and formatted with `prettyplease`.
+//! - `files`: header line, output path, atomic write, freshness check.
+//!
+//! All calls into `rspose::runtime` are spelled in `runtime_api` only.
+//!
+//! Determinism: everything iterates in a fixed order (template rows, `Poly` terms in their
+//! `BTreeMap` order, DAG nodes in creation order), no hash map order reaches the output, and
+//! the same spec always gives the same bytes.
+
+pub mod coefficients;
+mod files;
+mod runtime_api;
+mod solver;
+pub mod traced;
+
+pub use coefficients::Program;
+pub use files::{
+    generated_header, generated_header_for_path, generated_path, generated_relative_path, is_fresh,
+    write_atomic,
+};
+pub use solver::{emit_solver, SMALL_TEMPLATE_ROWS};
+pub use traced::{Traced, Tracer};
+
+use crate::algebra::Poly;
+use crate::problem::ProblemLayout;
+use crate::template::EliminationTemplate;
+
+/// Why a solver could not be emitted.
+#[derive(Debug, thiserror::Error)]
+pub enum EmitError {
+    /// The spec is inconsistent (template, equations, layout or elimination disagree).
+    #[error("cannot emit solver: {0}")]
+    Invalid(String),
+    /// The spec is consistent but asks for something the emitter does not support.
+    #[error("cannot emit solver (unsupported): {0}")]
+    Unsupported(String),
+    /// Traced values from different tracers were mixed.
+    #[error("cannot emit solver: traced coefficients come from different tracers")]
+    MixedTracers,
+    /// Internal error: the generated tokens did not parse as a Rust file.
+    #[error("internal error: generated code does not parse: {0}")]
+    Internal(String),
+}
+
+/// Linear elimination info: which unknowns the solver recovers as a null vector.
+#[derive(Clone, Debug)]
+pub struct EliminationSpec {
+    /// Flat indices (original unknown numbering) of the eliminated unknown scalars, in the
+    /// order of the coefficient matrix columns. Exactly 3 are supported (`null_vector3`).
+    pub eliminated: Vec<usize>,
+    /// Flat indices (original numbering) of the unknowns the template solves for, in
+    /// template variable order.
+    pub remaining: Vec<usize>,
+    /// `rows x eliminated.len()` matrix whose entries are polynomials in the remaining
+    /// unknowns (template variables) with traced coefficients; the eliminated unknowns are
+    /// its unit null vector at a solution.
+    pub coefficient_matrix: Vec<Vec<Poly<Traced>>>,
+}
+
+/// Everything needed to emit one solver.
+#[derive(Clone, Debug)]
+pub struct SolverSpec {
+    /// The problem's symbols (names, kinds, slot numbering).
+    pub layout: ProblemLayout,
+    /// The elimination template (see [`crate::template`] for the convention).
+    pub template: EliminationTemplate,
+    /// The equations the template rows refer to, as polynomials in the template's
+    /// variables whose coefficients are traced data (all from one [`Tracer`]).
+    pub equations: Vec<Poly<Traced>>,
+    /// Workspace-relative problem file path for the header, e.g. `templates/fivept.mp`;
+    /// empty means `templates/<layout.name>.mp`.
+    pub problem_path: String,
+    /// Linear elimination info, if the problem eliminates unknowns.
+    pub elimination: Option<EliminationSpec>,
+}

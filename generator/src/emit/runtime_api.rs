@@ -1,0 +1,31 @@
+//! The one place that names the `rspose::runtime` API the emitted solvers call.
+//!
+//! If the runtime's names change, only these functions change.
+
+use proc_macro2::TokenStream;
+use quote::quote;
+
+/// Fixed-capacity solution container: `SolutionSet<T, N>` with `new`, `push -> bool`.
+pub(crate) fn solution_set() -> TokenStream {
+    quote!(crate::runtime::SolutionSet)
+}
+
+/// `gauss_jordan(m: &mut [f64], rows, cols, pivot_cols) -> bool` (row-major, in place).
+pub(crate) fn gauss_jordan() -> TokenStream {
+    quote!(crate::runtime::gauss_jordan)
+}
+
+/// `real_eigenpairs::<N>(&SMatrix<f64, N, N>) -> SolutionSet<(f64, SVector<f64, N>), N>`.
+pub(crate) fn real_eigenpairs() -> TokenStream {
+    quote!(crate::runtime::real_eigenpairs)
+}
+
+/// `null_vector3(rows: &[[f64; 3]]) -> Option<[f64; 3]>` (unit null vector).
+pub(crate) fn null_vector3() -> TokenStream {
+    quote!(crate::runtime::null_vector3)
+}
+
+/// The fixed-size matrix type of the action matrix.
+pub(crate) fn smatrix() -> TokenStream {
+    quote!(nalgebra::SMatrix)
+}

@@ -1,0 +1,856 @@
+//! The solver emitter: one Rust source file per problem.
+
+use super::coefficients::{Expr, Program};
+use super::files::generated_header_for_path;
+use super::runtime_api as rt;
+use super::traced::Traced;
+use super::{EmitError, SolverSpec};
+use crate::algebra::{Monomial, MonomialOrder, Poly};
+use crate::problem::{DataKind, DataSymbol, ProblemLayout};
+use crate::template::EliminationTemplate;
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::{format_ident, quote};
+use std::collections::{BTreeSet, HashMap};
+
+/// Templates with at most this many rows are kept on the stack; larger ones use a `Vec`.
+pub const SMALL_TEMPLATE_ROWS: usize = 40;
+
+/// Eigenvectors whose entry at the basis monomial 1 is at most this (they are unit
+/// vectors) are solutions at infinity or numerical noise and are skipped.
+const MIN_UNIT_ENTRY_LITERAL: &str = "1e-12";
+
+fn lit(n: usize) -> Literal {
+    Literal::usize_unsuffixed(n)
+}
+
+fn doc(s: impl AsRef<str>) -> TokenStream {
+    let s = format!(" {}", s.as_ref());
+    quote!(#[doc = #s])
+}
+
+fn inner_doc(s: impl AsRef<str>) -> TokenStream {
+    let s = if s.as_ref().is_empty() {
+        String::new()
+    } else {
+        format!(" {}", s.as_ref())
+    };
+    quote!(#![doc = #s])
+}
+
+/// Lowercased symbol name as a Rust field identifier.
+fn field_ident(name: &str, what: &str) -> Result<Ident, EmitError> {
+    let lower = name.to_lowercase();
+    syn::parse_str::<Ident>(&lower).map_err(|_| {
+        EmitError::Unsupported(format!(
+            "{what} `{name}` does not give a Rust field name (`{lower}` is not an identifier or is a keyword)"
+        ))
+    })
+}
+
+fn check_unique(idents: &[Ident], what: &str) -> Result<(), EmitError> {
+    let mut seen = BTreeSet::new();
+    for i in idents {
+        if !seen.insert(i.to_string()) {
+            return Err(EmitError::Unsupported(format!(
+                "two {what} symbols map to the field name `{i}` (names are lowercased)"
+            )));
+        }
+    }
+    Ok(())
+}
+
+fn element_type(kind: DataKind) -> TokenStream {
+    match kind {
+        DataKind::Scalar => quote!(f64),
+        DataKind::Vec3 => quote!([f64; 3]),
+        DataKind::Point => quote!([f64; 2]),
+        DataKind::Mat3 | DataKind::Rotation => quote!([[f64; 3]; 3]),
+    }
+}
+
+fn element_zero(kind: DataKind) -> TokenStream {
+    match kind {
+        DataKind::Scalar => quote!(0.0),
+        DataKind::Vec3 => quote!([0.0; 3]),
+        DataKind::Point => quote!([0.0; 2]),
+        DataKind::Mat3 | DataKind::Rotation => quote!([[0.0; 3]; 3]),
+    }
+}
+
+fn kind_doc(kind: DataKind) -> &'static str {
+    match kind {
+        DataKind::Scalar => "a real number",
+        DataKind::Vec3 => "a 3-vector",
+        DataKind::Point => {
+            "an image point in normalised coordinates `[x, y]`; the third coordinate is 1"
+        }
+        DataKind::Mat3 => "a 3x3 matrix, row-major (`[row][column]`)",
+        DataKind::Rotation => "a 3x3 rotation matrix, row-major (`[row][column]`)",
+    }
+}
+
+/// Access tokens for slot `k` of element `e` of a data symbol.
+fn slot_access(field: &Ident, ds: &DataSymbol, e: usize, k: usize) -> TokenStream {
+    let elem = match ds.len {
+        Some(_) => {
+            let e = lit(e);
+            quote!(data.#field[#e])
+        }
+        None => quote!(data.#field),
+    };
+    match ds.kind {
+        DataKind::Scalar => elem,
+        DataKind::Vec3 | DataKind::Point => {
+            let k = lit(k);
+            quote!(#elem[#k])
+        }
+        DataKind::Mat3 | DataKind::Rotation => {
+            let (r, c) = (lit(k / 3), lit(k % 3));
+            quote!(#elem[#r][#c])
+        }
+    }
+}
+
+/// Everything `solve` needs, validated and indexed.
+struct Plan<'a> {
+    spec: &'a SolverSpec,
+    /// Names of the template variables.
+    var_names: Vec<String>,
+    /// For each original unknown scalar: template variable `Ok(k)` or eliminated `Err(j)`.
+    source: Vec<Result<usize, usize>>,
+    column_of: HashMap<Monomial, usize>,
+    basis_one: usize,
+    basis_var: Vec<usize>,
+}
+
+fn validate_template(
+    t: &EliminationTemplate,
+    equations: &[Poly<Traced>],
+) -> Result<HashMap<Monomial, usize>, EmitError> {
+    let bad = |s: String| Err(EmitError::Invalid(s));
+    let nb = t.basis.len();
+    if nb == 0 {
+        return bad("the quotient basis is empty".into());
+    }
+    if t.columns.len() != t.n_excess + t.n_reducible + nb {
+        return bad(format!(
+            "{} columns but {} excess + {} reducible + {} basis",
+            t.columns.len(),
+            t.n_excess,
+            t.n_reducible,
+            nb
+        ));
+    }
+    if t.columns[t.n_excess + t.n_reducible..] != t.basis[..] {
+        return bad("the last block of columns is not the basis (in basis order)".into());
+    }
+    let mut column_of = HashMap::new();
+    for (i, m) in t.columns.iter().enumerate() {
+        if m.nvars() != t.nvars {
+            return bad(format!("column {i} has {} variables", m.nvars()));
+        }
+        if column_of.insert(m.clone(), i).is_some() {
+            return bad(format!("column monomial {m:?} appears twice"));
+        }
+    }
+    if t.action.nvars() != t.nvars {
+        return bad("the action monomial has the wrong number of variables".into());
+    }
+    // Reducible columns are exactly the products action * b outside B.
+    let mut needed = BTreeSet::new();
+    for b in &t.basis {
+        let p = t.action.mul(b);
+        match column_of.get(&p) {
+            Some(&c) if c >= t.n_excess + t.n_reducible => {}
+            Some(&c) if c >= t.n_excess => {
+                needed.insert(c);
+            }
+            _ => {
+                return bad(format!(
+                    "action * {b:?} = {p:?} is neither a basis nor a reducible column"
+                ))
+            }
+        }
+    }
+    if needed.len() != t.n_reducible {
+        return bad(format!(
+            "{} reducible columns but {} products action * b fall outside the basis",
+            t.n_reducible,
+            needed.len()
+        ));
+    }
+    let pivots = t.n_excess + t.n_reducible;
+    if t.rows.len() < pivots {
+        return bad(format!(
+            "{} rows cannot eliminate {} excess + reducible columns",
+            t.rows.len(),
+            pivots
+        ));
+    }
+    for (i, row) in t.rows.iter().enumerate() {
+        let eq = equations.get(row.equation).ok_or_else(|| {
+            EmitError::Invalid(format!(
+                "row {i} refers to equation {} of {}",
+                row.equation,
+                equations.len()
+            ))
+        })?;
+        if eq.nvars() != t.nvars || row.multiplier.nvars() != t.nvars {
+            return bad(format!(
+                "row {i}: equation or multiplier not in the template's {} variables",
+                t.nvars
+            ));
+        }
+        for (m, _) in eq.terms() {
+            let p = row.multiplier.mul(m);
+            if !column_of.contains_key(&p) {
+                return bad(format!("row {i}: monomial {p:?} is not a template column"));
+            }
+        }
+    }
+    Ok(column_of)
+}
+
+impl<'a> Plan<'a> {
+    fn new(spec: &'a SolverSpec) -> Result<Self, EmitError> {
+        let t = &spec.template;
+        let layout = &spec.layout;
+        let column_of = validate_template(t, &spec.equations)?;
+        let n_unknowns = layout.unknown_count();
+        let names = layout.unknown_names();
+        let mut source = vec![Err(usize::MAX); n_unknowns];
+        let var_names: Vec<String>;
+        match &spec.elimination {
+            None => {
+                if !layout.eliminate.is_empty() {
+                    return Err(EmitError::Invalid(
+                        "the problem eliminates unknowns but no elimination info was given".into(),
+                    ));
+                }
+                if t.nvars != n_unknowns {
+                    return Err(EmitError::Invalid(format!(
+                        "the template has {} variables, the problem {} unknowns",
+                        t.nvars, n_unknowns
+                    )));
+                }
+                for (k, s) in source.iter_mut().enumerate() {
+                    *s = Ok(k);
+                }
+                var_names = names.clone();
+            }
+            Some(el) => {
+                if el.eliminated.len() != 3 {
+                    return Err(EmitError::Unsupported(format!(
+                        "{} eliminated unknowns; only 3 (a unit null vector of an n x 3 matrix) are supported",
+                        el.eliminated.len()
+                    )));
+                }
+                if el.remaining.len() != t.nvars {
+                    return Err(EmitError::Invalid(format!(
+                        "{} remaining unknowns but the template has {} variables",
+                        el.remaining.len(),
+                        t.nvars
+                    )));
+                }
+                let mut seen = vec![false; n_unknowns];
+                let all = el.remaining.iter().chain(&el.eliminated);
+                for &i in all {
+                    if i >= n_unknowns || seen[i] {
+                        return Err(EmitError::Invalid(format!(
+                            "unknown index {i} out of range or listed twice in the elimination info"
+                        )));
+                    }
+                    seen[i] = true;
+                }
+                if seen.iter().any(|s| !s) {
+                    return Err(EmitError::Invalid(
+                        "the elimination info does not cover every unknown".into(),
+                    ));
+                }
+                for (k, &i) in el.remaining.iter().enumerate() {
+                    source[i] = Ok(k);
+                }
+                for (j, &i) in el.eliminated.iter().enumerate() {
+                    source[i] = Err(j);
+                }
+                if el.coefficient_matrix.len() < 2 {
+                    return Err(EmitError::Invalid(
+                        "the elimination coefficient matrix needs at least 2 rows".into(),
+                    ));
+                }
+                for (r, row) in el.coefficient_matrix.iter().enumerate() {
+                    if row.len() != 3 {
+                        return Err(EmitError::Invalid(format!(
+                            "elimination matrix row {r} has {} entries, expected 3",
+                            row.len()
+                        )));
+                    }
+                    if row.iter().any(|p| p.nvars() != t.nvars) {
+                        return Err(EmitError::Invalid(format!(
+                            "elimination matrix row {r}: entries must be polynomials in the {} template variables",
+                            t.nvars
+                        )));
+                    }
+                }
+                var_names = el.remaining.iter().map(|&i| names[i].clone()).collect();
+            }
+        }
+        let basis_pos = |m: &Monomial| t.basis.iter().position(|b| b == m);
+        let basis_one = basis_pos(&Monomial::one(t.nvars)).ok_or_else(|| {
+            EmitError::Unsupported("the basis does not contain the monomial 1".into())
+        })?;
+        let basis_var = (0..t.nvars)
+            .map(|k| {
+                basis_pos(&Monomial::var(t.nvars, k)).ok_or_else(|| {
+                    EmitError::Unsupported(format!(
+                        "the basis does not contain the unknown {}; it cannot be read off the eigenvectors",
+                        var_names[k]
+                    ))
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Plan {
+            spec,
+            var_names,
+            source,
+            column_of,
+            basis_one,
+            basis_var,
+        })
+    }
+
+    fn mono(&self, m: &Monomial) -> String {
+        m.display_with(&self.var_names)
+    }
+}
+
+/// Emits the solver file for `spec` (see the module documentation of [`super`]).
+pub fn emit_solver(spec: &SolverSpec) -> Result<String, EmitError> {
+    if syn::parse_str::<Ident>(&spec.layout.name).is_err() {
+        return Err(EmitError::Unsupported(format!(
+            "problem name `{}` is not a Rust module name",
+            spec.layout.name
+        )));
+    }
+    let plan = Plan::new(spec)?;
+    let layout = &spec.layout;
+    let t = &spec.template;
+    let problem_path = if spec.problem_path.is_empty() {
+        format!("templates/{}.mp", layout.name)
+    } else {
+        spec.problem_path.replace('\\', "/")
+    };
+
+    let data_items = emit_data(layout)?;
+    let solution_items = emit_solution(layout)?;
+    let (solve_fn, stats) = emit_solve(&plan)?;
+
+    let (rows, cols) = t.size();
+    let nb = t.basis.len();
+    let basis: Vec<String> = t.basis.iter().map(|b| plan.mono(b)).collect();
+    let mut module_doc = vec![
+        format!(
+            "Minimal solver for the problem `{}` (`{}`).",
+            layout.name, problem_path
+        ),
+        String::new(),
+        format!(
+            "Unknowns: {}. Data: {}.",
+            layout
+                .unknowns
+                .iter()
+                .map(|u| match u.len {
+                    Some(n) => format!("`{}[{}]`", u.name, n),
+                    None => format!("`{}`", u.name),
+                })
+                .collect::<Vec<_>>()
+                .join(", "),
+            layout
+                .data
+                .iter()
+                .map(|d| match d.len {
+                    Some(n) => format!("`{}[{}]: {}`", d.name, n, d.kind.keyword()),
+                    None => format!("`{}: {}`", d.name, d.kind.keyword()),
+                })
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        format!(
+            "Elimination template {rows} x {cols} ({} excess, {} reducible, {nb} basis columns), \
+             action `{}`, at most {nb} solutions.",
+            t.n_excess,
+            t.n_reducible,
+            plan.mono(&t.action)
+        ),
+        format!("Quotient basis: {}.", basis.join(", ")),
+        format!(
+            "Coefficients: {} arithmetic operations in {} shared intermediates.",
+            stats.ops, stats.stmts
+        ),
+    ];
+    if let Some(el) = &spec.elimination {
+        let names = layout.unknown_names();
+        module_doc.push(format!(
+            "Eliminated unknowns {} are recovered as the unit null vector of a {} x 3 matrix \
+             (one of the two signs).",
+            el.eliminated
+                .iter()
+                .map(|&i| format!("`{}`", names[i]))
+                .collect::<Vec<_>>()
+                .join(", "),
+            el.coefficient_matrix.len()
+        ));
+    }
+    module_doc.push(String::new());
+    module_doc.push("Do not edit: regenerate with `mingen generate`.".into());
+    let module_doc: Vec<TokenStream> = module_doc.iter().map(inner_doc).collect();
+
+    let max = lit(nb);
+    let set = rt::solution_set();
+    let tokens = quote! {
+        #(#module_doc)*
+
+        #data_items
+
+        #solution_items
+
+        /// The largest number of real solutions [`solve`] returns.
+        pub const MAX_SOLUTIONS: usize = #max;
+
+        /// The real solutions of one instance.
+        pub type Solutions = #set<Solution, MAX_SOLUTIONS>;
+
+        #solve_fn
+    };
+    let file: syn::File = syn::parse2(tokens).map_err(|e| EmitError::Internal(e.to_string()))?;
+    let body = prettyplease::unparse(&file);
+    Ok(format!(
+        "{}\n{}",
+        generated_header_for_path(&problem_path),
+        body
+    ))
+}
+
+fn emit_data(layout: &ProblemLayout) -> Result<TokenStream, EmitError> {
+    let idents = layout
+        .data
+        .iter()
+        .map(|d| field_ident(&d.name, "data"))
+        .collect::<Result<Vec<_>, _>>()?;
+    check_unique(&idents, "data")?;
+    let mut fields = Vec::new();
+    let mut zeros = Vec::new();
+    let mut big = false;
+    for (d, id) in layout.data.iter().zip(&idents) {
+        let el = element_type(d.kind);
+        let z = element_zero(d.kind);
+        let (ty, zero, what) = match d.len {
+            Some(n) => {
+                big |= n > 32;
+                let nl = lit(n);
+                (
+                    quote!([#el; #nl]),
+                    quote!([#z; #nl]),
+                    format!(
+                        "`{}[{}]: {}` — {} elements, each {}.",
+                        d.name,
+                        n,
+                        d.kind.keyword(),
+                        n,
+                        kind_doc(d.kind)
+                    ),
+                )
+            }
+            None => (
+                el,
+                z,
+                format!("`{}: {}` — {}.", d.name, d.kind.keyword(), kind_doc(d.kind)),
+            ),
+        };
+        let dc = doc(what);
+        fields.push(quote!(#dc pub #id: #ty,));
+        zeros.push(quote!(#id: #zero,));
+    }
+    let (derive, default_impl) = if big {
+        (
+            quote!(#[derive(Clone, Copy, Debug, PartialEq)]),
+            quote! {
+                impl Default for Data {
+                    fn default() -> Self {
+                        Data { #(#zeros)* }
+                    }
+                }
+            },
+        )
+    } else {
+        (
+            quote!(#[derive(Clone, Copy, Debug, PartialEq, Default)]),
+            quote!(),
+        )
+    };
+    let d = doc(format!(
+        "Input data of `{}`: one field per data symbol of the problem file (lowercased).",
+        layout.name
+    ));
+    Ok(quote! {
+        #d
+        #derive
+        pub struct Data { #(#fields)* }
+        #default_impl
+    })
+}
+
+fn emit_solution(layout: &ProblemLayout) -> Result<TokenStream, EmitError> {
+    let idents = layout
+        .unknowns
+        .iter()
+        .map(|u| field_ident(&u.name, "unknown"))
+        .collect::<Result<Vec<_>, _>>()?;
+    check_unique(&idents, "unknown")?;
+    let mut fields = Vec::new();
+    let mut zeros = Vec::new();
+    let mut big = false;
+    for (u, id) in layout.unknowns.iter().zip(&idents) {
+        let (ty, zero, what) = match u.len {
+            Some(n) => {
+                big |= n > 32;
+                let nl = lit(n);
+                (
+                    quote!([f64; #nl]),
+                    quote!([0.0; #nl]),
+                    format!(
+                        "Unknown `{}[{}]` (`{}1` .. `{}{}`).",
+                        u.name, n, u.name, u.name, n
+                    ),
+                )
+            }
+            None => (quote!(f64), quote!(0.0), format!("Unknown `{}`.", u.name)),
+        };
+        let dc = doc(what);
+        fields.push(quote!(#dc pub #id: #ty,));
+        zeros.push(quote!(#id: #zero,));
+    }
+    let (derive, default_impl) = if big {
+        (
+            quote!(#[derive(Clone, Copy, Debug, PartialEq)]),
+            quote! {
+                impl Default for Solution {
+                    fn default() -> Self {
+                        Solution { #(#zeros)* }
+                    }
+                }
+            },
+        )
+    } else {
+        (
+            quote!(#[derive(Clone, Copy, Debug, PartialEq, Default)]),
+            quote!(),
+        )
+    };
+    let d = doc(format!(
+        "One real solution of `{}`: one field per unknown symbol (lowercased).",
+        layout.name
+    ));
+    Ok(quote! {
+        #d
+        #derive
+        pub struct Solution { #(#fields)* }
+        #default_impl
+    })
+}
+
+struct Stats {
+    ops: usize,
+    stmts: usize,
+}
+
+/// `coeff * u_a * u_b * ...` terms summed, for an entry of the elimination matrix.
+fn entry_tokens(terms: &[(Monomial, Expr)]) -> TokenStream {
+    if terms.is_empty() {
+        return quote!(0.0);
+    }
+    let mut out = TokenStream::new();
+    for (i, (m, c)) in terms.iter().enumerate() {
+        let (neg, c) = match c {
+            Expr::Neg(inner) => (true, (**inner).clone()),
+            Expr::Const(v) if *v < 0.0 => (true, Expr::Const(-v)),
+            other => (false, other.clone()),
+        };
+        let mut factors: Vec<TokenStream> = Vec::new();
+        let is_one = matches!(c, Expr::Const(v) if v == 1.0);
+        if !is_one || m.is_one() {
+            factors.push(c.to_tokens());
+        }
+        for (k, &e) in m.0.iter().enumerate() {
+            let u = format_ident!("u{}", k);
+            for _ in 0..e {
+                factors.push(quote!(#u));
+            }
+        }
+        let mut it = factors.into_iter();
+        let first = it.next().expect("a term has at least one factor");
+        let prod = it.fold(first, |acc, f| quote!(#acc * #f));
+        out = match (i, neg) {
+            (0, false) => prod,
+            (0, true) => quote!(-#prod),
+            (_, false) => quote!(#out + #prod),
+            (_, true) => quote!(#out - #prod),
+        };
+    }
+    out
+}
+
+fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
+    let spec = plan.spec;
+    let t = &spec.template;
+    let layout = &spec.layout;
+    let (rows, cols) = t.size();
+    let nb = t.basis.len();
+    let pivots = t.n_excess + t.n_reducible;
+
+    // Data flattening, in slot order.
+    let n_slots = layout.data_slot_count();
+    let mut slot_expr: Vec<Option<TokenStream>> = vec![None; n_slots];
+    for d in &layout.data {
+        let field = field_ident(&d.name, "data")?;
+        let per = d.kind.slots();
+        for e in 0..d.len.unwrap_or(1) {
+            for k in 0..per {
+                let s = d.first_slot + e * per + k;
+                match slot_expr.get_mut(s) {
+                    Some(x @ None) => *x = Some(slot_access(&field, d, e, k)),
+                    _ => {
+                        return Err(EmitError::Invalid(format!(
+                            "data slot {s} of `{}` is out of range or used twice",
+                            d.name
+                        )))
+                    }
+                }
+            }
+        }
+    }
+    let slot_expr: Vec<TokenStream> = slot_expr
+        .into_iter()
+        .map(|x| x.expect("all slots covered"))
+        .collect();
+
+    // Coefficients: template entries (inlinable), then elimination matrix coefficients
+    // (bound before the solution loop).
+    let mut fill_pos: Vec<usize> = Vec::new();
+    let mut fill_vals: Vec<Traced> = Vec::new();
+    for (i, row) in t.rows.iter().enumerate() {
+        for (m, c) in spec.equations[row.equation].terms() {
+            let col = plan.column_of[&row.multiplier.mul(m)];
+            fill_pos.push(i * cols + col);
+            fill_vals.push(c.clone());
+        }
+    }
+    // Each template entry is written once: two terms of one row never share a column
+    // because the equation's monomials are distinct.
+    let mut elim_terms: Vec<Vec<Vec<Monomial>>> = Vec::new();
+    let mut elim_vals: Vec<Traced> = Vec::new();
+    if let Some(el) = &spec.elimination {
+        for row in &el.coefficient_matrix {
+            let mut r = Vec::new();
+            for p in row {
+                let support = p.support(MonomialOrder::Grevlex);
+                for m in &support {
+                    elim_vals.push(p.coeff(m));
+                }
+                r.push(support);
+            }
+            elim_terms.push(r);
+        }
+    }
+    let program = Program::build(&fill_vals, &elim_vals, n_slots)?;
+    let stats = Stats {
+        ops: program.op_count(),
+        stmts: program.stmts.len(),
+    };
+    let coeff_stmts = program.stmt_tokens();
+    let mut fill_order: Vec<(usize, &Expr)> = fill_pos
+        .iter()
+        .copied()
+        .zip(&program.outputs[..fill_vals.len()])
+        .collect();
+    fill_order.sort_by_key(|(p, _)| *p);
+    let fills: Vec<TokenStream> = fill_order
+        .into_iter()
+        .map(|(p, e)| {
+            let p = lit(p);
+            let e = e.to_tokens();
+            quote!(m[#p] = #e;)
+        })
+        .collect();
+
+    let n_slots_l = lit(n_slots);
+    let (rows_l, cols_l, pivots_l, nb_l) = (lit(rows), lit(cols), lit(pivots), lit(nb));
+    let size_l = lit(rows * cols);
+    let alloc = if rows <= SMALL_TEMPLATE_ROWS {
+        quote!(let mut m = [0.0f64; #size_l];)
+    } else {
+        quote!(let mut m = vec![0.0f64; #size_l];)
+    };
+
+    // Action matrix.
+    let mut units = Vec::new();
+    let mut from_template = Vec::new();
+    let mut single_source = None;
+    for (j, b) in t.basis.iter().enumerate() {
+        let p = t.action.mul(b);
+        let c = plan.column_of[&p];
+        let jl = lit(j);
+        if c >= pivots {
+            let k = lit(c - pivots);
+            units.push(quote!(a[(#jl, #k)] = 1.0;));
+        } else {
+            // Pivot row of column c holds c + sum_k T[c, k] b_k after Gauss-Jordan.
+            let start = lit(c * cols + pivots);
+            single_source = Some((jl.clone(), start.clone(), lit(c * cols + pivots + nb)));
+            from_template.push(quote!((#jl, #start)));
+        }
+    }
+    let from_template_loop = if from_template.is_empty() {
+        quote!()
+    } else if from_template.len() == 1 {
+        let (jl, start, end) = single_source.expect("one row from the template");
+        quote! {
+            for (k, x) in m[#start..#end].iter().enumerate() {
+                a[(#jl, k)] = -x;
+            }
+        }
+    } else {
+        quote! {
+            for (j, s) in [#(#from_template),*] {
+                for (k, x) in m[s..s + #nb_l].iter().enumerate() {
+                    a[(j, k)] = -x;
+                }
+            }
+        }
+    };
+
+    // Read-out.
+    let one_l = lit(plan.basis_one);
+    let mut reads = Vec::new();
+    let mut finite = Vec::new();
+    for (k, &bi) in plan.basis_var.iter().enumerate() {
+        let u = format_ident!("u{}", k);
+        let bl = lit(bi);
+        reads.push(quote!(let #u = v[#bl] / w;));
+        finite.push(quote!(!#u.is_finite()));
+    }
+    let elim_block = if let Some(el) = &spec.elimination {
+        let mut outs = program.outputs[fill_vals.len()..].iter();
+        let mut row_tokens = Vec::new();
+        for row in &elim_terms {
+            let mut entries = Vec::new();
+            for support in row {
+                let terms: Vec<(Monomial, Expr)> = support
+                    .iter()
+                    .map(|m| (m.clone(), outs.next().expect("one output per term").clone()))
+                    .collect();
+                entries.push(entry_tokens(&terms));
+            }
+            row_tokens.push(quote!([#(#entries),*]));
+        }
+        let nr = lit(el.coefficient_matrix.len());
+        let nv = rt::null_vector3();
+        quote! {
+            let rows: [[f64; 3]; #nr] = [#(#row_tokens),*];
+            let Some(n) = #nv(&rows) else {
+                continue;
+            };
+        }
+    } else {
+        quote!()
+    };
+    let mut field_inits = Vec::new();
+    for u in &layout.unknowns {
+        let id = field_ident(&u.name, "unknown")?;
+        let val = |i: usize| match plan.source[i] {
+            Ok(k) => {
+                let u = format_ident!("u{}", k);
+                quote!(#u)
+            }
+            Err(j) => {
+                let j = lit(j);
+                quote!(n[#j])
+            }
+        };
+        match u.len {
+            None => {
+                let v = val(u.first_var);
+                field_inits.push(quote!(#id: #v,));
+            }
+            Some(len) => {
+                let vs: Vec<TokenStream> = (0..len).map(|e| val(u.first_var + e)).collect();
+                field_inits.push(quote!(#id: [#(#vs),*],));
+            }
+        }
+    }
+
+    let gj = rt::gauss_jordan();
+    let eig = rt::real_eigenpairs();
+    let smat = rt::smatrix();
+    let eps: Literal = MIN_UNIT_ENTRY_LITERAL.parse().expect("a float literal");
+    let basis: Vec<String> = t.basis.iter().map(|b| plan.mono(b)).collect();
+    let docs = [
+        format!(
+            "Solves `{}`: all real solutions of the problem's equations for the given data.",
+            layout.name
+        ),
+        String::new(),
+        format!(
+            "Fills a {rows} x {cols} elimination template, reduces it by Gauss-Jordan \
+             elimination, builds the {nb} x {nb} action matrix of `{}` on the basis [{}] and \
+             reads each unknown off the real eigenvectors as `v[x] / v[1]`.",
+            plan.mono(&t.action),
+            basis.join(", ")
+        ),
+        String::new(),
+        "Never panics: non-finite or degenerate data gives no solutions.".into(),
+    ];
+    let docs: Vec<TokenStream> = docs.iter().map(doc).collect();
+    let solve = quote! {
+        #(#docs)*
+        #[must_use]
+        #[allow(
+            clippy::similar_names,
+            clippy::many_single_char_names,
+            clippy::too_many_lines
+        )]
+        pub fn solve(data: &Data) -> Solutions {
+            let mut out = Solutions::new();
+            let d: [f64; #n_slots_l] = [#(#slot_expr),*];
+            if d.iter().any(|x| !x.is_finite()) {
+                return out;
+            }
+            #(#coeff_stmts)*
+            #alloc
+            #(#fills)*
+            if !#gj(&mut m, #rows_l, #cols_l, #pivots_l) {
+                return out;
+            }
+            let mut a = #smat::<f64, #nb_l, #nb_l>::zeros();
+            #(#units)*
+            #from_template_loop
+            let pairs = #eig::<#nb_l>(&a);
+            for (_, v) in pairs.iter() {
+                let w = v[#one_l];
+                if !w.is_finite() || w.abs() <= #eps {
+                    continue;
+                }
+                #(#reads)*
+                if #(#finite)||* {
+                    continue;
+                }
+                #elim_block
+                if !out.push(Solution { #(#field_inits)* }) {
+                    break;
+                }
+            }
+            out
+        }
+    };
+    Ok((solve, stats))
+}

@@ -1,0 +1,953 @@
+//! Name resolution, loop unrolling and shape checking: statements to a [`Checked`] problem.
+//!
+//! The result is a tape of matrix-valued nodes (hash-consed, so a subexpression that occurs
+//! several times, such as `skew(t)` in every loop iteration, is one node and is evaluated
+//! once) plus the list of scalar equations, each an entry of a node.
+
+use super::ast::{AddOp, Decl, Expr, ExprKind, MulOp, Name, Postfix, Stmt};
+use super::lexer::Pos;
+use super::LangError;
+use crate::algebra::Q;
+use crate::problem::{DataKind, DataSymbol, ProblemLayout, UnknownSymbol};
+use num_bigint::BigInt;
+use num_traits::{One, ToPrimitive, Zero};
+use std::collections::HashMap;
+
+/// Names that cannot be declared: the identity and the built-in functions.
+pub const BUILTINS: [&str; 4] = ["I", "skew", "det", "trace"];
+
+const MAX_ARRAY_LEN: usize = 100_000;
+const MAX_NODES: usize = 2_000_000;
+const MAX_ITERATIONS: usize = 1_000_000;
+const MAX_EQUATIONS: usize = 100_000;
+
+/// Index of a node in [`Checked::nodes`].
+pub type NodeId = usize;
+
+/// A shape: 1x1 (scalar), 3x1 (column vector), 1x3 (row vector) or 3x3 (matrix).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Shape {
+    /// Number of rows.
+    pub rows: usize,
+    /// Number of columns.
+    pub cols: usize,
+}
+
+impl Shape {
+    /// 1x1.
+    pub const SCALAR: Shape = Shape { rows: 1, cols: 1 };
+    /// 3x1.
+    pub const COL: Shape = Shape { rows: 3, cols: 1 };
+    /// 1x3.
+    pub const ROW: Shape = Shape { rows: 1, cols: 3 };
+    /// 3x3.
+    pub const MAT: Shape = Shape { rows: 3, cols: 3 };
+    /// Whether 1x1.
+    pub fn is_scalar(self) -> bool {
+        self == Shape::SCALAR
+    }
+    /// Number of entries.
+    pub fn len(self) -> usize {
+        self.rows * self.cols
+    }
+    /// Always false (shapes have at least one entry); for clippy's `len` convention.
+    pub fn is_empty(self) -> bool {
+        false
+    }
+    fn describe(self) -> String {
+        match (self.rows, self.cols) {
+            (1, 1) => "a scalar".into(),
+            (3, 1) => "a 3x1 column vector".into(),
+            (1, 3) => "a 1x3 row vector".into(),
+            (3, 3) => "a 3x3 matrix".into(),
+            (r, c) => format!("a {r}x{c} matrix"),
+        }
+    }
+}
+
+/// One operation of the tape; operands are earlier nodes.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Op {
+    /// A rational constant (1x1).
+    Const(Q),
+    /// Unknown scalar number i (1x1).
+    Unknown(usize),
+    /// Data slot number s (1x1).
+    Data(usize),
+    /// A matrix from 1x1 nodes, row-major.
+    Build(Shape, Vec<NodeId>),
+    /// The 3x3 identity.
+    Identity,
+    /// Entrywise sum of equal shapes.
+    Add(NodeId, NodeId),
+    /// Entrywise difference of equal shapes.
+    Sub(NodeId, NodeId),
+    /// Negation.
+    Neg(NodeId),
+    /// Matrix product, or scaling when one side is 1x1.
+    Mul(NodeId, NodeId),
+    /// Transpose.
+    Transpose(NodeId),
+    /// The cross-product matrix of a 3-vector.
+    Skew(NodeId),
+    /// Determinant of a 3x3 matrix.
+    Det(NodeId),
+    /// Trace of a 3x3 matrix.
+    Trace(NodeId),
+    /// Entry (row, col) of a node (1x1).
+    Entry(NodeId, usize, usize),
+}
+
+/// A tape node: operation and result shape.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Node {
+    /// The operation.
+    pub op: Op,
+    /// The shape of its value.
+    pub shape: Shape,
+}
+
+/// One scalar equation: entry (row, col) of node `node`, which is `lhs - rhs`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ScalarEquation {
+    /// The node holding `lhs - rhs`.
+    pub node: NodeId,
+    /// Row of the entry.
+    pub row: usize,
+    /// Column of the entry.
+    pub col: usize,
+    /// Source line of the equation.
+    pub line: usize,
+}
+
+/// A checked problem: layout, tape and scalar equations.
+#[derive(Clone, Debug)]
+pub struct Checked {
+    /// Symbols of the problem.
+    pub layout: ProblemLayout,
+    /// The tape, operands before users.
+    pub nodes: Vec<Node>,
+    /// The scalar equations, in source order (matrix equations row-major).
+    pub equations: Vec<ScalarEquation>,
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Sym {
+    Unknown(usize),
+    Data(usize),
+}
+
+#[derive(Clone, Debug)]
+enum Binding {
+    Value(Val),
+    LoopVar(i64),
+}
+
+/// A checked value: a tape node, or an array symbol not yet indexed.
+#[derive(Clone, Copy, Debug)]
+enum Val {
+    Node(NodeId),
+    DataArray(usize),
+    UnknownVec(usize),
+}
+
+struct Checker {
+    layout: ProblemLayout,
+    symbols: HashMap<String, Sym>,
+    scopes: Vec<HashMap<String, Binding>>,
+    nodes: Vec<Node>,
+    intern: HashMap<Op, NodeId>,
+    equations: Vec<ScalarEquation>,
+    iterations: usize,
+}
+
+/// Checks parsed statements.
+pub fn check(stmts: &[(Pos, Stmt)]) -> Result<Checked, LangError> {
+    let Some((first_pos, first)) = stmts.first() else {
+        return Err(LangError::new(
+            Pos { line: 1, column: 1 },
+            "expected 'problem NAME' as the first statement, found end of file",
+        ));
+    };
+    let (problem_pos, name) = match first {
+        Stmt::Problem { pos, name } => (*pos, name.name.clone()),
+        _ => {
+            return Err(LangError::new(
+                *first_pos,
+                "expected 'problem NAME' as the first statement",
+            ))
+        }
+    };
+    let mut c = Checker {
+        layout: ProblemLayout {
+            name,
+            unknowns: Vec::new(),
+            data: Vec::new(),
+            eliminate: Vec::new(),
+        },
+        symbols: HashMap::new(),
+        scopes: vec![HashMap::new()],
+        nodes: Vec::new(),
+        intern: HashMap::new(),
+        equations: Vec::new(),
+        iterations: 0,
+    };
+    for (pos, s) in stmts.iter().skip(1) {
+        c.statement(*pos, s, true)?;
+    }
+    if c.layout.unknowns.is_empty() {
+        return Err(LangError::new(
+            problem_pos,
+            "the problem declares no unknowns (add 'unknown NAME')",
+        ));
+    }
+    if c.equations.is_empty() {
+        return Err(LangError::new(
+            problem_pos,
+            "the problem has no equations (add 'lhs = rhs')",
+        ));
+    }
+    Ok(Checked {
+        layout: c.layout,
+        nodes: c.nodes,
+        equations: c.equations,
+    })
+}
+
+fn q_int(n: i64) -> Q {
+    Q::from_integer(BigInt::from(n))
+}
+
+/// Parses a literal such as `2`, `0.5` or `12.250` exactly.
+fn parse_number(s: &str, pos: Pos) -> Result<Q, LangError> {
+    let bad = || LangError::new(pos, format!("malformed number {s}"));
+    let (int, frac) = match s.split_once('.') {
+        Some((a, b)) => (a, b),
+        None => (s, ""),
+    };
+    let digits = format!("{int}{frac}");
+    let n: BigInt = digits.parse().map_err(|_| bad())?;
+    if frac.len() > 1000 {
+        return Err(bad());
+    }
+    let d = num_traits::pow(BigInt::from(10), frac.len());
+    Ok(Q::new(n, d))
+}
+
+impl Checker {
+    fn err(&self, pos: Pos, msg: impl Into<String>) -> LangError {
+        LangError::new(pos, msg)
+    }
+
+    fn lookup(&self, name: &str) -> Option<Binding> {
+        for s in self.scopes.iter().rev() {
+            if let Some(b) = s.get(name) {
+                return Some(b.clone());
+            }
+        }
+        match self.symbols.get(name) {
+            Some(Sym::Unknown(i)) => Some(Binding::Value(Val::UnknownVec(*i))),
+            Some(Sym::Data(i)) => Some(Binding::Value(Val::DataArray(*i))),
+            None => None,
+        }
+    }
+
+    fn check_new_name(&self, n: &Name) -> Result<(), LangError> {
+        if BUILTINS.contains(&n.name.as_str()) {
+            return Err(self.err(
+                n.pos,
+                format!("'{}' is built in and cannot be declared", n.name),
+            ));
+        }
+        if self.symbols.contains_key(&n.name) || self.scopes.iter().any(|s| s.contains_key(&n.name))
+        {
+            return Err(self.err(
+                n.pos,
+                format!("duplicate name '{}': it is already declared", n.name),
+            ));
+        }
+        Ok(())
+    }
+
+    fn statement(&mut self, pos: Pos, s: &Stmt, top: bool) -> Result<(), LangError> {
+        let only_top = |what: &str| {
+            LangError::new(
+                pos,
+                format!("'{what}' must be at the top level, not inside a 'for' block"),
+            )
+        };
+        match s {
+            Stmt::Problem { pos, .. } => Err(self.err(
+                *pos,
+                "duplicate 'problem' statement: it must appear once, first",
+            )),
+            Stmt::Unknown(decls) => {
+                if !top {
+                    return Err(only_top("unknown"));
+                }
+                for d in decls {
+                    self.declare_unknown(d)?;
+                }
+                Ok(())
+            }
+            Stmt::Data(decls) => {
+                if !top {
+                    return Err(only_top("data"));
+                }
+                for d in decls {
+                    self.declare_data(d)?;
+                }
+                Ok(())
+            }
+            Stmt::Eliminate(names) => {
+                if !top {
+                    return Err(only_top("eliminate"));
+                }
+                for n in names {
+                    self.eliminate(n)?;
+                }
+                Ok(())
+            }
+            Stmt::Let { name, value } => {
+                self.check_new_name(name)?;
+                let v = self.expr(value)?;
+                if let Some(scope) = self.scopes.last_mut() {
+                    scope.insert(name.name.clone(), Binding::Value(v));
+                }
+                Ok(())
+            }
+            Stmt::For {
+                var,
+                start,
+                end,
+                body,
+                ..
+            } => {
+                self.check_new_name(var)?;
+                if end.0 <= start.0 {
+                    return Err(self.err(
+                        end.1,
+                        format!(
+                            "empty range {}..{}: the end must be greater than the start",
+                            start.0, end.0
+                        ),
+                    ));
+                }
+                let count = (end.0 as i128 - start.0 as i128) as u128;
+                if count > MAX_ARRAY_LEN as u128 {
+                    return Err(self.err(
+                        end.1,
+                        format!(
+                            "range {}..{} is too long (at most {MAX_ARRAY_LEN} values)",
+                            start.0, end.0
+                        ),
+                    ));
+                }
+                for k in start.0..end.0 {
+                    self.iterations += 1;
+                    if self.iterations > MAX_ITERATIONS {
+                        return Err(self.err(
+                            var.pos,
+                            format!(
+                                "too many loop iterations in total (more than {MAX_ITERATIONS})"
+                            ),
+                        ));
+                    }
+                    let mut scope = HashMap::new();
+                    scope.insert(var.name.clone(), Binding::LoopVar(k));
+                    self.scopes.push(scope);
+                    let r = body
+                        .iter()
+                        .try_for_each(|(p, s)| self.statement(*p, s, false));
+                    self.scopes.pop();
+                    r?;
+                }
+                Ok(())
+            }
+            Stmt::Equation { lhs, eq, rhs } => self.equation(lhs, *eq, rhs),
+        }
+    }
+
+    fn declare_unknown(&mut self, d: &Decl) -> Result<(), LangError> {
+        self.check_new_name(&d.name)?;
+        let len = match d.len {
+            Some((n, p)) if n > MAX_ARRAY_LEN => {
+                return Err(self.err(
+                    p,
+                    format!("length {n} is too large (at most {MAX_ARRAY_LEN})"),
+                ))
+            }
+            other => other.map(|(n, _)| n),
+        };
+        let first_var = self.layout.unknown_count();
+        self.symbols.insert(
+            d.name.name.clone(),
+            Sym::Unknown(self.layout.unknowns.len()),
+        );
+        self.layout.unknowns.push(UnknownSymbol {
+            name: d.name.name.clone(),
+            len,
+            first_var,
+        });
+        Ok(())
+    }
+
+    fn declare_data(&mut self, d: &Decl) -> Result<(), LangError> {
+        self.check_new_name(&d.name)?;
+        let len = match d.len {
+            Some((n, p)) if n > MAX_ARRAY_LEN => {
+                return Err(self.err(
+                    p,
+                    format!("length {n} is too large (at most {MAX_ARRAY_LEN})"),
+                ))
+            }
+            other => other.map(|(n, _)| n),
+        };
+        let Some(k) = &d.kind else {
+            return Err(self.err(d.name.pos, "missing kind"));
+        };
+        let kind = DataKind::from_keyword(&k.name).ok_or_else(|| {
+            self.err(
+                k.pos,
+                format!(
+                    "unknown kind '{}': expected scalar, vec3, point, mat3 or rotation",
+                    k.name
+                ),
+            )
+        })?;
+        let first_slot = self.layout.data_slot_count();
+        self.symbols
+            .insert(d.name.name.clone(), Sym::Data(self.layout.data.len()));
+        self.layout.data.push(DataSymbol {
+            name: d.name.name.clone(),
+            kind,
+            len,
+            first_slot,
+        });
+        Ok(())
+    }
+
+    fn eliminate(&mut self, n: &Name) -> Result<(), LangError> {
+        let u = match self.symbols.get(&n.name) {
+            Some(Sym::Unknown(i)) => self.layout.unknowns.get(*i).cloned(),
+            Some(Sym::Data(_)) => {
+                return Err(self.err(
+                    n.pos,
+                    format!(
+                        "'{}' is data, not an unknown: 'eliminate' names unknowns",
+                        n.name
+                    ),
+                ))
+            }
+            None => None,
+        };
+        let Some(u) = u else {
+            return Err(self.err(
+                n.pos,
+                format!("'eliminate' names an undeclared unknown '{}'", n.name),
+            ));
+        };
+        for v in u.first_var..u.first_var + u.len.unwrap_or(1) {
+            if self.layout.eliminate.contains(&v) {
+                return Err(self.err(n.pos, format!("'{}' is already eliminated", n.name)));
+            }
+            self.layout.eliminate.push(v);
+        }
+        Ok(())
+    }
+
+    fn equation(&mut self, lhs: &Expr, eq: Pos, rhs: &Expr) -> Result<(), LangError> {
+        let l = self.value(lhs)?;
+        let r = self.value(rhs)?;
+        let (ls, rs) = (self.shape(l), self.shape(r));
+        let diff = if ls == rs {
+            self.mk(Op::Sub(l, r), ls)
+        } else if rs.is_scalar() && self.is_const_zero(r) {
+            l
+        } else if ls.is_scalar() && self.is_const_zero(l) {
+            r
+        } else {
+            return Err(self.err(
+                eq,
+                format!(
+                    "the sides of '=' differ in shape: {} on the left, {} on the right (only 0 may stand for a zero matrix)",
+                    ls.describe(),
+                    rs.describe()
+                ),
+            ));
+        };
+        let shape = self.shape(diff);
+        if self.equations.len() + shape.len() > MAX_EQUATIONS {
+            return Err(self.err(
+                eq,
+                format!("too many scalar equations (more than {MAX_EQUATIONS})"),
+            ));
+        }
+        for row in 0..shape.rows {
+            for col in 0..shape.cols {
+                self.equations.push(ScalarEquation {
+                    node: diff,
+                    row,
+                    col,
+                    line: eq.line,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    fn shape(&self, n: NodeId) -> Shape {
+        self.nodes.get(n).map(|n| n.shape).unwrap_or(Shape::SCALAR)
+    }
+
+    fn op(&self, n: NodeId) -> Option<&Op> {
+        self.nodes.get(n).map(|n| &n.op)
+    }
+
+    fn constant(&self, n: NodeId) -> Option<&Q> {
+        match self.op(n) {
+            Some(Op::Const(q)) => Some(q),
+            _ => None,
+        }
+    }
+
+    fn is_const_zero(&self, n: NodeId) -> bool {
+        self.constant(n).is_some_and(|q| q.is_zero())
+    }
+
+    /// Adds a node (or finds the identical one), folding constants.
+    fn mk(&mut self, op: Op, shape: Shape) -> NodeId {
+        let folded = match &op {
+            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) => {
+                match (self.constant(*a), self.constant(*b)) {
+                    (Some(x), Some(y)) => Some(Op::Const(match op {
+                        Op::Add(..) => x + y,
+                        Op::Sub(..) => x - y,
+                        _ => x * y,
+                    })),
+                    (_, Some(y)) if y.is_zero() && !matches!(op, Op::Mul(..)) => {
+                        return *a;
+                    }
+                    (Some(x), _) if x.is_zero() && matches!(op, Op::Add(..)) => return *b,
+                    (Some(x), _) if x.is_one() && matches!(op, Op::Mul(..)) => return *b,
+                    (_, Some(y)) if y.is_one() && matches!(op, Op::Mul(..)) => return *a,
+                    _ => None,
+                }
+            }
+            Op::Neg(a) => self.constant(*a).map(|x| Op::Const(-x)),
+            Op::Transpose(a) => {
+                if self.shape(*a).is_scalar() {
+                    return *a;
+                }
+                if let Some(Op::Transpose(inner)) = self.op(*a) {
+                    return *inner;
+                }
+                None
+            }
+            Op::Entry(a, i, j) => {
+                if let Some(Op::Build(s, entries)) = self.op(*a) {
+                    if let Some(e) = entries.get(i * s.cols + j) {
+                        return *e;
+                    }
+                }
+                if self.shape(*a).is_scalar() {
+                    return *a;
+                }
+                None
+            }
+            _ => None,
+        };
+        let op = folded.unwrap_or(op);
+        if let Some(&id) = self.intern.get(&op) {
+            return id;
+        }
+        let id = self.nodes.len();
+        self.intern.insert(op.clone(), id);
+        self.nodes.push(Node { op, shape });
+        id
+    }
+
+    fn budget(&self, pos: Pos) -> Result<(), LangError> {
+        if self.nodes.len() > MAX_NODES {
+            return Err(self.err(
+                pos,
+                format!("problem too large (more than {MAX_NODES} expression nodes)"),
+            ));
+        }
+        Ok(())
+    }
+
+    fn konst(&mut self, q: Q) -> NodeId {
+        self.mk(Op::Const(q), Shape::SCALAR)
+    }
+
+    /// The node of a value, or an error for an unindexed array.
+    fn value(&mut self, e: &Expr) -> Result<NodeId, LangError> {
+        let v = self.expr(e)?;
+        self.to_node(v, e.pos)
+    }
+
+    fn to_node(&mut self, v: Val, pos: Pos) -> Result<NodeId, LangError> {
+        match v {
+            Val::Node(n) => Ok(n),
+            Val::DataArray(i) => {
+                let Some(d) = self.layout.data.get(i).cloned() else {
+                    return Err(self.err(pos, "internal error: bad data symbol"));
+                };
+                match d.len {
+                    None => Ok(self.data_element(&d, 0)),
+                    Some(n) => Err(self.err(
+                        pos,
+                        format!(
+                            "'{}' is an array of {n} {}s: index it, as in {}[k]",
+                            d.name,
+                            d.kind.keyword(),
+                            d.name
+                        ),
+                    )),
+                }
+            }
+            Val::UnknownVec(i) => {
+                let Some(u) = self.layout.unknowns.get(i).cloned() else {
+                    return Err(self.err(pos, "internal error: bad unknown symbol"));
+                };
+                match u.len {
+                    None => Ok(self.mk(Op::Unknown(u.first_var), Shape::SCALAR)),
+                    Some(3) => {
+                        let e: Vec<NodeId> = (0..3)
+                            .map(|k| self.mk(Op::Unknown(u.first_var + k), Shape::SCALAR))
+                            .collect();
+                        Ok(self.mk(Op::Build(Shape::COL, e), Shape::COL))
+                    }
+                    Some(n) => Err(self.err(
+                        pos,
+                        format!(
+                            "unknown '{}' has {n} entries: only 3-entry unknowns are vectors; use its entries, as in {}[0]",
+                            u.name, u.name
+                        ),
+                    )),
+                }
+            }
+        }
+    }
+
+    fn data_element(&mut self, d: &DataSymbol, elem: usize) -> NodeId {
+        let base = d.first_slot + elem * d.kind.slots();
+        let slot = |c: &mut Checker, k: usize| c.mk(Op::Data(base + k), Shape::SCALAR);
+        match d.kind {
+            DataKind::Scalar => slot(self, 0),
+            DataKind::Vec3 | DataKind::Point => {
+                let mut e: Vec<NodeId> = (0..d.kind.slots()).map(|k| slot(self, k)).collect();
+                if d.kind == DataKind::Point {
+                    e.push(self.konst(Q::one()));
+                }
+                self.mk(Op::Build(Shape::COL, e), Shape::COL)
+            }
+            DataKind::Mat3 | DataKind::Rotation => {
+                let e: Vec<NodeId> = (0..9).map(|k| slot(self, k)).collect();
+                self.mk(Op::Build(Shape::MAT, e), Shape::MAT)
+            }
+        }
+    }
+
+    /// An index expression's value, checked against `len`.
+    fn index(&mut self, e: &Expr, len: usize, what: &str) -> Result<usize, LangError> {
+        let n = self.value(e)?;
+        let Some(q) = self.constant(n).cloned() else {
+            return Err(self.err(
+                e.pos,
+                format!("the index of {what} must be an integer constant or loop variable"),
+            ));
+        };
+        if !q.is_integer() {
+            return Err(self.err(
+                e.pos,
+                format!("the index of {what} must be an integer, found {q}"),
+            ));
+        }
+        let i = q.to_integer();
+        match i.to_usize() {
+            Some(i) if i < len => Ok(i),
+            _ => Err(self.err(
+                e.pos,
+                format!(
+                    "index {i} out of range for {what} (valid indices 0..{})",
+                    len.saturating_sub(1)
+                ),
+            )),
+        }
+    }
+
+    fn expr(&mut self, e: &Expr) -> Result<Val, LangError> {
+        self.budget(e.pos)?;
+        match &e.kind {
+            ExprKind::Number(s) => {
+                let q = parse_number(s, e.pos)?;
+                Ok(Val::Node(self.konst(q)))
+            }
+            ExprKind::Name(name) => match self.lookup(name) {
+                Some(Binding::Value(v)) => Ok(v),
+                Some(Binding::LoopVar(k)) => Ok(Val::Node(self.konst(q_int(k)))),
+                None if name == "I" => Ok(Val::Node(self.mk(Op::Identity, Shape::MAT))),
+                None if BUILTINS.contains(&name.as_str()) => Err(self.err(
+                    e.pos,
+                    format!("'{name}' is a function: call it, as in {name}(...)"),
+                )),
+                None => Err(self.err(e.pos, format!("unknown symbol '{name}'"))),
+            },
+            ExprKind::Paren(inner) => self.expr(inner),
+            ExprKind::Neg(inner) => {
+                let n = self.value(inner)?;
+                let s = self.shape(n);
+                Ok(Val::Node(self.mk(Op::Neg(n), s)))
+            }
+            ExprKind::Call(f, arg) => self.call(f, arg),
+            ExprKind::Sum(first, rest) => {
+                let mut acc = self.value(first)?;
+                for (op, pos, t) in rest {
+                    let n = self.value(t)?;
+                    let (a, b) = (self.shape(acc), self.shape(n));
+                    if a != b {
+                        return Err(self.err(
+                            *pos,
+                            format!(
+                                "cannot {} {} and {}: shapes differ",
+                                if *op == AddOp::Add { "add" } else { "subtract" },
+                                a.describe(),
+                                b.describe()
+                            ),
+                        ));
+                    }
+                    acc = match op {
+                        AddOp::Add => self.mk(Op::Add(acc, n), a),
+                        AddOp::Sub => self.mk(Op::Sub(acc, n), a),
+                    };
+                }
+                Ok(Val::Node(acc))
+            }
+            ExprKind::Product(first, rest) => {
+                let mut acc = self.value(first)?;
+                for (op, pos, t) in rest {
+                    let n = self.value(t)?;
+                    let (a, b) = (self.shape(acc), self.shape(n));
+                    match op {
+                        MulOp::Mul => {
+                            let s = if a.is_scalar() {
+                                b
+                            } else if b.is_scalar() {
+                                a
+                            } else if a.cols == b.rows {
+                                Shape {
+                                    rows: a.rows,
+                                    cols: b.cols,
+                                }
+                            } else {
+                                return Err(self.err(
+                                    *pos,
+                                    format!(
+                                        "cannot multiply {} by {}: {} columns against {} rows",
+                                        a.describe(),
+                                        b.describe(),
+                                        a.cols,
+                                        b.rows
+                                    ),
+                                ));
+                            };
+                            acc = self.mk(Op::Mul(acc, n), s);
+                        }
+                        MulOp::Div => {
+                            let Some(q) = self.constant(n).cloned() else {
+                                return Err(self.err(
+                                    t.pos,
+                                    "the divisor must be a constant (numbers and loop variables only)",
+                                ));
+                            };
+                            if q.is_zero() {
+                                return Err(self.err(t.pos, "division by zero"));
+                            }
+                            let inv = self.konst(q.recip());
+                            acc = self.mk(Op::Mul(acc, inv), a);
+                        }
+                    }
+                }
+                Ok(Val::Node(acc))
+            }
+            ExprKind::Postfix(base, ops) => {
+                let mut v = self.expr(base)?;
+                for p in ops {
+                    v = match p {
+                        Postfix::Transpose(_) => {
+                            let n = self.to_node(v, base.pos)?;
+                            let s = self.shape(n);
+                            Val::Node(self.mk(
+                                Op::Transpose(n),
+                                Shape {
+                                    rows: s.cols,
+                                    cols: s.rows,
+                                },
+                            ))
+                        }
+                        Postfix::Index(idx, pos) => self.indexed(v, idx, *pos)?,
+                    };
+                }
+                Ok(v)
+            }
+            ExprKind::List(items) => self.list(items, e.pos),
+        }
+    }
+
+    fn indexed(&mut self, v: Val, idx: &Expr, pos: Pos) -> Result<Val, LangError> {
+        match v {
+            Val::DataArray(i) => {
+                let Some(d) = self.layout.data.get(i).cloned() else {
+                    return Err(self.err(pos, "internal error: bad data symbol"));
+                };
+                if let Some(len) = d.len {
+                    let k = self.index(idx, len, &format!("'{}'", d.name))?;
+                    return Ok(Val::Node(self.data_element(&d, k)));
+                }
+                let n = self.data_element(&d, 0);
+                self.index_node(n, idx, &format!("'{}'", d.name))
+            }
+            Val::UnknownVec(i) => {
+                let Some(u) = self.layout.unknowns.get(i).cloned() else {
+                    return Err(self.err(pos, "internal error: bad unknown symbol"));
+                };
+                let Some(len) = u.len else {
+                    return Err(
+                        self.err(pos, format!("cannot index the scalar unknown '{}'", u.name))
+                    );
+                };
+                let k = self.index(idx, len, &format!("'{}'", u.name))?;
+                Ok(Val::Node(
+                    self.mk(Op::Unknown(u.first_var + k), Shape::SCALAR),
+                ))
+            }
+            Val::Node(n) => self.index_node(n, idx, "this value"),
+        }
+    }
+
+    fn index_node(&mut self, n: NodeId, idx: &Expr, what: &str) -> Result<Val, LangError> {
+        let s = self.shape(n);
+        if s.is_scalar() {
+            return Err(self.err(idx.pos, format!("cannot index a scalar ({what})")));
+        }
+        let len = if s.rows == 1 { s.cols } else { s.rows };
+        let k = self.index(idx, len, what)?;
+        if s.rows == 1 {
+            Ok(Val::Node(self.mk(Op::Entry(n, 0, k), Shape::SCALAR)))
+        } else if s.cols == 1 {
+            Ok(Val::Node(self.mk(Op::Entry(n, k, 0), Shape::SCALAR)))
+        } else {
+            // A matrix row, 1x3.
+            let e: Vec<NodeId> = (0..s.cols)
+                .map(|j| self.mk(Op::Entry(n, k, j), Shape::SCALAR))
+                .collect();
+            let row = Shape {
+                rows: 1,
+                cols: s.cols,
+            };
+            Ok(Val::Node(self.mk(Op::Build(row, e), row)))
+        }
+    }
+
+    fn scalar_items(&mut self, items: &[Expr]) -> Result<Vec<NodeId>, LangError> {
+        let mut out = Vec::new();
+        for it in items {
+            let n = self.value(it)?;
+            let s = self.shape(n);
+            if !s.is_scalar() {
+                return Err(self.err(
+                    it.pos,
+                    format!(
+                        "entries of a vector or matrix literal must be scalars, found {}",
+                        s.describe()
+                    ),
+                ));
+            }
+            out.push(n);
+        }
+        Ok(out)
+    }
+
+    fn list(&mut self, items: &[Expr], pos: Pos) -> Result<Val, LangError> {
+        let rows: Vec<&Vec<Expr>> = items
+            .iter()
+            .filter_map(|i| match &i.kind {
+                ExprKind::List(r) => Some(r),
+                _ => None,
+            })
+            .collect();
+        if !rows.is_empty() {
+            if rows.len() != items.len() || rows.len() != 3 {
+                return Err(self.err(
+                    pos,
+                    format!(
+                        "a matrix literal needs 3 rows, each a list [a, b, c]; found {} items",
+                        items.len()
+                    ),
+                ));
+            }
+            let mut entries = Vec::new();
+            for (r, item) in rows.iter().zip(items) {
+                if r.len() != 3 {
+                    return Err(self.err(
+                        item.pos,
+                        format!("a matrix row needs 3 entries, found {}", r.len()),
+                    ));
+                }
+                entries.extend(self.scalar_items(r)?);
+            }
+            return Ok(Val::Node(
+                self.mk(Op::Build(Shape::MAT, entries), Shape::MAT),
+            ));
+        }
+        if items.len() != 3 {
+            return Err(self.err(
+                pos,
+                format!("a vector literal needs 3 entries, found {}", items.len()),
+            ));
+        }
+        let e = self.scalar_items(items)?;
+        Ok(Val::Node(self.mk(Op::Build(Shape::COL, e), Shape::COL)))
+    }
+
+    fn call(&mut self, f: &Name, arg: &Expr) -> Result<Val, LangError> {
+        let fname = f.name.as_str();
+        if !BUILTINS.contains(&fname) || fname == "I" {
+            let msg = if self.lookup(fname).is_some() {
+                format!("'{fname}' is not a function (write '*' for a product)")
+            } else {
+                format!("unknown function '{fname}' (the functions are skew, det and trace)")
+            };
+            return Err(self.err(f.pos, msg));
+        }
+        let n = self.value(arg)?;
+        let s = self.shape(n);
+        match fname {
+            "skew" => {
+                if s != Shape::COL && s != Shape::ROW {
+                    return Err(self.err(
+                        arg.pos,
+                        format!("skew() takes a 3-vector, found {}", s.describe()),
+                    ));
+                }
+                Ok(Val::Node(self.mk(Op::Skew(n), Shape::MAT)))
+            }
+            _ => {
+                if s != Shape::MAT {
+                    return Err(self.err(
+                        arg.pos,
+                        format!("{fname}() takes a 3x3 matrix, found {}", s.describe()),
+                    ));
+                }
+                let op = if fname == "det" {
+                    Op::Det(n)
+                } else {
+                    Op::Trace(n)
+                };
+                Ok(Val::Node(self.mk(op, Shape::SCALAR)))
+            }
+        }
+    }
+}

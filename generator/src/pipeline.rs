@@ -1,0 +1,196 @@
+//! The generator pipeline for one problem, end to end:
+//! parsed [`Problem`] -> (linear elimination) -> random instances mod p -> Gröbner basis,
+//! solution count and quotient basis -> best elimination template -> validation.
+//!
+//! [`plan`] runs the algebra once; the resulting [`SolverPlan`] then serves `inspect`
+//! (sizes, basis, timings), the interpreter and audit (f64 instances), and the emitter
+//! (traced instances): all of them obtain the template's equations through
+//! [`SolverPlan::equations`], so every consumer sees the same elimination.
+
+use crate::algebra::{Fp, Poly, Ring};
+use crate::eliminate::{eliminate_linear, EliminateError, Eliminated};
+use crate::instance::random_data_fp;
+use crate::quotient::{InstanceRng, InstanceSource};
+use crate::template::{generate, Generated, TemplateError, TemplateOptions};
+use crate::Problem;
+use serde_json::{json, Value};
+use std::time::Instant;
+use thiserror::Error;
+
+/// Why a problem cannot be turned into a solver.
+#[derive(Debug, Error)]
+pub enum PipelineError {
+    /// `eliminate` could not be carried out.
+    #[error("{file}: eliminate {names}: {source}")]
+    Eliminate {
+        /// The problem file.
+        file: String,
+        /// The eliminated unknowns.
+        names: String,
+        /// What went wrong.
+        source: EliminateError,
+    },
+    /// Gröbner basis, count or template construction failed (inconsistent or
+    /// positive-dimensional systems end here).
+    #[error("{file}: {source}")]
+    Template {
+        /// The problem file.
+        file: String,
+        /// What went wrong.
+        source: TemplateError,
+    },
+}
+
+/// A problem viewed as a family of polynomial systems (after elimination, if any).
+pub struct ProblemSource<'a> {
+    problem: &'a Problem,
+}
+
+impl<'a> ProblemSource<'a> {
+    /// The family of `problem`'s instances.
+    pub fn new(problem: &'a Problem) -> Self {
+        ProblemSource { problem }
+    }
+}
+
+impl InstanceSource for ProblemSource<'_> {
+    fn nvars(&self) -> usize {
+        self.problem.layout.unknown_count() - self.problem.layout.eliminate.len()
+    }
+    fn var_names(&self) -> Vec<String> {
+        let names = self.problem.unknown_names();
+        (0..names.len())
+            .filter(|i| !self.problem.layout.eliminate.contains(i))
+            .map(|i| names[i].clone())
+            .collect()
+    }
+    fn instance<const P: u32>(&self, rng: &mut InstanceRng) -> Vec<Poly<Fp<P>>> {
+        let data = random_data_fp::<P>(&self.problem.layout, rng);
+        // Elimination was checked structurally by `plan`; an instance where it fails (a
+        // coefficient vanishing by chance mod p) yields an empty system, which the
+        // analysis reports as such instead of silently changing the family.
+        system(self.problem, &data)
+            .map(|(eqs, _)| eqs)
+            .unwrap_or_default()
+    }
+}
+
+/// The template's equations for data `data` over any ring, and the elimination (with the
+/// coefficient matrix that recovers the eliminated unknowns) if the problem has one.
+fn system<C: Ring>(
+    problem: &Problem,
+    data: &[C],
+) -> Result<(Vec<Poly<C>>, Option<Eliminated<C>>), EliminateError> {
+    let equations = problem.evaluate(data);
+    if problem.layout.eliminate.is_empty() {
+        return Ok((equations, None));
+    }
+    let e = eliminate_linear(
+        &equations,
+        problem.layout.unknown_count(),
+        &problem.layout.eliminate,
+    )?;
+    Ok((e.equations.clone(), Some(e)))
+}
+
+/// Everything needed to solve, audit or emit a problem.
+pub struct SolverPlan {
+    /// The parsed problem.
+    pub problem: Problem,
+    /// The problem file as given (for messages and the generated header).
+    pub file: String,
+    /// Count, basis, chosen template with its shrink history, per-action sizes, validation.
+    pub generated: Generated,
+    /// Wall-clock seconds of the whole plan (elimination check, Gröbner work, templates,
+    /// validation).
+    pub seconds: f64,
+}
+
+/// Runs the algebra pipeline on `problem` (see the module documentation).
+pub fn plan(
+    problem: Problem,
+    file: &str,
+    options: &TemplateOptions,
+) -> Result<SolverPlan, PipelineError> {
+    let start = Instant::now();
+    if !problem.layout.eliminate.is_empty() {
+        // Check the elimination once on an exact instance so that a structural problem is a
+        // clear error here rather than an empty system later.
+        let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(options.seed);
+        let data = random_data_fp::<{ crate::algebra::P1 }>(&problem.layout, &mut rng);
+        if let Err(source) = system(&problem, &data) {
+            let names = problem.unknown_names();
+            let el: Vec<&str> = problem
+                .layout
+                .eliminate
+                .iter()
+                .filter_map(|&i| names.get(i).map(String::as_str))
+                .collect();
+            return Err(PipelineError::Eliminate {
+                file: file.to_string(),
+                names: el.join(" "),
+                source,
+            });
+        }
+    }
+    let generated = generate(&ProblemSource::new(&problem), options).map_err(|source| {
+        PipelineError::Template {
+            file: file.to_string(),
+            source,
+        }
+    })?;
+    Ok(SolverPlan {
+        problem,
+        file: file.to_string(),
+        generated,
+        seconds: start.elapsed().as_secs_f64(),
+    })
+}
+
+impl SolverPlan {
+    /// The template's equations (in [`SolverPlan::variable_names`] order) for one data
+    /// instance over any ring, plus the elimination data if the problem eliminates unknowns.
+    pub fn equations<C: Ring>(&self, data: &[C]) -> (Vec<Poly<C>>, Option<Eliminated<C>>) {
+        match system(&self.problem, data) {
+            Ok(s) => s,
+            Err(_) => (Vec::new(), None),
+        }
+    }
+
+    /// Names of the template's variables (the unknowns that were not eliminated).
+    pub fn variable_names(&self) -> Vec<String> {
+        ProblemSource::new(&self.problem).var_names()
+    }
+
+    /// Names of the eliminated unknowns.
+    pub fn eliminated_names(&self) -> Vec<String> {
+        let names = self.problem.unknown_names();
+        self.problem
+            .layout
+            .eliminate
+            .iter()
+            .filter_map(|&i| names.get(i).cloned())
+            .collect()
+    }
+
+    /// The `inspect --json` keys computed by the algebra (DESIGN §6): `solutions`, `basis`,
+    /// `action`, `template` `{rows, cols}`, `eliminated`, `seconds`, plus `shrink_history`
+    /// and `per_action`.
+    pub fn summary_json(&self) -> Value {
+        let names = self.variable_names();
+        let t = &self.generated.built.template;
+        let (rows, cols) = t.size();
+        json!({
+            "solutions": self.generated.count,
+            "basis": t.basis.iter().map(|m| m.display_with(&names)).collect::<Vec<_>>(),
+            "action": t.action.display_with(&names),
+            "template": { "rows": rows, "cols": cols },
+            "eliminated": self.eliminated_names(),
+            "seconds": self.seconds,
+            "per_action": self.generated.per_action.iter().map(|(v, s)| json!({
+                "action": names.get(*v).cloned().unwrap_or_default(),
+                "template": s.map(|(r, c)| json!({"rows": r, "cols": c})),
+            })).collect::<Vec<_>>(),
+        })
+    }
+}

@@ -1,0 +1,517 @@
+//! Building elimination templates: candidate rows as monomial multiples of the equations
+//! (Macaulay-style, by increasing total degree), shrinking (see [`super::shrink`]), and the
+//! choice of the action variable.
+//!
+//! ## Public API
+//! - [`build_template`]`(&equations, &basis, action_var, &opts)`: the shrunk template for
+//!   one action variable, from the equations of one random instance mod P.
+//! - [`best_template`]: tries every unknown as action variable and keeps the best.
+//! - [`generate`]`(&source, &opts)`: the whole algebra pipeline from an
+//!   [`InstanceSource`]: [`analyse`] (count and basis, confirmed), [`best_template`],
+//!   [`super::validate::validate`]; returns a [`Generated`].
+//! - [`EliminationTemplate::fill`]: the template matrix of an instance, over any ring.
+//!
+//! The reducibility test used everywhere: with the template's columns ordered
+//! `excess | reducible | basis`, Gauss-Jordan elimination makes every reducible column a
+//! pivot column iff `rank([E | R]) - rank(E) = |R|` (E, R: the excess and reducible column
+//! blocks); the basis block does not enter the test.
+
+use super::linalg::{gauss_jordan, is_squarefree};
+use super::shrink::shrink;
+use super::validate::{nf_action_charpoly, validate, ValidationReport};
+use super::{EliminationTemplate, TemplateRow};
+use crate::algebra::{Fp, Monomial, MonomialOrder, Poly, Ring, P1};
+use crate::groebner::{groebner, GroebnerError};
+use crate::quotient::{analyse, AnalysisError, InstanceSource};
+use std::collections::{BTreeMap, BTreeSet};
+use std::time::Instant;
+use thiserror::Error;
+
+/// Failures of template construction and validation.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+pub enum TemplateError {
+    /// Counting solutions failed.
+    #[error(transparent)]
+    Analysis(#[from] AnalysisError),
+    /// A Gröbner basis computation failed (during validation).
+    #[error(transparent)]
+    Groebner(#[from] GroebnerError),
+    /// No candidate set up to the degree bound makes every reducible monomial reducible.
+    #[error(
+        "action {action}: reducible monomials still not reducible with all multiples up to degree {max_degree}"
+    )]
+    NotReducible {
+        /// The action monomial (rendered).
+        action: String,
+        /// The largest total degree tried.
+        max_degree: u32,
+    },
+    /// The quotient basis lacks 1 or an unknown: solutions cannot be read off eigenvectors.
+    #[error("the quotient basis does not contain {missing}: solutions cannot be read off the eigenvectors")]
+    BasisLacks {
+        /// Rendered missing monomials (e.g. `1`, `t3`).
+        missing: String,
+    },
+    /// An instance has a monomial the template has no column for.
+    #[error("instance equation {equation} times {multiplier} has monomial {monomial}, which is not a template column")]
+    MissingColumn {
+        /// Equation index.
+        equation: usize,
+        /// Rendered multiplier.
+        multiplier: String,
+        /// Rendered monomial.
+        monomial: String,
+    },
+    /// On some validation instance, a reducible column is not a pivot column.
+    #[error("validation instance {instance}: reducible monomial {monomial} is not reducible by the template")]
+    Singular {
+        /// Instance number.
+        instance: usize,
+        /// Rendered monomial.
+        monomial: String,
+    },
+    /// Template and Gröbner action matrices disagree.
+    #[error("validation instance {instance}: characteristic polynomials of the template and Gröbner action matrices differ")]
+    CharpolyMismatch {
+        /// Instance number.
+        instance: usize,
+    },
+    /// No action variable was given or none works.
+    #[error("no usable action variable: {0}")]
+    NoAction(String),
+}
+
+/// Options of template construction.
+#[derive(Clone, Debug)]
+pub struct TemplateOptions {
+    /// How many degrees above the largest of the equations and the reducible monomials to
+    /// try before giving up.
+    pub max_extra_degree: u32,
+    /// Candidate action variables (indices); empty means all unknowns.
+    pub actions: Vec<usize>,
+    /// Prefer actions whose action matrix has distinct eigenvalues (a squarefree
+    /// characteristic polynomial on the build instance), since the solutions are read off
+    /// its eigenvectors. On by default.
+    pub require_distinct_eigenvalues: bool,
+    /// Number of fresh instances [`generate`] validates the chosen template on.
+    pub validate_instances: usize,
+    /// How many exponent caps below the degree to try as extra candidate families
+    /// (products with every exponent `<= d - 1, d - 2, ...`); 0 by default (no gain seen
+    /// on the shipped problems).
+    pub exponent_caps: usize,
+    /// Seed of all random choices (instances).
+    pub seed: u64,
+}
+
+impl Default for TemplateOptions {
+    fn default() -> Self {
+        TemplateOptions {
+            max_extra_degree: 4,
+            actions: Vec::new(),
+            require_distinct_eigenvalues: true,
+            validate_instances: 10,
+            exponent_caps: 0,
+            seed: 2024,
+        }
+    }
+}
+
+/// One shrinking step: `(description, rows, cols)` after the step.
+pub type ShrinkStep = (String, usize, usize);
+
+/// A template with how it was obtained.
+#[derive(Clone, Debug)]
+pub struct BuiltTemplate {
+    /// The template.
+    pub template: EliminationTemplate,
+    /// Size after each construction/shrinking step, first the raw candidate set.
+    pub history: Vec<ShrinkStep>,
+    /// Whether the action matrix has distinct eigenvalues on the build instance.
+    pub distinct_eigenvalues: bool,
+}
+
+/// The candidate rows and their monomials, as used by build and shrink.
+#[derive(Clone, Debug)]
+pub(crate) struct Candidate {
+    pub(crate) row: TemplateRow,
+    /// Total degree of `multiplier * equation`.
+    pub(crate) degree: u32,
+    /// Terms of the product (monomial, raw residue).
+    pub(crate) terms: Vec<(Monomial, u32)>,
+}
+
+/// Classification of monomials into the reducible and basis blocks.
+pub(crate) struct Blocks {
+    pub(crate) reducible: Vec<Monomial>,
+    pub(crate) basis: Vec<Monomial>,
+    pub(crate) red_set: BTreeSet<Monomial>,
+    pub(crate) basis_set: BTreeSet<Monomial>,
+}
+
+impl Blocks {
+    pub(crate) fn new(basis: &[Monomial], action: &Monomial) -> Blocks {
+        let basis_set: BTreeSet<Monomial> = basis.iter().cloned().collect();
+        let red_set: BTreeSet<Monomial> = basis
+            .iter()
+            .map(|b| b.mul(action))
+            .filter(|m| !basis_set.contains(m))
+            .collect();
+        let mut reducible: Vec<Monomial> = red_set.iter().cloned().collect();
+        reducible.sort_by(|a, b| MonomialOrder::Grevlex.cmp(b, a));
+        Blocks {
+            reducible,
+            basis: basis.to_vec(),
+            red_set,
+            basis_set,
+        }
+    }
+    /// The excess monomials of a set of rows, descending grevlex.
+    pub(crate) fn excess_of<'a>(&self, rows: impl Iterator<Item = &'a Candidate>) -> Vec<Monomial> {
+        let mut s: BTreeSet<Monomial> = BTreeSet::new();
+        for c in rows {
+            for (m, _) in &c.terms {
+                if !self.red_set.contains(m) && !self.basis_set.contains(m) {
+                    s.insert(m.clone());
+                }
+            }
+        }
+        let mut v: Vec<Monomial> = s.into_iter().collect();
+        v.sort_by(|a, b| MonomialOrder::Grevlex.cmp(b, a));
+        v
+    }
+    /// Dense `[E | R]` rows (raw residues) of the candidates, with the given excess order.
+    pub(crate) fn dense_er(&self, rows: &[&Candidate], excess: &[Monomial]) -> Vec<Vec<u32>> {
+        let idx: BTreeMap<&Monomial, usize> = excess
+            .iter()
+            .chain(self.reducible.iter())
+            .enumerate()
+            .map(|(i, m)| (m, i))
+            .collect();
+        let n = excess.len() + self.reducible.len();
+        rows.iter()
+            .map(|c| {
+                let mut v = vec![0u32; n];
+                for (m, x) in &c.terms {
+                    if let Some(&k) = idx.get(m) {
+                        v[k] = *x;
+                    }
+                }
+                v
+            })
+            .collect()
+    }
+    /// The reducibility test `rank([E|R]) - rank(E) == |R|` for a row set.
+    pub(crate) fn reducible_by<const P: u32>(&self, rows: &[&Candidate]) -> bool {
+        let excess = self.excess_of(rows.iter().copied());
+        let mut m = self.dense_er(rows, &excess);
+        let piv = gauss_jordan::<P>(&mut m, excess.len() + self.reducible.len(), false);
+        piv.iter().filter(|&&c| c >= excess.len()).count() == self.reducible.len()
+    }
+}
+
+/// All multiples `m * f_i` with `deg(m * f_i) <= d`.
+pub(crate) fn candidates<const P: u32>(eqs: &[Poly<Fp<P>>], d: u32) -> Vec<Candidate> {
+    let mut out = Vec::new();
+    for (i, f) in eqs.iter().enumerate() {
+        let Some(df) = f.degree() else { continue };
+        if df > d {
+            continue;
+        }
+        let n = f.nvars();
+        for m in Monomial::all_up_to_degree(n, d - df, MonomialOrder::Grevlex) {
+            let terms = f.terms().map(|(t, c)| (t.mul(&m), c.0)).collect();
+            out.push(Candidate {
+                row: TemplateRow {
+                    equation: i,
+                    multiplier: m.clone(),
+                },
+                degree: df + m.degree(),
+                terms,
+            });
+        }
+    }
+    out
+}
+
+/// Renders a monomial with default names.
+pub(crate) fn show(m: &Monomial) -> String {
+    m.display_with(&[])
+}
+
+/// The shrunk elimination template for action variable `action_var` from the equations of
+/// one random instance mod P and the quotient basis `basis` (descending grevlex, as from
+/// [`crate::quotient::standard_monomials`]).
+///
+/// Candidate rows are all multiples of the equations up to total degree `d`, for `d` from
+/// the largest degree among the equations and the reducible monomials upward (at most
+/// `opts.max_extra_degree` more), until every reducible monomial is reducible; then
+/// [`shrink`] removes rows and columns. Deterministic.
+pub fn build_template<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    basis: &[Monomial],
+    action_var: usize,
+    opts: &TemplateOptions,
+) -> Result<BuiltTemplate, TemplateError> {
+    let nvars = basis.first().map(|b| b.nvars()).unwrap_or(0);
+    let action = Monomial::var(nvars, action_var);
+    let blocks = Blocks::new(basis, &action);
+    let d0 = eqs
+        .iter()
+        .filter_map(|f| f.degree())
+        .chain(blocks.reducible.iter().map(|m| m.degree()))
+        .max()
+        .unwrap_or(0);
+    // Candidate families: all multiples up to degree d, optionally with every exponent of
+    // the products capped; each family that reduces is shrunk, the smallest result kept.
+    let maxdeg = eqs.iter().filter_map(|f| f.degree()).max().unwrap_or(0);
+    let mut best: Option<(usize, Vec<Candidate>, Vec<ShrinkStep>)> = None;
+    let mut full_ok = false;
+    for d in d0..=d0 + opts.max_extra_degree {
+        for cap in (maxdeg.max(1)..=d).rev().take(opts.exponent_caps + 1) {
+            let cands: Vec<Candidate> = candidates(eqs, d)
+                .into_iter()
+                .filter(|c| {
+                    c.terms
+                        .iter()
+                        .all(|(m, _)| m.0.iter().all(|&e| e as u32 <= cap))
+                })
+                .collect();
+            let refs: Vec<&Candidate> = cands.iter().collect();
+            if !blocks.reducible_by::<P>(&refs) {
+                break;
+            }
+            full_ok = true;
+            let ne = blocks.excess_of(cands.iter()).len();
+            let mut history = vec![(
+                if cap < d {
+                    format!("all multiples up to degree {d}, exponents <= {cap}")
+                } else {
+                    format!("all multiples up to degree {d}")
+                },
+                cands.len(),
+                ne + blocks.reducible.len() + basis.len(),
+            )];
+            let kept = shrink::<P>(&blocks, cands, &mut history);
+            let score = kept.len()
+                * (blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + basis.len());
+            if best.as_ref().map_or(true, |b| score < b.0) {
+                best = Some((score, kept, history));
+            }
+        }
+        if full_ok {
+            break;
+        }
+    }
+    let Some((_, kept, history)) = best else {
+        return Err(TemplateError::NotReducible {
+            action: show(&action),
+            max_degree: d0 + opts.max_extra_degree,
+        });
+    };
+    let template = assemble::<P>(nvars, &blocks, &kept, &action);
+    debug_assert!(blocks.reducible_by::<P>(&kept.iter().collect::<Vec<_>>()));
+    // Distinct eigenvalues of the action matrix on this instance.
+    let distinct = match groebner(nvars, eqs) {
+        Ok(gb) => is_squarefree::<P>(&nf_action_charpoly::<P>(&gb, basis, &action)),
+        Err(_) => false,
+    };
+    Ok(BuiltTemplate {
+        template,
+        history,
+        distinct_eigenvalues: distinct,
+    })
+}
+
+/// Orders the final rows and columns into an [`EliminationTemplate`]: columns
+/// `excess (descending grevlex) | reducible (descending grevlex) | basis (given order)`,
+/// rows by their first non-zero column (then equation and multiplier), so that the left
+/// block is close to triangular.
+pub(crate) fn assemble<const P: u32>(
+    nvars: usize,
+    blocks: &Blocks,
+    kept: &[Candidate],
+    action: &Monomial,
+) -> EliminationTemplate {
+    let excess = blocks.excess_of(kept.iter());
+    let columns: Vec<Monomial> = excess
+        .iter()
+        .chain(blocks.reducible.iter())
+        .chain(blocks.basis.iter())
+        .cloned()
+        .collect();
+    let idx: BTreeMap<&Monomial, usize> = columns.iter().enumerate().map(|(i, m)| (m, i)).collect();
+    let mut rows: Vec<(usize, &Candidate)> = kept
+        .iter()
+        .map(|c| {
+            let first = c
+                .terms
+                .iter()
+                .map(|(m, _)| idx[m])
+                .min()
+                .unwrap_or(usize::MAX);
+            (first, c)
+        })
+        .collect();
+    rows.sort_by(|a, b| {
+        (a.0, a.1.row.equation)
+            .cmp(&(b.0, b.1.row.equation))
+            .then_with(|| MonomialOrder::Grevlex.cmp(&b.1.row.multiplier, &a.1.row.multiplier))
+    });
+    EliminationTemplate {
+        nvars,
+        rows: rows.into_iter().map(|(_, c)| c.row.clone()).collect(),
+        n_excess: excess.len(),
+        n_reducible: blocks.reducible.len(),
+        columns,
+        basis: blocks.basis.clone(),
+        action: action.clone(),
+    }
+}
+
+/// Tries each action variable (all unknowns, or `opts.actions`) and keeps the template with
+/// the fewest `rows * cols`, among those whose action matrix has distinct eigenvalues when
+/// `opts.require_distinct_eigenvalues` (falling back to all if none has); ties go to the
+/// lower variable index. Returns the best and, for every action tried, its result.
+#[allow(clippy::type_complexity)]
+pub fn best_template<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    basis: &[Monomial],
+    opts: &TemplateOptions,
+) -> Result<
+    (
+        BuiltTemplate,
+        Vec<(usize, Result<BuiltTemplate, TemplateError>)>,
+    ),
+    TemplateError,
+> {
+    let nvars = basis.first().map(|b| b.nvars()).unwrap_or(0);
+    let actions: Vec<usize> = if opts.actions.is_empty() {
+        (0..nvars).collect()
+    } else {
+        opts.actions.clone()
+    };
+    let all: Vec<(usize, Result<BuiltTemplate, TemplateError>)> = actions
+        .iter()
+        .map(|&v| (v, build_template(eqs, basis, v, opts)))
+        .collect();
+    let score = |b: &BuiltTemplate| {
+        let (r, c) = b.template.size();
+        r * c
+    };
+    let pick = |need_distinct: bool| {
+        all.iter()
+            .filter_map(|(v, r)| r.as_ref().ok().map(|b| (*v, b)))
+            .filter(|(_, b)| !need_distinct || b.distinct_eigenvalues)
+            .min_by_key(|(v, b)| (score(b), *v))
+            .map(|(_, b)| b.clone())
+    };
+    let best = if opts.require_distinct_eigenvalues {
+        pick(true).or_else(|| pick(false))
+    } else {
+        pick(false)
+    };
+    match best {
+        Some(b) => Ok((b, all)),
+        None => Err(TemplateError::NoAction(
+            all.iter()
+                .filter_map(|(_, r)| r.as_ref().err().map(|e| e.to_string()))
+                .collect::<Vec<_>>()
+                .join("; "),
+        )),
+    }
+}
+
+/// Everything the algebra core produces for one problem.
+#[derive(Clone, Debug)]
+pub struct Generated {
+    /// Number of solutions.
+    pub count: usize,
+    /// Quotient basis (descending grevlex).
+    pub basis: Vec<Monomial>,
+    /// The chosen template with its shrink history.
+    pub built: BuiltTemplate,
+    /// For each action variable tried: `(variable, Some((rows, cols)) or None on failure)`.
+    pub per_action: Vec<(usize, Option<(usize, usize)>)>,
+    /// Validation on fresh instances (`None` if `opts.validate_instances == 0`).
+    pub validation: Option<ValidationReport>,
+    /// Wall-clock seconds: analysis (Gröbner bases), template search, validation.
+    pub seconds: (f64, f64, f64),
+}
+
+/// The whole algebra pipeline for a problem given as an [`InstanceSource`]: count and basis
+/// ([`analyse`], confirmed across instances and primes), the best template over the action
+/// variables ([`best_template`], built on the analysed instance mod P1), and validation
+/// against Gröbner normal forms on `opts.validate_instances` fresh instances.
+pub fn generate<S: InstanceSource>(
+    src: &S,
+    opts: &TemplateOptions,
+) -> Result<Generated, TemplateError> {
+    let t0 = Instant::now();
+    let analysis = analyse(src, opts.seed)?;
+    let t1 = Instant::now();
+    let (built, all) = best_template::<P1>(&analysis.equations, &analysis.basis, opts)?;
+    let t2 = Instant::now();
+    let validation = if opts.validate_instances > 0 {
+        Some(validate(
+            &built.template,
+            src,
+            opts.validate_instances,
+            opts.seed ^ 0x7A11_DA7E,
+        )?)
+    } else {
+        None
+    };
+    let t3 = Instant::now();
+    Ok(Generated {
+        count: analysis.count,
+        basis: analysis.basis,
+        built,
+        per_action: all
+            .into_iter()
+            .map(|(v, r)| (v, r.ok().map(|b| b.template.size())))
+            .collect(),
+        validation,
+        seconds: (
+            (t1 - t0).as_secs_f64(),
+            (t2 - t1).as_secs_f64(),
+            (t3 - t2).as_secs_f64(),
+        ),
+    })
+}
+
+impl EliminationTemplate {
+    /// The template matrix (rows x columns, see the module convention) of the instance
+    /// with equations `eqs`, over any ring: row i holds the coefficients of
+    /// `rows[i].multiplier * eqs[rows[i].equation]`.
+    ///
+    /// Errors with [`TemplateError::MissingColumn`] if a product has a monomial that is not
+    /// a column (the instance is not of the family the template was built for).
+    pub fn fill<C: Ring>(&self, eqs: &[Poly<C>]) -> Result<Vec<Vec<C>>, TemplateError> {
+        let idx: BTreeMap<&Monomial, usize> = self
+            .columns
+            .iter()
+            .enumerate()
+            .map(|(i, m)| (m, i))
+            .collect();
+        self.rows
+            .iter()
+            .map(|r| {
+                let mut v = vec![C::zero(); self.columns.len()];
+                for (m, c) in eqs[r.equation].terms() {
+                    let p = m.mul(&r.multiplier);
+                    match idx.get(&p) {
+                        Some(&k) => v[k] = c.clone(),
+                        None => {
+                            return Err(TemplateError::MissingColumn {
+                                equation: r.equation,
+                                multiplier: show(&r.multiplier),
+                                monomial: show(&p),
+                            })
+                        }
+                    }
+                }
+                Ok(v)
+            })
+            .collect()
+    }
+}

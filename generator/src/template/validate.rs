@@ -1,0 +1,170 @@
+//! Validation of a template mod p against Gröbner normal forms.
+//!
+//! ## Public API
+//! - [`template_action_matrix`]: fill the template from an instance mod P, Gauss-Jordan,
+//!   and read the action matrix off per the convention of [`super`].
+//! - [`gb_action_matrix`]: the action matrix from normal forms (row j: coefficients of
+//!   `NF(action * b_j)` on the basis).
+//! - [`validate`]: on fresh random instances (alternately mod P1 and P2) checks that both
+//!   action matrices have the same characteristic polynomial, after [`check_readoff`]
+//!   (the basis must contain 1 and every unknown).
+
+use super::build::{show, TemplateError};
+use super::linalg::{charpoly, gauss_jordan};
+use super::EliminationTemplate;
+use crate::algebra::{Fp, Monomial, Poly, Ring, P1, P2};
+use crate::groebner::{groebner, GroebnerBasis};
+use crate::quotient::{standard_monomials, InstanceSource};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use std::collections::BTreeMap;
+
+/// Outcome of a successful [`validate`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ValidationReport {
+    /// Number of instances checked (all passed).
+    pub instances: usize,
+}
+
+/// Checks that the template's basis contains 1 and every unknown (needed to read the
+/// solutions off the eigenvectors).
+pub fn check_readoff(t: &EliminationTemplate) -> Result<(), TemplateError> {
+    let mut missing = Vec::new();
+    if !t.basis.contains(&Monomial::one(t.nvars)) {
+        missing.push("1".to_string());
+    }
+    for v in 0..t.nvars {
+        let m = Monomial::var(t.nvars, v);
+        if !t.basis.contains(&m) {
+            missing.push(show(&m));
+        }
+    }
+    if missing.is_empty() {
+        Ok(())
+    } else {
+        Err(TemplateError::BasisLacks {
+            missing: missing.join(", "),
+        })
+    }
+}
+
+/// The action matrix (|B| x |B|, raw residues) of the template on an instance mod P, or
+/// the first reducible monomial that the instance's template does not reduce.
+pub fn template_action_matrix<const P: u32>(
+    t: &EliminationTemplate,
+    eqs: &[Poly<Fp<P>>],
+) -> Result<Vec<Vec<u32>>, TemplateError> {
+    let filled = t.fill(eqs)?;
+    let mut m: Vec<Vec<u32>> = filled
+        .into_iter()
+        .map(|r| r.into_iter().map(|c| c.0).collect())
+        .collect();
+    let nc = t.columns.len();
+    let piv = gauss_jordan::<P>(&mut m, nc, true);
+    let nb = t.basis.len();
+    let red0 = t.n_excess;
+    // Row of each reducible column's pivot.
+    let mut red_row: BTreeMap<usize, usize> = BTreeMap::new();
+    for (r, &c) in piv.iter().enumerate() {
+        if c >= red0 && c < red0 + t.n_reducible {
+            red_row.insert(c, r);
+        }
+    }
+    let col_of: BTreeMap<&Monomial, usize> =
+        t.columns.iter().enumerate().map(|(i, m)| (m, i)).collect();
+    let basis_idx: BTreeMap<&Monomial, usize> =
+        t.basis.iter().enumerate().map(|(i, m)| (m, i)).collect();
+    let mut out = vec![vec![0u32; nb]; nb];
+    for (j, b) in t.basis.iter().enumerate() {
+        let ab = b.mul(&t.action);
+        if let Some(&k) = basis_idx.get(&ab) {
+            out[j][k] = 1;
+            continue;
+        }
+        let c = col_of[&ab];
+        let Some(&r) = red_row.get(&c) else {
+            return Err(TemplateError::Singular {
+                instance: 0,
+                monomial: show(&ab),
+            });
+        };
+        for k in 0..nb {
+            out[j][k] = (P - m[r][nc - nb + k]) % P;
+        }
+    }
+    Ok(out)
+}
+
+/// The action matrix of multiplication by `action` on the quotient ring, in the basis
+/// `basis` (standard monomials of `gb`): row j holds the coefficients of
+/// `NF(action * basis[j])`.
+pub fn gb_action_matrix<const P: u32>(
+    gb: &GroebnerBasis<P>,
+    basis: &[Monomial],
+    action: &Monomial,
+) -> Vec<Vec<u32>> {
+    let n = gb.nvars();
+    let idx: BTreeMap<&Monomial, usize> = basis.iter().enumerate().map(|(i, m)| (m, i)).collect();
+    basis
+        .iter()
+        .map(|b| {
+            let nf = gb.normal_form(&Poly::term(b.mul(action), Fp::<P>::one()));
+            let mut row = vec![0u32; basis.len()];
+            for (m, c) in nf.terms() {
+                debug_assert_eq!(m.nvars(), n);
+                row[idx[m]] = c.0;
+            }
+            row
+        })
+        .collect()
+}
+
+/// Characteristic polynomial of [`gb_action_matrix`].
+pub(crate) fn nf_action_charpoly<const P: u32>(
+    gb: &GroebnerBasis<P>,
+    basis: &[Monomial],
+    action: &Monomial,
+) -> Vec<u32> {
+    charpoly::<P>(&gb_action_matrix(gb, basis, action))
+}
+
+fn check_one<const P: u32, S: InstanceSource>(
+    t: &EliminationTemplate,
+    src: &S,
+    rng: &mut ChaCha8Rng,
+    instance: usize,
+) -> Result<(), TemplateError> {
+    let eqs = src.instance::<P>(rng);
+    let tm = template_action_matrix::<P>(t, &eqs).map_err(|e| match e {
+        TemplateError::Singular { monomial, .. } => TemplateError::Singular { instance, monomial },
+        e => e,
+    })?;
+    let gb = groebner(t.nvars, &eqs)?;
+    let b = standard_monomials(&gb)?;
+    let gm = gb_action_matrix(&gb, &b, &t.action);
+    if charpoly::<P>(&tm) != charpoly::<P>(&gm) {
+        return Err(TemplateError::CharpolyMismatch { instance });
+    }
+    Ok(())
+}
+
+/// Validates a template on `n` fresh random instances (even-numbered mod P1, odd mod P2,
+/// all drawn from `seed`): the characteristic polynomial of the template's action matrix
+/// must equal that of the Gröbner normal-form action matrix. Also runs [`check_readoff`].
+pub fn validate<S: InstanceSource>(
+    t: &EliminationTemplate,
+    src: &S,
+    n: usize,
+    seed: u64,
+) -> Result<ValidationReport, TemplateError> {
+    check_readoff(t)?;
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    for i in 0..n {
+        if i % 2 == 0 {
+            check_one::<P1, S>(t, src, &mut rng, i)?;
+        } else {
+            check_one::<P2, S>(t, src, &mut rng, i)?;
+        }
+    }
+    Ok(ValidationReport { instances: n })
+}

@@ -1,0 +1,209 @@
+//! Pinhole rolling-shutter camera and a gyro-equipped view.
+//!
+//! Conventions (DESIGN §4): pixel `(u, v)` with `v` the image row, row 0 read first.
+//! The calibration matrix is `K = [[fx, 0, cx], [0, fy, cy], [0, 0, 1]]` and the bearing of a
+//! pixel is `m = K^-1 [u, v, 1]^T` (so `m.z == 1`, "normalised image coordinates").
+//! `readout` is the readout time per row `λ` in seconds per row. A [`View`] adds the gyroscope
+//! angular velocity `ω` in rad/s, expressed in the camera frame (extrinsics and bias applied).
+
+use nalgebra::{Matrix3, Vector2, Vector3};
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// Why a camera or view is invalid. Each variant names the offending parameter.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum CameraError {
+    /// A focal length is zero, negative or not finite.
+    #[error("camera focal length `{name}` must be finite and positive, got {value}")]
+    InvalidFocal {
+        /// `"fx"` or `"fy"`.
+        name: &'static str,
+        /// The rejected value.
+        value: f64,
+    },
+    /// The principal point is not finite.
+    #[error("camera principal point `{name}` must be finite, got {value}")]
+    InvalidPrincipalPoint {
+        /// `"cx"` or `"cy"`.
+        name: &'static str,
+        /// The rejected value.
+        value: f64,
+    },
+    /// The readout time per row is zero, negative or not finite.
+    #[error("camera readout time per row must be finite and positive, got {0}")]
+    InvalidReadout(f64),
+    /// The image size is zero or not finite.
+    #[error("camera image size must be finite and positive, got {width}x{height}")]
+    InvalidSize {
+        /// Width in pixels.
+        width: f64,
+        /// Height in pixels.
+        height: f64,
+    },
+    /// The gyroscope angular velocity has a non-finite component.
+    #[error("gyro angular velocity must be finite, got [{0}, {1}, {2}]")]
+    InvalidGyro(f64, f64, f64),
+}
+
+/// Pinhole rolling-shutter camera: intrinsics `fx, fy, cx, cy` (pixels), image size
+/// `width x height` (pixels) and readout time per row `readout = λ` (s/row).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Camera {
+    /// Focal length along u, pixels.
+    pub fx: f64,
+    /// Focal length along v, pixels.
+    pub fy: f64,
+    /// Principal point u, pixels.
+    pub cx: f64,
+    /// Principal point v, pixels.
+    pub cy: f64,
+    /// Image width, pixels (used by the simulator for visibility).
+    pub width: f64,
+    /// Image height (number of rows), pixels.
+    pub height: f64,
+    /// Readout time per row λ, seconds per row.
+    pub readout: f64,
+}
+
+impl Camera {
+    /// The paper's synthetic camera: 1920x1080, f = 640 px, principal point at the image
+    /// centre, readout 60 µs per row.
+    pub fn paper() -> Self {
+        Camera {
+            fx: 640.0,
+            fy: 640.0,
+            cx: 960.0,
+            cy: 540.0,
+            width: 1920.0,
+            height: 1080.0,
+            readout: 60e-6,
+        }
+    }
+
+    /// Check that all parameters are finite, focal lengths, size and readout positive.
+    pub fn validate(&self) -> Result<(), CameraError> {
+        for (name, value) in [("fx", self.fx), ("fy", self.fy)] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(CameraError::InvalidFocal { name, value });
+            }
+        }
+        for (name, value) in [("cx", self.cx), ("cy", self.cy)] {
+            if !value.is_finite() {
+                return Err(CameraError::InvalidPrincipalPoint { name, value });
+            }
+        }
+        if !(self.readout.is_finite() && self.readout > 0.0) {
+            return Err(CameraError::InvalidReadout(self.readout));
+        }
+        if !(self.width.is_finite()
+            && self.width > 0.0
+            && self.height.is_finite()
+            && self.height > 0.0)
+        {
+            return Err(CameraError::InvalidSize {
+                width: self.width,
+                height: self.height,
+            });
+        }
+        Ok(())
+    }
+
+    /// Calibration matrix `K` (row-major `[[fx,0,cx],[0,fy,cy],[0,0,1]]`).
+    pub fn k(&self) -> Matrix3<f64> {
+        Matrix3::new(self.fx, 0.0, self.cx, 0.0, self.fy, self.cy, 0.0, 0.0, 1.0)
+    }
+
+    /// Bearing `m = K^-1 [u, v, 1]^T` of pixel `(u, v)`; its third component is 1.
+    pub fn bearing(&self, u: f64, v: f64) -> Vector3<f64> {
+        Vector3::new((u - self.cx) / self.fx, (v - self.cy) / self.fy, 1.0)
+    }
+
+    /// Pixel of a camera-frame point `x` (`K x / x.z`); `None` if `x.z <= 0` or non-finite.
+    pub fn project(&self, x: &Vector3<f64>) -> Option<Vector2<f64>> {
+        if x.z.is_nan() || x.z <= 0.0 || !x.iter().all(|c| c.is_finite()) {
+            return None;
+        }
+        Some(Vector2::new(
+            self.fx * x.x / x.z + self.cx,
+            self.fy * x.y / x.z + self.cy,
+        ))
+    }
+
+    /// Mean focal length `(fx + fy) / 2`, pixels: converts pixel thresholds to normalised
+    /// image coordinates.
+    pub fn mean_focal(&self) -> f64 {
+        0.5 * (self.fx + self.fy)
+    }
+}
+
+/// One image of a pair: the camera and the gyroscope angular velocity `omega = ω` (rad/s,
+/// camera frame) measured while the image was read out (assumed constant over the frame).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct View {
+    /// The camera that took the image.
+    pub camera: Camera,
+    /// Angular velocity ω, rad/s, camera frame.
+    pub omega: Vector3<f64>,
+}
+
+impl View {
+    /// A view from a camera and a gyro reading `ω` (rad/s, camera frame).
+    pub fn new(camera: Camera, omega: Vector3<f64>) -> Self {
+        View { camera, omega }
+    }
+
+    /// Validate the camera and that `ω` is finite.
+    pub fn validate(&self) -> Result<(), CameraError> {
+        self.camera.validate()?;
+        if !self.omega.iter().all(|c| c.is_finite()) {
+            return Err(CameraError::InvalidGyro(
+                self.omega.x,
+                self.omega.y,
+                self.omega.z,
+            ));
+        }
+        Ok(())
+    }
+
+    /// Rotation per row `λ ω` (rad/row): the quantity the G-RSRP solvers take as `w1`/`w2`.
+    pub fn omega_per_row(&self) -> Vector3<f64> {
+        self.omega * self.camera.readout
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bearing_projection_roundtrip() {
+        let cam = Camera::paper();
+        let m = cam.bearing(100.0, 900.0);
+        assert_eq!(m.z, 1.0);
+        let p = cam.project(&(m * 7.0)).unwrap();
+        assert!((p.x - 100.0).abs() < 1e-9 && (p.y - 900.0).abs() < 1e-9);
+        assert!(cam.project(&Vector3::new(0.0, 0.0, -1.0)).is_none());
+    }
+
+    #[test]
+    fn validation_rejects_bad_parameters() {
+        let mut cam = Camera::paper();
+        assert!(cam.validate().is_ok());
+        cam.fx = 0.0;
+        assert!(matches!(
+            cam.validate(),
+            Err(CameraError::InvalidFocal { name: "fx", .. })
+        ));
+        let mut cam = Camera::paper();
+        cam.readout = -1.0;
+        assert!(matches!(
+            cam.validate(),
+            Err(CameraError::InvalidReadout(_))
+        ));
+        let mut cam = Camera::paper();
+        cam.cy = f64::NAN;
+        assert!(cam.validate().is_err());
+        let v = View::new(Camera::paper(), Vector3::new(f64::INFINITY, 0.0, 0.0));
+        assert!(matches!(v.validate(), Err(CameraError::InvalidGyro(..))));
+    }
+}

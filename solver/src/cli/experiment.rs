@@ -1,0 +1,93 @@
+//! `rspose experiment SWEEP`: one of the paper's synthetic sweeps, every method.
+
+use super::{CliError, Preset, ALL_METHODS};
+use indicatif::{ProgressBar, ProgressStyle};
+use rspose::experiment::{
+    render_svg, run_sweep, scene_trial, to_csv, write_atomic, ExperimentOptions, Sweep,
+};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+
+/// Options of `rspose experiment`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// angular, angular-linear, gyro-noise or pixel-noise.
+    sweep: String,
+    /// Trials (scenes) per level.
+    #[arg(long, default_value_t = 100)]
+    trials: usize,
+    /// Output directory for SWEEP.csv and SWEEP.svg (created if missing).
+    #[arg(long, default_value = "results")]
+    out: PathBuf,
+    /// Master seed (results depend only on it, not on the thread count).
+    #[arg(long, default_value_t = 2024)]
+    seed: u64,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// RANSAC/refinement settings (the paper's by default, to compare with its figures).
+    #[arg(long, value_enum, default_value_t = Preset::Paper)]
+    preset: Preset,
+}
+
+pub fn run(a: Args) -> Result<(), CliError> {
+    let sweep: Sweep = a
+        .sweep
+        .parse()
+        .map_err(|e: rspose::experiment::UnknownSweep| CliError::input(e.to_string()))?;
+    if a.trials == 0 {
+        return Err(CliError::input("--trials must be at least 1"));
+    }
+    std::fs::create_dir_all(&a.out).map_err(|e| {
+        CliError::input(format!(
+            "{}: cannot create output directory: {e}",
+            a.out.display()
+        ))
+    })?;
+    let mut options = ExperimentOptions {
+        trials: a.trials,
+        seed: a.seed,
+        ..ExperimentOptions::default()
+    };
+    if let Some(t) = a.threads {
+        options.threads = t.max(1);
+    }
+    let total = (sweep.levels().len() * a.trials) as u64;
+    let bar = if std::io::stderr().is_terminal() {
+        let b = ProgressBar::new(total);
+        b.set_style(
+            ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} scenes, eta {eta}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        b.set_message(sweep.name().to_string());
+        Some(b)
+    } else {
+        None
+    };
+    let preset = a.preset;
+    let rows = run_sweep(
+        sweep,
+        &options,
+        |level, seed| scene_trial(level, seed, &ALL_METHODS, |m| preset.options(m, seed)),
+        |done, _| {
+            if let Some(b) = &bar {
+                b.set_position(done as u64);
+            }
+        },
+    );
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let csv = to_csv(&rows);
+    let svg =
+        render_svg(sweep, &rows).map_err(|e| CliError::failed(format!("plotting failed: {e}")))?;
+    let csv_path = a.out.join(format!("{}.csv", sweep.name()));
+    let svg_path = a.out.join(format!("{}.svg", sweep.name()));
+    write_atomic(&csv_path, csv.as_bytes())
+        .map_err(|e| CliError::input(format!("{}: {e}", csv_path.display())))?;
+    write_atomic(&svg_path, svg.as_bytes())
+        .map_err(|e| CliError::input(format!("{}: {e}", svg_path.display())))?;
+    print!("{csv}");
+    eprintln!("wrote {} and {}", csv_path.display(), svg_path.display());
+    Ok(())
+}

@@ -1,0 +1,344 @@
+//! The paper's synthetic experiments: sweeps over motion and noise levels, many trials per
+//! level, every method on the same simulated scenes, summarised to CSV and plotted to SVG.
+//!
+//! Results depend only on the seed: trial `j` of level `i` simulates its scene from a seed
+//! derived from `(seed, i, j)`, and trials are collected by index, so the number of worker
+//! threads changes the wall time, never the numbers (except the timing columns).
+
+mod plot;
+mod stats;
+mod sweep;
+
+pub use plot::{render_svg, write_svg};
+pub use stats::{median, summarize};
+pub use sweep::{Level, Sweep, UnknownSweep};
+
+use crate::evaluate::pose_errors;
+use crate::simulate::{simulate, SimulationOptions};
+use crate::{estimate_relative_pose, EstimateOptions, Method};
+use std::io::Write;
+use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+use std::time::Instant;
+
+/// The outcome of one method on one simulated scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MethodOutcome {
+    /// The method's name (`gsrp`, `grsrp+`, ...).
+    pub method: String,
+    /// Rotation error in degrees, `None` if the method failed on this scene.
+    pub rotation_error_deg: Option<f64>,
+    /// Translation direction error in degrees, `None` if the method failed.
+    pub translation_error_deg: Option<f64>,
+    /// Wall time of the estimate in seconds.
+    pub seconds: f64,
+}
+
+/// One row of a sweep's CSV: the statistics of one method at one level.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SummaryRow {
+    /// The level's x-axis value.
+    pub level: f64,
+    /// The method's name.
+    pub method: String,
+    /// Mean rotation error (degrees) over the successful trials.
+    pub rot_mean: f64,
+    /// Standard deviation of the rotation error (degrees).
+    pub rot_std: f64,
+    /// Median rotation error (degrees).
+    pub rot_median: f64,
+    /// Mean translation error (degrees).
+    pub trans_mean: f64,
+    /// Standard deviation of the translation error (degrees).
+    pub trans_std: f64,
+    /// Median translation error (degrees).
+    pub trans_median: f64,
+    /// Median wall time per estimate (seconds).
+    pub seconds_median: f64,
+    /// Trials in which the method returned no pose (excluded from the statistics above).
+    pub failures: usize,
+}
+
+/// Settings of a sweep run.
+#[derive(Clone, Debug)]
+pub struct ExperimentOptions {
+    /// Trials per level (the paper: 100).
+    pub trials: usize,
+    /// Master seed; every scene's seed derives from it.
+    pub seed: u64,
+    /// Worker threads (default: the available parallelism).
+    pub threads: usize,
+}
+
+impl Default for ExperimentOptions {
+    fn default() -> Self {
+        ExperimentOptions {
+            trials: 100,
+            seed: 2024,
+            threads: std::thread::available_parallelism()
+                .map(|n| n.get())
+                .unwrap_or(1),
+        }
+    }
+}
+
+/// Simulates one scene at `level` from `seed` and runs each of `methods` on it with the
+/// options `options_for(method)`, timing each estimate and measuring its errors against the
+/// simulated ground truth. A method that returns an error is recorded as a failure.
+pub fn scene_trial(
+    level: &Level,
+    seed: u64,
+    methods: &[Method],
+    options_for: impl Fn(Method) -> EstimateOptions,
+) -> Vec<MethodOutcome> {
+    let sim = SimulationOptions {
+        angular_velocity: level.angular,
+        linear_velocity: level.linear,
+        pixel_noise: level.pixel_noise,
+        gyro_noise: level.gyro_noise,
+        seed,
+        ..SimulationOptions::default()
+    };
+    let pair = simulate(&sim);
+    methods
+        .iter()
+        .map(|&m| {
+            let failed = MethodOutcome {
+                method: m.name().to_string(),
+                rotation_error_deg: None,
+                translation_error_deg: None,
+                seconds: 0.0,
+            };
+            let Ok(pair) = &pair else { return failed };
+            let Some(gt) = &pair.ground_truth else {
+                return failed;
+            };
+            let (v1, v2) = pair.views();
+            let start = Instant::now();
+            let est = estimate_relative_pose(&v1, &v2, &pair.matches, &options_for(m));
+            let seconds = start.elapsed().as_secs_f64();
+            match est {
+                Ok(e) => {
+                    let err = pose_errors(&e, gt);
+                    MethodOutcome {
+                        method: m.name().to_string(),
+                        rotation_error_deg: Some(err.rotation_error_deg),
+                        translation_error_deg: Some(err.translation_error_deg),
+                        seconds,
+                    }
+                }
+                Err(_) => MethodOutcome { seconds, ..failed },
+            }
+        })
+        .collect()
+}
+
+/// The seed of trial `trial` at level `level` (SplitMix64 mixing of the three numbers).
+pub fn trial_seed(seed: u64, level: usize, trial: usize) -> u64 {
+    let mut z = seed
+        ^ (level as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ (trial as u64).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// Runs `trial(level, seed)` for every level of `sweep` and every trial index, on
+/// `options.threads` threads, and summarises per level and method (in the order methods
+/// appear in the first trial's outcomes). `progress(done, total)` is called after each trial.
+pub fn run_sweep<T, P>(
+    sweep: Sweep,
+    options: &ExperimentOptions,
+    trial: T,
+    progress: P,
+) -> Vec<SummaryRow>
+where
+    T: Fn(&Level, u64) -> Vec<MethodOutcome> + Sync,
+    P: Fn(usize, usize) + Sync,
+{
+    let levels = sweep.levels();
+    let total = levels.len() * options.trials;
+    let results: Vec<Mutex<Option<Vec<MethodOutcome>>>> =
+        (0..total).map(|_| Mutex::new(None)).collect();
+    let next = AtomicUsize::new(0);
+    let done = AtomicUsize::new(0);
+    std::thread::scope(|scope| {
+        for _ in 0..options.threads.max(1) {
+            scope.spawn(|| loop {
+                let k = next.fetch_add(1, Ordering::Relaxed);
+                if k >= total {
+                    break;
+                }
+                let (li, ti) = (k / options.trials, k % options.trials);
+                let outcome = trial(&levels[li], trial_seed(options.seed, li, ti));
+                *results[k].lock().unwrap_or_else(|e| e.into_inner()) = Some(outcome);
+                progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+            });
+        }
+    });
+    let results: Vec<Vec<MethodOutcome>> = results
+        .into_iter()
+        .map(|m| {
+            m.into_inner()
+                .unwrap_or_else(|e| e.into_inner())
+                .unwrap_or_default()
+        })
+        .collect();
+    summarize_levels(&levels, options.trials, &results)
+}
+
+/// Summarises trial outcomes stored level-major (`results[level * trials + trial]`).
+pub fn summarize_levels(
+    levels: &[Level],
+    trials: usize,
+    results: &[Vec<MethodOutcome>],
+) -> Vec<SummaryRow> {
+    let mut methods: Vec<String> = Vec::new();
+    for r in results {
+        for o in r {
+            if !methods.contains(&o.method) {
+                methods.push(o.method.clone());
+            }
+        }
+    }
+    let mut rows = Vec::new();
+    for (li, level) in levels.iter().enumerate() {
+        let chunk = &results[li * trials..(li + 1) * trials];
+        for m in &methods {
+            let outcomes: Vec<&MethodOutcome> =
+                chunk.iter().flatten().filter(|o| &o.method == m).collect();
+            let ok: Vec<&&MethodOutcome> = outcomes
+                .iter()
+                .filter(|o| o.rotation_error_deg.is_some() && o.translation_error_deg.is_some())
+                .collect();
+            let rot: Vec<f64> = ok.iter().filter_map(|o| o.rotation_error_deg).collect();
+            let trans: Vec<f64> = ok.iter().filter_map(|o| o.translation_error_deg).collect();
+            let secs: Vec<f64> = outcomes.iter().map(|o| o.seconds).collect();
+            let (rot_mean, rot_std, rot_median) =
+                summarize(&rot).unwrap_or((f64::NAN, f64::NAN, f64::NAN));
+            let (trans_mean, trans_std, trans_median) =
+                summarize(&trans).unwrap_or((f64::NAN, f64::NAN, f64::NAN));
+            rows.push(SummaryRow {
+                level: level.value,
+                method: m.clone(),
+                rot_mean,
+                rot_std,
+                rot_median,
+                trans_mean,
+                trans_std,
+                trans_median,
+                seconds_median: median(&secs),
+                failures: outcomes.len() - ok.len(),
+            });
+        }
+    }
+    rows
+}
+
+/// The CSV header (DESIGN §6 columns, then `failures`).
+pub const CSV_HEADER: &str =
+    "level,method,rot_mean,rot_std,rot_median,trans_mean,trans_std,trans_median,seconds_median,failures";
+
+/// Renders summary rows as CSV text.
+pub fn to_csv(rows: &[SummaryRow]) -> String {
+    let mut s = String::from(CSV_HEADER);
+    s.push('\n');
+    for r in rows {
+        s.push_str(&format!(
+            "{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.9},{}\n",
+            r.level,
+            r.method,
+            r.rot_mean,
+            r.rot_std,
+            r.rot_median,
+            r.trans_mean,
+            r.trans_std,
+            r.trans_median,
+            r.seconds_median,
+            r.failures
+        ));
+    }
+    s
+}
+
+/// Writes `contents` to `path` atomically: a temporary file in the same directory, then a
+/// rename, so a reader never sees a partial file.
+pub fn write_atomic(path: &Path, contents: &[u8]) -> std::io::Result<()> {
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out".into());
+    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(contents)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fake_trial(level: &Level, seed: u64) -> Vec<MethodOutcome> {
+        // A deterministic function of (level, seed) standing in for a simulated scene.
+        let e = (seed % 1000) as f64 / 1000.0 * level.angular;
+        vec![
+            MethodOutcome {
+                method: "a".into(),
+                rotation_error_deg: Some(e),
+                translation_error_deg: Some(2.0 * e),
+                seconds: 0.0,
+            },
+            MethodOutcome {
+                method: "b".into(),
+                rotation_error_deg: if seed % 7 == 0 { None } else { Some(e + 1.0) },
+                translation_error_deg: Some(e),
+                seconds: 0.0,
+            },
+        ]
+    }
+
+    #[test]
+    fn results_do_not_depend_on_thread_count() {
+        let run = |threads| {
+            let opts = ExperimentOptions {
+                trials: 23,
+                seed: 9,
+                threads,
+            };
+            run_sweep(Sweep::Angular, &opts, fake_trial, |_, _| {})
+        };
+        let one = run(1);
+        assert_eq!(one, run(2));
+        assert_eq!(one, run(5));
+        assert_eq!(one.len(), 10);
+        let csv = to_csv(&one);
+        assert_eq!(csv.lines().count(), 11);
+        assert!(csv.starts_with(CSV_HEADER));
+        assert!(one.iter().any(|r| r.failures > 0));
+    }
+
+    #[test]
+    fn atomic_write_replaces_whole_file() {
+        let dir = std::env::temp_dir().join(format!("rspose-atomic-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("x.csv");
+        write_atomic(&p, b"one").unwrap();
+        write_atomic(&p, b"two").unwrap();
+        assert_eq!(std::fs::read_to_string(&p).unwrap(), "two");
+        assert!(write_atomic(&dir.join("missing/x.csv"), b"z").is_err());
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

@@ -1,0 +1,157 @@
+//! The paper's four synthetic sweeps ("Experiments on Synthetic Data") and their levels.
+
+use std::fmt;
+use std::str::FromStr;
+
+/// One synthetic sweep of the paper.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Sweep {
+    /// Angular velocity 0.5..2.5 rad/s in steps of 0.5, no linear velocity, 1 px, 0.1 rad/s.
+    Angular,
+    /// Levels 1..5: angular 0.5..2.5 rad/s together with linear 4..20 m/s, 1 px, 0.1 rad/s.
+    AngularLinear,
+    /// Gyro noise 0.1..0.5 rad/s at level 5 (2.5 rad/s, 20 m/s), 1 px.
+    GyroNoise,
+    /// Pixel noise 1..5 px at level 5 (2.5 rad/s, 20 m/s), 0.1 rad/s.
+    PixelNoise,
+}
+
+/// The scene parameters of one level of a sweep.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Level {
+    /// The value on the sweep's x axis (rad/s, level number, rad/s or px).
+    pub value: f64,
+    /// Magnitude of each camera's angular velocity (rad/s).
+    pub angular: f64,
+    /// Magnitude of each camera's linear velocity (m/s).
+    pub linear: f64,
+    /// Standard deviation of the pixel noise (px).
+    pub pixel_noise: f64,
+    /// Standard deviation of the gyro noise per axis (rad/s).
+    pub gyro_noise: f64,
+}
+
+impl Sweep {
+    /// All sweeps, in the paper's order.
+    pub const ALL: [Sweep; 4] = [
+        Sweep::Angular,
+        Sweep::AngularLinear,
+        Sweep::GyroNoise,
+        Sweep::PixelNoise,
+    ];
+
+    /// The name used on the command line and for output files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Sweep::Angular => "angular",
+            Sweep::AngularLinear => "angular-linear",
+            Sweep::GyroNoise => "gyro-noise",
+            Sweep::PixelNoise => "pixel-noise",
+        }
+    }
+
+    /// The label of the x axis in plots.
+    pub fn axis_label(self) -> &'static str {
+        match self {
+            Sweep::Angular => "angular velocity (rad/s)",
+            Sweep::AngularLinear => "velocity level (0.5 rad/s + 4 m/s per level)",
+            Sweep::GyroNoise => "gyro noise (rad/s)",
+            Sweep::PixelNoise => "pixel noise (px)",
+        }
+    }
+
+    /// The five levels of the sweep.
+    pub fn levels(self) -> Vec<Level> {
+        (1..=5)
+            .map(|i| {
+                let i = i as f64;
+                match self {
+                    Sweep::Angular => Level {
+                        value: 0.5 * i,
+                        angular: 0.5 * i,
+                        linear: 0.0,
+                        pixel_noise: 1.0,
+                        gyro_noise: 0.1,
+                    },
+                    Sweep::AngularLinear => Level {
+                        value: i,
+                        angular: 0.5 * i,
+                        linear: 4.0 * i,
+                        pixel_noise: 1.0,
+                        gyro_noise: 0.1,
+                    },
+                    Sweep::GyroNoise => Level {
+                        value: 0.1 * i,
+                        angular: 2.5,
+                        linear: 20.0,
+                        pixel_noise: 1.0,
+                        gyro_noise: 0.1 * i,
+                    },
+                    Sweep::PixelNoise => Level {
+                        value: i,
+                        angular: 2.5,
+                        linear: 20.0,
+                        pixel_noise: i,
+                        gyro_noise: 0.1,
+                    },
+                }
+            })
+            .collect()
+    }
+}
+
+impl fmt::Display for Sweep {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// An unknown sweep name.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown sweep '{0}' (expected one of: angular, angular-linear, gyro-noise, pixel-noise)")]
+pub struct UnknownSweep(pub String);
+
+impl FromStr for Sweep {
+    type Err = UnknownSweep;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Sweep::ALL
+            .into_iter()
+            .find(|w| w.name() == s)
+            .ok_or_else(|| UnknownSweep(s.to_string()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn levels_match_the_paper() {
+        let a = Sweep::Angular.levels();
+        assert_eq!(
+            a.iter().map(|l| l.angular).collect::<Vec<_>>(),
+            [0.5, 1.0, 1.5, 2.0, 2.5]
+        );
+        assert!(a
+            .iter()
+            .all(|l| l.linear == 0.0 && l.pixel_noise == 1.0 && l.gyro_noise == 0.1));
+        let al = Sweep::AngularLinear.levels();
+        assert_eq!(
+            al.iter().map(|l| l.linear).collect::<Vec<_>>(),
+            [4.0, 8.0, 12.0, 16.0, 20.0]
+        );
+        let g = Sweep::GyroNoise.levels();
+        assert!(
+            (g[4].gyro_noise - 0.5).abs() < 1e-12 && g[0].angular == 2.5 && g[0].linear == 20.0
+        );
+        let p = Sweep::PixelNoise.levels();
+        assert_eq!(
+            p.iter().map(|l| l.pixel_noise).collect::<Vec<_>>(),
+            [1.0, 2.0, 3.0, 4.0, 5.0]
+        );
+        for s in Sweep::ALL {
+            assert_eq!(s.name().parse::<Sweep>().unwrap(), s);
+        }
+        assert!("rotation".parse::<Sweep>().is_err());
+    }
+}

@@ -1,0 +1,76 @@
+//! `grsrp` / `grsrp+`: the paper's method. `R_0` comes from `gsrp` (default), `rectified`
+//! or is given ([`super::R0Source`]); the generated G-RSRP solver (10 or 20 solutions,
+//! [`crate::minimal::GrsrpSolver`]) runs on 5-point samples in RANSAC, each solution
+//! `R = R_0 exp([a]×)`, `t` (sign by cheirality on the sample), scored with the paper's model
+//! `m2^T [t]× (I + v2 [λω2]×) R (I - v1 [λω1]×) m1` (algebraic or Sampson).
+//! `grsrp+` then refines `(R, t)` by LM with unit-quaternion tangent steps and unit `t` on
+//! the paper's algebraic cost over the RANSAC inliers.
+
+use super::pose_ransac::{indices, orient, run, threshold, GrsrpRansac, Hypothesis};
+use super::{gsrp, rectified, Estimate, EstimateError, EstimateOptions, Method, R0Source};
+use crate::camera::View;
+use crate::epipolar::{PointData, PoseModel, ResidualKind};
+use crate::pair_file::Match;
+use crate::refine::{refine_pose, Loss};
+
+/// Estimate with `grsrp` (`plus = false`) or `grsrp+` (`plus = true`); inputs already
+/// validated by the caller.
+pub fn estimate(
+    view1: &View,
+    view2: &View,
+    matches: &[Match],
+    options: &EstimateOptions,
+    plus: bool,
+) -> Result<Estimate, EstimateError> {
+    let data = PointData::new(view1, view2, matches);
+    let r0 = match options.r0_source {
+        R0Source::Gsrp => gsrp::run_on(&data, view1, view2, options)?.rotation,
+        R0Source::Rectified => rectified::run_on(&data, view1, view2, options)?.rotation,
+        R0Source::Given(r) => r,
+    };
+    let (kind, thr_sq) = threshold(view1, view2, options.robust.threshold);
+    let mut est = GrsrpRansac {
+        data: &data,
+        kind,
+        solver: options.grsrp_solver,
+        r0,
+        lm: options.refinement.clone(),
+        sols: Vec::new(),
+    };
+    let (mut h, res) = run(&mut est, options, thr_sq)?;
+    let mut inliers = res.inliers;
+    let mut refinement_iterations = 0;
+    if plus {
+        let idx = indices(&inliers);
+        let r = refine_pose(
+            &data,
+            &idx,
+            PoseModel::PaperLinear,
+            ResidualKind::Algebraic,
+            Loss::Trivial,
+            h.pose(),
+            &options.refinement,
+        );
+        refinement_iterations = r.iterations;
+        h = Hypothesis::from_pose(&r.state);
+        for (i, f) in inliers.iter_mut().enumerate() {
+            let x = data.residual(PoseModel::PaperLinear, kind, i, &h.r, &h.t, &h.e);
+            *f = x * x < thr_sq;
+        }
+    }
+    let t = orient(&h.r, &h.t, &data.b1, &data.b2, &indices(&inliers));
+    Ok(Estimate {
+        method: if plus {
+            Method::GrsrpPlus
+        } else {
+            Method::Grsrp
+        },
+        rotation: h.r,
+        translation: t,
+        inliers,
+        iterations: res.iterations,
+        refinement_iterations,
+        angular_velocity: None,
+        linear_velocity: None,
+    })
+}

@@ -1,0 +1,75 @@
+//! `gsrp`: global-shutter relative pose. The generated 5-point solver (Nistér/Stewénius) on
+//! bearings `m = K^-1 [u, v, 1]^T` in RANSAC, scored with the global-shutter epipolar
+//! residual `m2^T [t]× R m1` (algebraic or Sampson, per [`super::Threshold`]); the gyro is
+//! ignored. With [`super::RobustOptions::final_refinement`] the result is refined by LM on
+//! the Sampson error over the inliers. Also the initialiser of `nrsrp` and (by default) the
+//! source of `R_0` for `grsrp`.
+
+use super::pose_ransac::{indices, orient, run, threshold, EssentialRansac, Hypothesis};
+use super::{Estimate, EstimateError, EstimateOptions, Method};
+use crate::camera::View;
+use crate::epipolar::{PointData, PoseModel, ResidualKind};
+use crate::pair_file::Match;
+use crate::refine::{refine_pose, Loss};
+
+/// Run `gsrp` on prepared data (inputs already validated).
+pub(crate) fn run_on(
+    data: &PointData,
+    view1: &View,
+    view2: &View,
+    options: &EstimateOptions,
+) -> Result<Estimate, EstimateError> {
+    let (kind, thr_sq) = threshold(view1, view2, options.robust.threshold);
+    let mut est = EssentialRansac {
+        data,
+        undistorted: false,
+        model: PoseModel::GlobalShutter,
+        kind,
+        solver: options.essential_solver,
+        lm: options.refinement.clone(),
+        es: Vec::new(),
+    };
+    let (mut h, res) = run(&mut est, options, thr_sq)?;
+    let mut inliers = res.inliers;
+    let mut refinement_iterations = 0;
+    if options.robust.final_refinement {
+        let idx = indices(&inliers);
+        let r = refine_pose(
+            data,
+            &idx,
+            PoseModel::GlobalShutter,
+            ResidualKind::Sampson,
+            Loss::Trivial,
+            h.pose(),
+            &options.refinement,
+        );
+        refinement_iterations = r.iterations;
+        h = Hypothesis::from_pose(&r.state);
+        for (i, f) in inliers.iter_mut().enumerate() {
+            let x = data.residual(PoseModel::GlobalShutter, kind, i, &h.r, &h.t, &h.e);
+            *f = x * x < thr_sq;
+        }
+    }
+    let t = orient(&h.r, &h.t, &data.m1, &data.m2, &indices(&inliers));
+    Ok(Estimate {
+        method: Method::Gsrp,
+        rotation: h.r,
+        translation: t,
+        inliers,
+        iterations: res.iterations,
+        refinement_iterations,
+        angular_velocity: None,
+        linear_velocity: None,
+    })
+}
+
+/// Estimate with `gsrp` (inputs already validated by the caller).
+pub fn estimate(
+    view1: &View,
+    view2: &View,
+    matches: &[Match],
+    options: &EstimateOptions,
+) -> Result<Estimate, EstimateError> {
+    let data = PointData::new(view1, view2, matches);
+    run_on(&data, view1, view2, options)
+}

@@ -1,0 +1,431 @@
+//! The relative-pose methods (DESIGN §5) and the public entry [`estimate_relative_pose`].
+//!
+//! Output convention (DESIGN §4): `R = R2 R1^T`, `t = R2 (C1 - C2) / |.|` between the row-0
+//! poses of the two images, so `x2 = R x1 + t`; the sign of `t` is chosen by cheirality
+//! (most inliers triangulating in front of both cameras).
+//!
+//! | method | file |
+//! |---|---|
+//! | `gsrp` | [`gsrp`]: global-shutter 5-point RANSAC (gyro ignored) |
+//! | `nrsrp` | [`nrsrp`]: Dai et al. uniform RS model by LM, Cauchy loss, init from `gsrp` |
+//! | `grsrp`, `grsrp+` | [`grsrp`]: the paper's G-RSRP solver in RANSAC (+ refinement) |
+//! | `rectified` | [`rectified`]: gyro-undistorted bearings, 5-point RANSAC, Sampson refinement |
+
+pub mod grsrp;
+pub mod gsrp;
+pub mod nrsrp;
+mod pose_ransac;
+pub mod rectified;
+
+use crate::camera::{CameraError, View};
+use crate::minimal::{EssentialSolver, GrsrpSolver};
+use crate::pair_file::Match;
+use crate::refine::LmOptions;
+use nalgebra::{Matrix3, Vector3};
+use std::fmt;
+use std::str::FromStr;
+use thiserror::Error;
+
+/// A relative-pose method (names as on the command line).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// `gsrp`: global-shutter 5-point RANSAC.
+    Gsrp,
+    /// `nrsrp`: Dai et al. CVPR 2016 nonlinear RS relative pose, no gyro.
+    Nrsrp,
+    /// `grsrp`: the paper's G-RSRP minimal solver in RANSAC.
+    Grsrp,
+    /// `grsrp+`: `grsrp` + the paper's algebraic refinement.
+    GrsrpPlus,
+    /// `rectified`: undistort by gyro, 5-point RANSAC, Sampson refinement.
+    Rectified,
+}
+
+impl Method {
+    /// All methods, in the order of DESIGN §5.
+    pub const ALL: [Method; 5] = [
+        Method::Gsrp,
+        Method::Nrsrp,
+        Method::Grsrp,
+        Method::GrsrpPlus,
+        Method::Rectified,
+    ];
+
+    /// The command-line name.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Method::Gsrp => "gsrp",
+            Method::Nrsrp => "nrsrp",
+            Method::Grsrp => "grsrp",
+            Method::GrsrpPlus => "grsrp+",
+            Method::Rectified => "rectified",
+        }
+    }
+
+    /// Minimum number of matches the method needs with the given essential solver
+    /// (5 for the minimal methods, 8 with the 8-point stand-in, 17 for `nrsrp`).
+    pub fn min_matches(&self, essential: EssentialSolver) -> usize {
+        match self {
+            Method::Nrsrp => 17,
+            Method::Grsrp | Method::GrsrpPlus => 5.max(essential.sample_size()),
+            Method::Gsrp | Method::Rectified => essential.sample_size(),
+        }
+    }
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Unknown method name.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[error("unknown method `{0}` (expected one of gsrp, nrsrp, grsrp, grsrp+, rectified)")]
+pub struct ParseMethodError(pub String);
+
+impl FromStr for Method {
+    type Err = ParseMethodError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Method::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| ParseMethodError(s.to_string()))
+    }
+}
+
+/// RANSAC inlier threshold.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Threshold {
+    /// On the algebraic residual `|m2^T E m1|` of the method's model (bearings `K^-1[u,v,1]`,
+    /// `|t| = 1`). The paper uses 0.01.
+    Algebraic(f64),
+    /// On the Sampson error of the method's model, in pixels (converted to normalised units
+    /// by the mean focal length of the two cameras).
+    SampsonPixels(f64),
+}
+
+/// Robust-estimation settings shared by the methods.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RobustOptions {
+    /// Inlier threshold.
+    pub threshold: Threshold,
+    /// Adaptive iteration count (else exactly `max_iterations`).
+    pub adaptive: bool,
+    /// Success probability of the adaptive stopping rule.
+    pub success_probability: f64,
+    /// Minimum iterations (adaptive).
+    pub min_iterations: usize,
+    /// Maximum iterations.
+    pub max_iterations: usize,
+    /// Local optimisation on each improvement (LO-RANSAC).
+    pub local_optimisation: bool,
+    /// Refine the final `gsrp` model on its inliers (Sampson, global-shutter model).
+    pub final_refinement: bool,
+    /// Sampler seed.
+    pub seed: u64,
+}
+
+/// Where `grsrp`/`grsrp+` take their initial rotation `R_0` from.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum R0Source {
+    /// The `gsrp` estimate (the paper). Default.
+    #[default]
+    Gsrp,
+    /// The `rectified` estimate.
+    Rectified,
+    /// A given rotation (e.g. from an IMU or a motion model).
+    Given(Matrix3<f64>),
+}
+
+/// All options of [`estimate_relative_pose`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct EstimateOptions {
+    /// The method.
+    pub method: Method,
+    /// RANSAC settings.
+    pub robust: RobustOptions,
+    /// Levenberg-Marquardt settings of every refinement.
+    pub refinement: LmOptions,
+    /// Essential-matrix solver for `gsrp`, `rectified` and the `gsrp` initialisations.
+    pub essential_solver: EssentialSolver,
+    /// G-RSRP solver (10 or 20 solutions).
+    pub grsrp_solver: GrsrpSolver,
+    /// Source of `R_0` for `grsrp`/`grsrp+`.
+    pub r0_source: R0Source,
+    /// Cauchy loss scale of `nrsrp`, in pixels (default 2).
+    pub nrsrp_cauchy_px: f64,
+}
+
+impl EstimateOptions {
+    /// The paper's settings for `method`: 200 fixed RANSAC iterations, algebraic threshold
+    /// 0.01 on `|m2^T E m1|`, no local optimisation, no final `gsrp` refinement.
+    pub fn paper(method: Method) -> Self {
+        EstimateOptions {
+            method,
+            robust: RobustOptions {
+                threshold: Threshold::Algebraic(0.01),
+                adaptive: false,
+                success_probability: 0.9999,
+                min_iterations: 200,
+                max_iterations: 200,
+                local_optimisation: false,
+                final_refinement: false,
+                seed: 0,
+            },
+            ..Self::default()
+        }
+    }
+
+    /// The library defaults for `method` (see [`Default`]).
+    pub fn for_method(method: Method) -> Self {
+        EstimateOptions {
+            method,
+            ..Self::default()
+        }
+    }
+}
+
+impl Default for EstimateOptions {
+    /// Library defaults: method `grsrp+`; adaptive RANSAC (success probability 0.9999,
+    /// 50..10000 iterations), Sampson threshold 1 px, local optimisation on improvement,
+    /// final Sampson refinement for `gsrp`; LM defaults; 5-point and 10-solution G-RSRP
+    /// solvers; `R_0` from `gsrp`; `nrsrp` Cauchy scale 2 px.
+    fn default() -> Self {
+        EstimateOptions {
+            method: Method::GrsrpPlus,
+            robust: RobustOptions {
+                threshold: Threshold::SampsonPixels(1.0),
+                adaptive: true,
+                success_probability: 0.9999,
+                min_iterations: 50,
+                max_iterations: 10_000,
+                local_optimisation: true,
+                final_refinement: true,
+                seed: 0,
+            },
+            refinement: LmOptions::default(),
+            essential_solver: EssentialSolver::FivePoint,
+            grsrp_solver: GrsrpSolver::Ten,
+            r0_source: R0Source::Gsrp,
+            nrsrp_cauchy_px: 2.0,
+        }
+    }
+}
+
+/// The result of [`estimate_relative_pose`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Estimate {
+    /// The method that produced it.
+    pub method: Method,
+    /// Relative rotation `R` (camera 1 row 0 to camera 2 row 0).
+    pub rotation: Matrix3<f64>,
+    /// Unit relative translation `t`.
+    pub translation: Vector3<f64>,
+    /// Inlier mask, one flag per match (for `nrsrp`: the `gsrp` initialisation's inliers).
+    pub inliers: Vec<bool>,
+    /// RANSAC iterations of the final RANSAC stage.
+    pub iterations: usize,
+    /// Levenberg-Marquardt iterations of the final refinement (0 if none).
+    pub refinement_iterations: usize,
+    /// `nrsrp` only: estimated angular velocities ω1, ω2 (rad/s, camera frames).
+    pub angular_velocity: Option<[Vector3<f64>; 2]>,
+    /// `nrsrp` only: estimated linear velocities d1, d2 (baseline units per second, camera-1
+    /// row-0 frame).
+    pub linear_velocity: Option<[Vector3<f64>; 2]>,
+}
+
+impl Estimate {
+    /// Number of inliers.
+    pub fn num_inliers(&self) -> usize {
+        self.inliers.iter().filter(|&&b| b).count()
+    }
+}
+
+/// Why no estimate was produced.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum EstimateError {
+    /// A camera or gyro reading is invalid.
+    #[error("invalid view {view}: {source}")]
+    InvalidCamera {
+        /// 1 or 2.
+        view: usize,
+        /// What is wrong.
+        source: CameraError,
+    },
+    /// A pixel coordinate is NaN or infinite.
+    #[error("match {index}: non-finite pixel coordinate in image {image}")]
+    NonFinitePixel {
+        /// Index of the match.
+        index: usize,
+        /// 1 or 2.
+        image: usize,
+    },
+    /// Too few matches for the method.
+    #[error("method {method} needs at least {needed} matches, got {got}")]
+    TooFewMatches {
+        /// The method.
+        method: Method,
+        /// Matches needed.
+        needed: usize,
+        /// Matches given.
+        got: usize,
+    },
+    /// Too few distinct matches (e.g. only duplicates).
+    #[error("degenerate input: only {distinct} distinct matches, method {method} needs {needed}")]
+    Degenerate {
+        /// The method.
+        method: Method,
+        /// Distinct matches.
+        distinct: usize,
+        /// Matches needed.
+        needed: usize,
+    },
+    /// No model was found (degenerate geometry or every sample failed).
+    #[error("no solution found")]
+    NoSolution,
+    /// A generated minimal solver is not available in this build.
+    #[error("minimal solver `{0}` is not available in this build")]
+    SolverUnavailable(&'static str),
+    /// Invalid option value.
+    #[error("invalid option `{option}`: {reason}")]
+    InvalidOption {
+        /// Option name.
+        option: &'static str,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+fn distinct_matches(matches: &[Match]) -> usize {
+    let mut keys: Vec<[u64; 4]> = matches
+        .iter()
+        .map(|m| {
+            [m[0][0], m[0][1], m[1][0], m[1][1]].map(|x| if x == 0.0 { 0u64 } else { x.to_bits() })
+        })
+        .collect();
+    keys.sort_unstable();
+    keys.dedup();
+    keys.len()
+}
+
+fn validate_options(o: &EstimateOptions) -> Result<(), EstimateError> {
+    let bad = |option, reason: &str| {
+        Err(EstimateError::InvalidOption {
+            option,
+            reason: reason.into(),
+        })
+    };
+    let thr = match o.robust.threshold {
+        Threshold::Algebraic(x) | Threshold::SampsonPixels(x) => x,
+    };
+    if !(thr.is_finite() && thr > 0.0) {
+        return bad("robust.threshold", "must be finite and positive");
+    }
+    if !(o.robust.success_probability > 0.0 && o.robust.success_probability < 1.0) {
+        return bad("robust.success_probability", "must be in (0, 1)");
+    }
+    if o.robust.max_iterations == 0 {
+        return bad("robust.max_iterations", "must be at least 1");
+    }
+    if !(o.nrsrp_cauchy_px.is_finite() && o.nrsrp_cauchy_px > 0.0) {
+        return bad("nrsrp_cauchy_px", "must be finite and positive");
+    }
+    if let R0Source::Given(r) = o.r0_source {
+        if !r.iter().all(|x| x.is_finite())
+            || (r.transpose() * r - Matrix3::identity()).norm() > 1e-6
+            || r.determinant() < 0.0
+        {
+            return bad("r0_source", "given R_0 is not a rotation");
+        }
+    }
+    Ok(())
+}
+
+/// Check views, pixels, counts and options; shared by every method.
+pub(crate) fn validate_input(
+    view1: &View,
+    view2: &View,
+    matches: &[Match],
+    options: &EstimateOptions,
+) -> Result<(), EstimateError> {
+    view1
+        .validate()
+        .map_err(|source| EstimateError::InvalidCamera { view: 1, source })?;
+    view2
+        .validate()
+        .map_err(|source| EstimateError::InvalidCamera { view: 2, source })?;
+    validate_options(options)?;
+    for (index, m) in matches.iter().enumerate() {
+        for (k, p) in m.iter().enumerate() {
+            if !(p[0].is_finite() && p[1].is_finite()) {
+                return Err(EstimateError::NonFinitePixel {
+                    index,
+                    image: k + 1,
+                });
+            }
+        }
+    }
+    let method = options.method;
+    let needed = method.min_matches(options.essential_solver);
+    if matches.len() < needed {
+        return Err(EstimateError::TooFewMatches {
+            method,
+            needed,
+            got: matches.len(),
+        });
+    }
+    let distinct = distinct_matches(matches);
+    if distinct < needed {
+        return Err(EstimateError::Degenerate {
+            method,
+            distinct,
+            needed,
+        });
+    }
+    if !options.essential_solver.available() {
+        return Err(EstimateError::SolverUnavailable("gs5pt"));
+    }
+    if matches!(method, Method::Grsrp | Method::GrsrpPlus) && !options.grsrp_solver.available() {
+        return Err(EstimateError::SolverUnavailable(
+            match options.grsrp_solver {
+                GrsrpSolver::Ten => "grsrp10",
+                GrsrpSolver::Twenty => "grsrp",
+            },
+        ));
+    }
+    Ok(())
+}
+
+/// Estimate the relative pose of two rolling-shutter views from pixel matches
+/// `[[u1, v1], [u2, v2]]` with `options.method` (see the module documentation).
+///
+/// Errors: invalid camera/gyro, non-finite pixels, too few (distinct) matches, invalid
+/// options, unavailable solver, or no solution (degenerate geometry). Never panics and never
+/// returns non-finite poses.
+pub fn estimate_relative_pose(
+    view1: &View,
+    view2: &View,
+    matches: &[Match],
+    options: &EstimateOptions,
+) -> Result<Estimate, EstimateError> {
+    validate_input(view1, view2, matches, options)?;
+    let est = match options.method {
+        Method::Gsrp => gsrp::estimate(view1, view2, matches, options),
+        Method::Rectified => rectified::estimate(view1, view2, matches, options),
+        Method::Grsrp => grsrp::estimate(view1, view2, matches, options, false),
+        Method::GrsrpPlus => grsrp::estimate(view1, view2, matches, options, true),
+        Method::Nrsrp => nrsrp::estimate(view1, view2, matches, options),
+    }?;
+    let finite = est.rotation.iter().all(|x| x.is_finite())
+        && est.translation.iter().all(|x| x.is_finite())
+        && (est.translation.norm() - 1.0).abs() < 1e-6;
+    if finite {
+        Ok(est)
+    } else {
+        Err(EstimateError::NoSolution)
+    }
+}
+
+#[cfg(test)]
+mod tests;

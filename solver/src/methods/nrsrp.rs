@@ -1,0 +1,60 @@
+//! `nrsrp`: the nonlinear rolling-shutter relative pose of Dai, Li and Kneip (CVPR 2016)
+//! with the uniform RS model, as used by the paper: initialise `(R, t)` with `gsrp`, zero
+//! velocities, then minimise the generalized epipolar (ray coplanarity) residual over all
+//! points by LM with a Cauchy loss, unknowns `R, t, ω1, d1, ω2, d2` (17 parameters; see
+//! [`crate::refine::NrsrpProblem`]). The gyro is not used.
+
+use super::pose_ransac::{indices, orient};
+use super::{gsrp, Estimate, EstimateError, EstimateOptions, Method};
+use crate::camera::View;
+use crate::epipolar::PointData;
+use crate::pair_file::Match;
+use crate::refine::{refine_nrsrp, LmOptions, NrsrpState, Pose};
+use nalgebra::Vector3;
+
+/// Estimate with `nrsrp` (inputs already validated by the caller).
+pub fn estimate(
+    view1: &View,
+    view2: &View,
+    matches: &[Match],
+    options: &EstimateOptions,
+) -> Result<Estimate, EstimateError> {
+    // No gyro: bearings and rows only.
+    let still1 = View::new(view1.camera, Vector3::zeros());
+    let still2 = View::new(view2.camera, Vector3::zeros());
+    let data = PointData::new(&still1, &still2, matches);
+    let init = gsrp::run_on(&data, &still1, &still2, options)?;
+    let height = view1.camera.height;
+    let f = 0.5 * (view1.camera.mean_focal() + view2.camera.mean_focal());
+    let start = NrsrpState {
+        pose: Pose::new(&init.rotation, &init.translation),
+        phi: [Vector3::zeros(); 2],
+        delta: [Vector3::zeros(); 2],
+    };
+    let lm = LmOptions {
+        max_iterations: options.refinement.max_iterations.max(100),
+        ..options.refinement.clone()
+    };
+    let res = refine_nrsrp(&data, height, options.nrsrp_cauchy_px / f, start, &lm);
+    let s = res.state;
+    let r = s.pose.matrix();
+    let t = orient(
+        &r,
+        &s.pose.translation,
+        &data.m1,
+        &data.m2,
+        &indices(&init.inliers),
+    );
+    let per_frame1 = height * view1.camera.readout;
+    let per_frame2 = height * view2.camera.readout;
+    Ok(Estimate {
+        method: Method::Nrsrp,
+        rotation: r,
+        translation: t,
+        inliers: init.inliers,
+        iterations: init.iterations,
+        refinement_iterations: res.iterations,
+        angular_velocity: Some([s.phi[0] / per_frame1, s.phi[1] / per_frame2]),
+        linear_velocity: Some([s.delta[0] / per_frame1, s.delta[1] / per_frame2]),
+    })
+}

@@ -1,0 +1,233 @@
+//! RANSAC estimators shared by the methods: essential-matrix hypotheses (from plain or
+//! gyro-undistorted bearings) and G-RSRP hypotheses, both scored with a per-point epipolar
+//! residual ([`crate::epipolar`]).
+
+use super::{EstimateError, EstimateOptions, RobustOptions, Threshold};
+use crate::camera::View;
+use crate::epipolar::{PointData, PoseModel, ResidualKind};
+use crate::geometry::{fix_translation_sign, pose_from_essential, skew};
+use crate::minimal::{EssentialSolver, GrsrpSample, GrsrpSolver};
+use crate::ransac::{ransac, RansacEstimator, RansacOptions, RansacResult};
+use crate::refine::{refine_pose, LmOptions, Loss, Pose};
+use nalgebra::{Matrix3, Vector3};
+
+/// A pose hypothesis with its essential matrix `E = [t]× R`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Hypothesis {
+    pub r: Matrix3<f64>,
+    pub t: Vector3<f64>,
+    pub e: Matrix3<f64>,
+}
+
+impl Hypothesis {
+    pub fn new(r: Matrix3<f64>, t: Vector3<f64>) -> Self {
+        Hypothesis {
+            r,
+            t,
+            e: skew(&t) * r,
+        }
+    }
+    pub fn from_pose(p: &Pose) -> Self {
+        Self::new(p.matrix(), p.translation)
+    }
+    pub fn pose(&self) -> Pose {
+        Pose::new(&self.r, &self.t)
+    }
+}
+
+/// Residual kind and squared threshold for the given views.
+pub(crate) fn threshold(view1: &View, view2: &View, t: Threshold) -> (ResidualKind, f64) {
+    match t {
+        Threshold::Algebraic(x) => (ResidualKind::Algebraic, x * x),
+        Threshold::SampsonPixels(px) => {
+            let f = 0.5 * (view1.camera.mean_focal() + view2.camera.mean_focal());
+            (ResidualKind::Sampson, (px / f).powi(2))
+        }
+    }
+}
+
+pub(crate) fn ransac_options(r: &RobustOptions, thr_sq: f64) -> RansacOptions {
+    RansacOptions {
+        threshold_sq: thr_sq,
+        min_iterations: r.min_iterations.min(r.max_iterations),
+        max_iterations: r.max_iterations,
+        adaptive: r.adaptive,
+        success_probability: r.success_probability,
+        local_optimisation: r.local_optimisation,
+        seed: r.seed,
+    }
+}
+
+/// LM settings for local optimisation (a few iterations).
+fn lo_options(base: &LmOptions) -> LmOptions {
+    LmOptions {
+        max_iterations: base.max_iterations.min(10),
+        ..base.clone()
+    }
+}
+
+/// Essential-matrix RANSAC on bearings `b` (plain `m` or gyro-undistorted), scored with
+/// `model`.
+pub(crate) struct EssentialRansac<'a> {
+    pub data: &'a PointData,
+    pub undistorted: bool,
+    pub model: PoseModel,
+    pub kind: ResidualKind,
+    pub solver: EssentialSolver,
+    pub lm: LmOptions,
+    pub es: Vec<Matrix3<f64>>,
+}
+
+impl EssentialRansac<'_> {
+    fn bearings(&self) -> (&[Vector3<f64>], &[Vector3<f64>]) {
+        if self.undistorted {
+            (&self.data.b1, &self.data.b2)
+        } else {
+            (&self.data.m1, &self.data.m2)
+        }
+    }
+}
+
+impl RansacEstimator for EssentialRansac<'_> {
+    type Model = Hypothesis;
+    fn sample_size(&self) -> usize {
+        self.solver.sample_size()
+    }
+    fn num_data(&self) -> usize {
+        self.data.len()
+    }
+    fn generate_models(&mut self, sample: &[usize], models: &mut Vec<Hypothesis>) {
+        let (b1, b2) = self.bearings();
+        let s1: Vec<Vector3<f64>> = sample.iter().map(|&i| b1[i]).collect();
+        let s2: Vec<Vector3<f64>> = sample.iter().map(|&i| b2[i]).collect();
+        let mut es = std::mem::take(&mut self.es);
+        es.clear();
+        self.solver.solve(&s1, &s2, &mut es);
+        for e in &es {
+            if let Some((r, t)) = pose_from_essential(e, &s1, &s2) {
+                models.push(Hypothesis::new(r, t));
+            }
+        }
+        self.es = es;
+    }
+    fn residual_sq(&self, m: &Hypothesis, i: usize) -> f64 {
+        let r = self
+            .data
+            .residual(self.model, self.kind, i, &m.r, &m.t, &m.e);
+        if r.is_finite() {
+            r * r
+        } else {
+            f64::INFINITY
+        }
+    }
+    fn refine(&self, m: &Hypothesis, inliers: &[usize]) -> Option<Hypothesis> {
+        let res = refine_pose(
+            self.data,
+            inliers,
+            self.model,
+            self.kind,
+            Loss::Trivial,
+            m.pose(),
+            &lo_options(&self.lm),
+        );
+        Some(Hypothesis::from_pose(&res.state))
+    }
+}
+
+/// G-RSRP RANSAC: the generated solver with a fixed `R_0`, scored with the paper's model.
+pub(crate) struct GrsrpRansac<'a> {
+    pub data: &'a PointData,
+    pub kind: ResidualKind,
+    pub solver: GrsrpSolver,
+    pub r0: Matrix3<f64>,
+    pub lm: LmOptions,
+    pub sols: Vec<(Matrix3<f64>, Vector3<f64>)>,
+}
+
+impl RansacEstimator for GrsrpRansac<'_> {
+    type Model = Hypothesis;
+    fn sample_size(&self) -> usize {
+        5
+    }
+    fn num_data(&self) -> usize {
+        self.data.len()
+    }
+    fn generate_models(&mut self, sample: &[usize], models: &mut Vec<Hypothesis>) {
+        let d = self.data;
+        let s = GrsrpSample {
+            x1: std::array::from_fn(|k| [d.m1[sample[k]].x, d.m1[sample[k]].y]),
+            x2: std::array::from_fn(|k| [d.m2[sample[k]].x, d.m2[sample[k]].y]),
+            v1: std::array::from_fn(|k| d.v1[sample[k]]),
+            v2: std::array::from_fn(|k| d.v2[sample[k]]),
+            w1: d.w1,
+            w2: d.w2,
+            r0: self.r0,
+        };
+        let mut sols = std::mem::take(&mut self.sols);
+        sols.clear();
+        self.solver.solve(&s, &mut sols);
+        let b1: Vec<Vector3<f64>> = sample.iter().map(|&i| d.b1[i]).collect();
+        let b2: Vec<Vector3<f64>> = sample.iter().map(|&i| d.b2[i]).collect();
+        for (r, t) in &sols {
+            let t = fix_translation_sign(r, t, &b1, &b2);
+            models.push(Hypothesis::new(*r, t));
+        }
+        self.sols = sols;
+    }
+    fn residual_sq(&self, m: &Hypothesis, i: usize) -> f64 {
+        let r = self
+            .data
+            .residual(PoseModel::PaperLinear, self.kind, i, &m.r, &m.t, &m.e);
+        if r.is_finite() {
+            r * r
+        } else {
+            f64::INFINITY
+        }
+    }
+    fn refine(&self, m: &Hypothesis, inliers: &[usize]) -> Option<Hypothesis> {
+        let res = refine_pose(
+            self.data,
+            inliers,
+            PoseModel::PaperLinear,
+            self.kind,
+            Loss::Trivial,
+            m.pose(),
+            &lo_options(&self.lm),
+        );
+        Some(Hypothesis::from_pose(&res.state))
+    }
+}
+
+/// Run RANSAC and return the best hypothesis, or `NoSolution`.
+pub(crate) fn run<E: RansacEstimator<Model = Hypothesis>>(
+    est: &mut E,
+    options: &EstimateOptions,
+    thr_sq: f64,
+) -> Result<(Hypothesis, RansacResult<Hypothesis>), EstimateError> {
+    let res = ransac(est, &ransac_options(&options.robust, thr_sq));
+    match res.model {
+        Some(h) if res.score.inliers > 0 => Ok((h, res)),
+        _ => Err(EstimateError::NoSolution),
+    }
+}
+
+/// Indices of the `true` entries of a mask.
+pub(crate) fn indices(mask: &[bool]) -> Vec<usize> {
+    mask.iter()
+        .enumerate()
+        .filter_map(|(i, &b)| b.then_some(i))
+        .collect()
+}
+
+/// Fix the sign of `t` by cheirality over the inliers, using bearings `b1`, `b2`.
+pub(crate) fn orient(
+    r: &Matrix3<f64>,
+    t: &Vector3<f64>,
+    b1: &[Vector3<f64>],
+    b2: &[Vector3<f64>],
+    inliers: &[usize],
+) -> Vector3<f64> {
+    let s1: Vec<Vector3<f64>> = inliers.iter().map(|&i| b1[i]).collect();
+    let s2: Vec<Vector3<f64>> = inliers.iter().map(|&i| b2[i]).collect();
+    fix_translation_sign(r, t, &s1, &s2)
+}

@@ -1,0 +1,70 @@
+//! `rectified`: undistort every bearing by its gyro row rotation, `b = Ω(v)^T m`
+//! (row-0 frame), which turns the exact angular model into a global-shutter essential
+//! matrix; run the 5-point solver on `b` in RANSAC scored with the exact angular residual
+//! (algebraic `b2^T E b1` or Sampson of `m2^T Ω2 E Ω1^T m1`); then refine `(R, t)` by LM on
+//! the Sampson error of the exact angular model over the inliers.
+
+use super::pose_ransac::{indices, orient, run, threshold, EssentialRansac, Hypothesis};
+use super::{Estimate, EstimateError, EstimateOptions, Method};
+use crate::camera::View;
+use crate::epipolar::{PointData, PoseModel, ResidualKind};
+use crate::pair_file::Match;
+use crate::refine::{refine_pose, Loss};
+
+/// Run `rectified` on prepared data (inputs already validated).
+pub(crate) fn run_on(
+    data: &PointData,
+    view1: &View,
+    view2: &View,
+    options: &EstimateOptions,
+) -> Result<Estimate, EstimateError> {
+    let (kind, thr_sq) = threshold(view1, view2, options.robust.threshold);
+    let mut est = EssentialRansac {
+        data,
+        undistorted: true,
+        model: PoseModel::ExactAngular,
+        kind,
+        solver: options.essential_solver,
+        lm: options.refinement.clone(),
+        es: Vec::new(),
+    };
+    let (h0, res) = run(&mut est, options, thr_sq)?;
+    let mut inliers = res.inliers;
+    let idx = indices(&inliers);
+    let r = refine_pose(
+        data,
+        &idx,
+        PoseModel::ExactAngular,
+        ResidualKind::Sampson,
+        Loss::Trivial,
+        h0.pose(),
+        &options.refinement,
+    );
+    let h = Hypothesis::from_pose(&r.state);
+    for (i, f) in inliers.iter_mut().enumerate() {
+        let x = data.residual(PoseModel::ExactAngular, kind, i, &h.r, &h.t, &h.e);
+        *f = x * x < thr_sq;
+    }
+    let t = orient(&h.r, &h.t, &data.b1, &data.b2, &indices(&inliers));
+    Ok(Estimate {
+        method: Method::Rectified,
+        rotation: h.r,
+        translation: t,
+        inliers,
+        iterations: res.iterations,
+        refinement_iterations: r.iterations,
+        angular_velocity: None,
+        linear_velocity: None,
+    })
+}
+
+/// Estimate with `rectified` (inputs already validated by the caller).
+pub fn estimate(
+    view1: &View,
+    view2: &View,
+    matches: &[Match],
+    options: &EstimateOptions,
+) -> Result<Estimate, EstimateError> {
+    let data = PointData::new(view1, view2, matches);
+    run_on(&data, view1, view2, options)
+}

@@ -1,0 +1,356 @@
+use super::*;
+use crate::camera::Camera;
+use crate::evaluate::pose_errors;
+use crate::minimal::GENERATED_AVAILABLE;
+use crate::pair_file::PairFile;
+use crate::simulate::{simulate, SimulationOptions};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+fn pair(opts: SimulationOptions) -> PairFile {
+    simulate(&opts).unwrap()
+}
+
+fn run(p: &PairFile, o: &EstimateOptions) -> Result<Estimate, EstimateError> {
+    let (v1, v2) = p.views();
+    estimate_relative_pose(&v1, &v2, &p.matches, o)
+}
+
+fn eight_point(method: Method) -> EstimateOptions {
+    EstimateOptions {
+        essential_solver: EssentialSolver::EightPoint,
+        ..EstimateOptions::for_method(method)
+    }
+}
+
+#[test]
+fn method_names_roundtrip() {
+    for m in Method::ALL {
+        assert_eq!(m.to_string().parse::<Method>().unwrap(), m);
+    }
+    assert_eq!("grsrp+".parse::<Method>().unwrap(), Method::GrsrpPlus);
+    assert!("foo".parse::<Method>().is_err());
+}
+
+#[test]
+fn input_errors_are_typed() {
+    let p = pair(SimulationOptions {
+        points: 30,
+        ..Default::default()
+    });
+    let (v1, v2) = p.views();
+    let o = EstimateOptions::for_method(Method::Gsrp);
+    let mut m = p.matches.clone();
+    m[3][1][0] = f64::NAN;
+    assert_eq!(
+        estimate_relative_pose(&v1, &v2, &m, &o),
+        Err(EstimateError::NonFinitePixel { index: 3, image: 2 })
+    );
+    assert!(matches!(
+        estimate_relative_pose(&v1, &v2, &p.matches[..4], &o),
+        Err(EstimateError::TooFewMatches {
+            needed: 5,
+            got: 4,
+            ..
+        })
+    ));
+    let nr = EstimateOptions::for_method(Method::Nrsrp);
+    assert!(matches!(
+        estimate_relative_pose(&v1, &v2, &p.matches[..16], &nr),
+        Err(EstimateError::TooFewMatches { needed: 17, .. })
+    ));
+    let dup = vec![p.matches[0]; 40];
+    assert!(matches!(
+        estimate_relative_pose(&v1, &v2, &dup, &o),
+        Err(EstimateError::Degenerate { distinct: 1, .. })
+    ));
+    let mut bad = v1;
+    bad.camera.fy = -3.0;
+    assert!(matches!(
+        estimate_relative_pose(&bad, &v2, &p.matches, &o),
+        Err(EstimateError::InvalidCamera { view: 1, .. })
+    ));
+    let mut bad = v2;
+    bad.omega.x = f64::INFINITY;
+    assert!(matches!(
+        estimate_relative_pose(&v1, &bad, &p.matches, &o),
+        Err(EstimateError::InvalidCamera { view: 2, .. })
+    ));
+    let mut o2 = o.clone();
+    o2.robust.threshold = Threshold::SampsonPixels(-1.0);
+    assert!(matches!(
+        estimate_relative_pose(&v1, &v2, &p.matches, &o2),
+        Err(EstimateError::InvalidOption { .. })
+    ));
+    if !GENERATED_AVAILABLE {
+        assert_eq!(
+            estimate_relative_pose(&v1, &v2, &p.matches, &o),
+            Err(EstimateError::SolverUnavailable("gs5pt"))
+        );
+    }
+}
+
+#[test]
+fn garbage_input_never_panics() {
+    let mut rng = ChaCha8Rng::seed_from_u64(99);
+    let specials = [
+        f64::NAN,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        1e300,
+        -1e300,
+        0.0,
+        1e-300,
+        5.0,
+    ];
+    let cam = Camera::paper();
+    for trial in 0..60 {
+        let n = rng.gen_range(0..40);
+        let mut matches: Vec<Match> = (0..n)
+            .map(|_| {
+                let mut g = || {
+                    if rng.gen_bool(0.15) {
+                        specials[rng.gen_range(0..specials.len())]
+                    } else {
+                        rng.gen_range(-3000.0..3000.0)
+                    }
+                };
+                [[g(), g()], [g(), g()]]
+            })
+            .collect();
+        if trial % 3 == 0 && !matches.is_empty() {
+            // Mostly duplicates / finite garbage.
+            let m0 = [[1e300, -1e300], [1e-300, 7.0]];
+            for (i, m) in matches.iter_mut().enumerate() {
+                *m = if i % 2 == 0 {
+                    m0
+                } else {
+                    [[3.0, 3.0], [3.0, 3.0]]
+                };
+            }
+        }
+        let w = Vector3::new(
+            specials[rng.gen_range(0..specials.len())],
+            rng.gen_range(-10.0..10.0),
+            0.0,
+        );
+        let views = [
+            View::new(cam, Vector3::new(0.5, 0.1, -0.3)),
+            View::new(cam, w),
+        ];
+        for method in Method::ALL {
+            for solver in [EssentialSolver::FivePoint, EssentialSolver::EightPoint] {
+                let o = EstimateOptions {
+                    essential_solver: solver,
+                    ..EstimateOptions::paper(method)
+                };
+                if let Ok(e) = estimate_relative_pose(&views[0], &views[1], &matches, &o) {
+                    assert!(e.rotation.iter().all(|x| x.is_finite()));
+                    assert!((e.translation.norm() - 1.0).abs() < 1e-6);
+                    assert_eq!(e.inliers.len(), matches.len());
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn degenerate_geometry_gives_no_nan() {
+    // All points on one ray pair: rank-deficient; must be an error or a finite pose.
+    let cam = Camera::paper();
+    let v = View::new(cam, Vector3::zeros());
+    let matches: Vec<Match> = (0..20)
+        .map(|k| {
+            [
+                [100.0 + k as f64 * 1e-9, 200.0],
+                [100.0, 200.0 + k as f64 * 1e-9],
+            ]
+        })
+        .collect();
+    for method in Method::ALL {
+        let o = eight_point(method);
+        match estimate_relative_pose(&v, &v, &matches, &o) {
+            Ok(e) => assert!(e
+                .rotation
+                .iter()
+                .chain(e.translation.iter())
+                .all(|x| x.is_finite())),
+            Err(e) => assert!(matches!(
+                e,
+                EstimateError::NoSolution | EstimateError::SolverUnavailable(_)
+            )),
+        }
+    }
+}
+
+// ---- methods with the 8-point stand-in (run without the generated solvers) ----
+
+#[test]
+fn rectified_noise_free_with_eight_point_is_exact() {
+    for seed in 0..3 {
+        let p = pair(SimulationOptions {
+            pixel_noise: 0.0,
+            gyro_noise: 0.0,
+            angular_velocity: 2.5,
+            seed,
+            ..Default::default()
+        });
+        let e = run(&p, &eight_point(Method::Rectified)).unwrap();
+        let err = pose_errors(&e, p.ground_truth.as_ref().unwrap());
+        assert!(err.rotation_error_deg < 1e-4, "{err:?}");
+        assert!(err.translation_error_deg < 1e-3, "{err:?}");
+        assert_eq!(e.num_inliers(), 150);
+    }
+}
+
+#[test]
+fn gsrp_is_exact_without_motion_and_robust_to_outliers() {
+    let p = pair(SimulationOptions {
+        pixel_noise: 0.0,
+        gyro_noise: 0.0,
+        angular_velocity: 0.0,
+        outlier_fraction: 0.3,
+        seed: 4,
+        ..Default::default()
+    });
+    let e = run(&p, &eight_point(Method::Gsrp)).unwrap();
+    let gt = p.ground_truth.as_ref().unwrap();
+    let err = pose_errors(&e, gt);
+    assert!(
+        err.rotation_error_deg < 1e-4 && err.translation_error_deg < 1e-3,
+        "{err:?}"
+    );
+    assert_eq!(e.inliers, gt.inliers);
+}
+
+#[test]
+fn rectified_beats_gsrp_under_rs_distortion_eight_point() {
+    let (mut rect, mut gs) = (0.0, 0.0);
+    for seed in 0..5 {
+        let p = pair(SimulationOptions {
+            seed,
+            ..Default::default()
+        });
+        let gt = p.ground_truth.as_ref().unwrap();
+        rect +=
+            pose_errors(&run(&p, &eight_point(Method::Rectified)).unwrap(), gt).rotation_error_deg;
+        gs += pose_errors(&run(&p, &eight_point(Method::Gsrp)).unwrap(), gt).rotation_error_deg;
+    }
+    assert!(rect / 5.0 < 1.0, "{}", rect / 5.0);
+    assert!(rect < gs, "{rect} {gs}");
+}
+
+#[test]
+fn nrsrp_runs_and_reports_velocities() {
+    let p = pair(SimulationOptions {
+        seed: 2,
+        angular_velocity: 1.0,
+        linear_velocity: 4.0,
+        ..Default::default()
+    });
+    let e = run(&p, &eight_point(Method::Nrsrp)).unwrap();
+    assert!(e.angular_velocity.is_some() && e.linear_velocity.is_some());
+    let err = pose_errors(&e, p.ground_truth.as_ref().unwrap());
+    assert!(err.rotation_error_deg < 5.0, "{err:?}");
+}
+
+// ---- method-level tests that need the generated minimal solvers ----
+
+fn require_generated() -> bool {
+    if !GENERATED_AVAILABLE {
+        eprintln!("generated solvers not available: skipping");
+    }
+    GENERATED_AVAILABLE
+}
+
+#[test]
+#[ignore = "needs generated solvers"]
+fn rectified_noise_free_is_exact() {
+    if !require_generated() {
+        return;
+    }
+    let p = pair(SimulationOptions {
+        pixel_noise: 0.0,
+        gyro_noise: 0.0,
+        seed: 1,
+        ..Default::default()
+    });
+    for o in [
+        EstimateOptions::for_method(Method::Rectified),
+        EstimateOptions::paper(Method::Rectified),
+    ] {
+        let err = pose_errors(&run(&p, &o).unwrap(), p.ground_truth.as_ref().unwrap());
+        assert!(err.rotation_error_deg < 1e-4, "{err:?}");
+        assert!(err.translation_error_deg < 1e-3, "{err:?}");
+    }
+}
+
+#[test]
+#[ignore = "needs generated solvers"]
+fn paper_accuracy_at_2_5_rad_s() {
+    if !require_generated() {
+        return;
+    }
+    let methods = [
+        Method::Gsrp,
+        Method::Grsrp,
+        Method::GrsrpPlus,
+        Method::Rectified,
+    ];
+    let mut rot = [0.0; 4];
+    let mut tra = [0.0; 4];
+    for seed in 0..10 {
+        let p = pair(SimulationOptions {
+            angular_velocity: 2.5,
+            pixel_noise: 1.0,
+            gyro_noise: 0.1,
+            seed,
+            ..Default::default()
+        });
+        let gt = p.ground_truth.as_ref().unwrap();
+        for (k, m) in methods.iter().enumerate() {
+            let e = run(&p, &EstimateOptions::paper(*m)).unwrap();
+            let err = pose_errors(&e, gt);
+            rot[k] += err.rotation_error_deg / 10.0;
+            tra[k] += err.translation_error_deg / 10.0;
+        }
+    }
+    eprintln!("mean rotation {rot:?} translation {tra:?} for {methods:?}");
+    assert!(rot[2] < 1.0 && tra[2] < 5.0, "grsrp+ {} {}", rot[2], tra[2]);
+    assert!(rot[0] > rot[2] && tra[0] > tra[2], "gsrp should be worse");
+    assert!(
+        rot[3] <= rot[2] * 1.05 + 1e-3,
+        "rectified no worse than grsrp+"
+    );
+}
+
+#[test]
+#[ignore = "needs generated solvers"]
+fn grsrp_variants_and_r0_sources_agree() {
+    if !require_generated() {
+        return;
+    }
+    let p = pair(SimulationOptions {
+        seed: 3,
+        ..Default::default()
+    });
+    let gt = p.ground_truth.as_ref().unwrap();
+    for solver in [GrsrpSolver::Ten, GrsrpSolver::Twenty] {
+        for src in [
+            R0Source::Gsrp,
+            R0Source::Rectified,
+            R0Source::Given(gt.rotation_matrix()),
+        ] {
+            let o = EstimateOptions {
+                grsrp_solver: solver,
+                r0_source: src,
+                ..EstimateOptions::for_method(Method::GrsrpPlus)
+            };
+            let err = pose_errors(&run(&p, &o).unwrap(), gt);
+            assert!(
+                err.rotation_error_deg < 1.0 && err.translation_error_deg < 5.0,
+                "{solver:?} {src:?} {err:?}"
+            );
+        }
+    }
+}

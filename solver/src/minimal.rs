@@ -1,0 +1,277 @@
+//! Adapter between the estimator and the minimal solvers emitted into `crate::generated`.
+//! Only this file changes if the generated API shifts.
+//!
+//! Generated API coded against:
+//! - `generated::gs5pt::{Data { e1, e2, e3, e4 }, Solution { x, y, z }, solve}`: the four
+//!   row-major nullspace matrices of the 5x9 epipolar system; `E = x E1 + y E2 + z E3 + E4`.
+//! - `generated::grsrp10` / `generated::grsrp`: `Data { x1, x2: [[f64; 2]; 5], v1, v2: [f64; 5],
+//!   w1, w2: [f64; 3], r0: [[f64; 3]; 3] }` with normalised image points (bearing
+//!   `[x, y, 1]`), rows in pixels, `w = λ ω` (rad/row), `R_0` row-major;
+//!   `Solution { a: [f64; 3], t: [f64; 3] }` and `R = R_0 exp([a]×)`.
+//!
+//! Also provides the linear 8-point essential solver (non-minimal, needs ≥ 8 points), usable
+//! as a stand-in for the 5-point solver ([`EssentialSolver::EightPoint`]).
+
+use crate::geometry::{epipolar_nullspace, exp_so3};
+use nalgebra::{Matrix3, SMatrix, Vector3};
+
+// TODO(generated): the emitted solvers do not exist yet on this branch. Replace the stub
+// below by `use crate::generated;` and set `GENERATED_AVAILABLE = true` (delete the stub
+// module) once `solver/src/generated/{gs5pt,grsrp10,grsrp}.rs` are merged.
+/// Whether the generated minimal solvers are linked in. While `false`, methods needing them
+/// return [`crate::methods::EstimateError::SolverUnavailable`].
+pub const GENERATED_AVAILABLE: bool = false;
+
+#[allow(dead_code)]
+mod generated {
+    //! Stub with the exact API of the emitted solvers; returns no solutions.
+    pub mod gs5pt {
+        pub struct Data {
+            pub e1: [[f64; 3]; 3],
+            pub e2: [[f64; 3]; 3],
+            pub e3: [[f64; 3]; 3],
+            pub e4: [[f64; 3]; 3],
+        }
+        pub struct Solution {
+            pub x: f64,
+            pub y: f64,
+            pub z: f64,
+        }
+        pub fn solve(_: &Data) -> Vec<Solution> {
+            Vec::new()
+        }
+    }
+    pub mod grsrp10 {
+        pub struct Data {
+            pub x1: [[f64; 2]; 5],
+            pub x2: [[f64; 2]; 5],
+            pub v1: [f64; 5],
+            pub v2: [f64; 5],
+            pub w1: [f64; 3],
+            pub w2: [f64; 3],
+            pub r0: [[f64; 3]; 3],
+        }
+        pub struct Solution {
+            pub a: [f64; 3],
+            pub t: [f64; 3],
+        }
+        pub fn solve(_: &Data) -> Vec<Solution> {
+            Vec::new()
+        }
+    }
+    pub mod grsrp {
+        pub use super::grsrp10::{Data, Solution};
+        pub fn solve(_: &Data) -> Vec<Solution> {
+            Vec::new()
+        }
+    }
+}
+// END TODO(generated)
+
+/// Which essential-matrix solver the `gsrp`, `rectified` (and `R_0` of `grsrp`) use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum EssentialSolver {
+    /// The generated 5-point solver (minimal, up to 10 solutions). Default.
+    #[default]
+    FivePoint,
+    /// Linear 8-point algorithm (non-minimal; for testing and as a fallback).
+    EightPoint,
+}
+
+impl EssentialSolver {
+    /// Points per sample.
+    pub fn sample_size(&self) -> usize {
+        match self {
+            EssentialSolver::FivePoint => 5,
+            EssentialSolver::EightPoint => 8,
+        }
+    }
+
+    /// Whether the solver can run in this build.
+    pub fn available(&self) -> bool {
+        match self {
+            EssentialSolver::FivePoint => GENERATED_AVAILABLE,
+            EssentialSolver::EightPoint => true,
+        }
+    }
+
+    /// Essential matrices consistent with the bearing pairs (`b2^T E b1 = 0`), appended to
+    /// `out`. `b1.len() == b2.len() == sample_size()`.
+    pub fn solve(&self, b1: &[Vector3<f64>], b2: &[Vector3<f64>], out: &mut Vec<Matrix3<f64>>) {
+        match self {
+            EssentialSolver::FivePoint => {
+                if b1.len() == 5 && b2.len() == 5 {
+                    essential_5pt(
+                        &std::array::from_fn(|k| b1[k]),
+                        &std::array::from_fn(|k| b2[k]),
+                        out,
+                    )
+                }
+            }
+            EssentialSolver::EightPoint => {
+                if let Some(e) = essential_8pt(b1, b2) {
+                    out.push(e)
+                }
+            }
+        }
+    }
+}
+
+fn rows(m: &Matrix3<f64>) -> [[f64; 3]; 3] {
+    std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))
+}
+
+/// 5-point solver: nullspace basis ([`epipolar_nullspace`]) + generated `gs5pt` solve.
+/// Appends the (finite) essential matrices, Frobenius-normalised.
+pub fn essential_5pt(b1: &[Vector3<f64>; 5], b2: &[Vector3<f64>; 5], out: &mut Vec<Matrix3<f64>>) {
+    let Some(basis) = epipolar_nullspace(b1, b2) else {
+        return;
+    };
+    let data = generated::gs5pt::Data {
+        e1: rows(&basis[0]),
+        e2: rows(&basis[1]),
+        e3: rows(&basis[2]),
+        e4: rows(&basis[3]),
+    };
+    let sols = generated::gs5pt::solve(&data);
+    for s in sols.iter() {
+        let e = basis[0] * s.x + basis[1] * s.y + basis[2] * s.z + basis[3];
+        let n = e.norm();
+        if n.is_finite() && n > 0.0 {
+            out.push(e / n);
+        }
+    }
+}
+
+/// Linear 8-point essential matrix from `n ≥ 8` bearing pairs: least-squares null vector of
+/// the `n x 9` constraint matrix (via the 9x9 normal matrix's eigenvector), projected onto
+/// the essential manifold (singular values `(1, 1, 0)`). `None` on degenerate input.
+pub fn essential_8pt(b1: &[Vector3<f64>], b2: &[Vector3<f64>]) -> Option<Matrix3<f64>> {
+    if b1.len() < 8 || b1.len() != b2.len() {
+        return None;
+    }
+    let mut ata = SMatrix::<f64, 9, 9>::zeros();
+    for (p, q) in b1.iter().zip(b2) {
+        let p = p.normalize();
+        let q = q.normalize();
+        let row = SMatrix::<f64, 9, 1>::from_fn(|k, _| q[k / 3] * p[k % 3]);
+        ata += row * row.transpose();
+    }
+    if !ata.iter().all(|x| x.is_finite()) {
+        return None;
+    }
+    let eig = ata.try_symmetric_eigen(1e-15, 500)?;
+    let imin = (0..9).min_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]))?;
+    let v = eig.eigenvectors.column(imin);
+    let e = Matrix3::from_fn(|i, j| v[3 * i + j]);
+    let svd = e.try_svd(true, true, 1e-15, 200)?;
+    let (u, vt) = (svd.u?, svd.v_t?);
+    let mut s = svd.singular_values;
+    // Zero the smallest singular value, equalise the other two.
+    let imin = (0..3).min_by(|&a, &b| s[a].total_cmp(&s[b]))?;
+    for k in 0..3 {
+        s[k] = if k == imin { 0.0 } else { 1.0 };
+    }
+    let e = u * Matrix3::from_diagonal(&s) * vt;
+    e.iter().all(|x| x.is_finite()).then_some(e)
+}
+
+/// Which generated G-RSRP solver to use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum GrsrpSolver {
+    /// `grsrp10`: `t` eliminated, 10 solutions (t up to sign). Default.
+    #[default]
+    Ten,
+    /// `grsrp`: the paper's 6-unknown formulation, 20 solutions (±t).
+    Twenty,
+}
+
+/// One minimal G-RSRP sample: normalised image points `x = [m.x, m.y]` (bearing `[x, y, 1]`),
+/// rows `v` (pixels), `w = λ ω` (rad/row), initial rotation `R_0`.
+#[derive(Debug, Clone, Copy)]
+pub struct GrsrpSample {
+    /// Image-1 normalised points.
+    pub x1: [[f64; 2]; 5],
+    /// Image-2 normalised points.
+    pub x2: [[f64; 2]; 5],
+    /// Image-1 rows.
+    pub v1: [f64; 5],
+    /// Image-2 rows.
+    pub v2: [f64; 5],
+    /// `λ ω1`.
+    pub w1: Vector3<f64>,
+    /// `λ ω2`.
+    pub w2: Vector3<f64>,
+    /// `R_0`.
+    pub r0: Matrix3<f64>,
+}
+
+impl GrsrpSolver {
+    /// Whether the solver can run in this build.
+    pub fn available(&self) -> bool {
+        GENERATED_AVAILABLE
+    }
+
+    /// Solve one sample; appends `(R = R_0 exp([a]×), t / |t|)` for each finite solution.
+    pub fn solve(&self, s: &GrsrpSample, out: &mut Vec<(Matrix3<f64>, Vector3<f64>)>) {
+        let data = generated::grsrp10::Data {
+            x1: s.x1,
+            x2: s.x2,
+            v1: s.v1,
+            v2: s.v2,
+            w1: s.w1.into(),
+            w2: s.w2.into(),
+            r0: rows(&s.r0),
+        };
+        let push = |a: [f64; 3], t: [f64; 3], out: &mut Vec<(Matrix3<f64>, Vector3<f64>)>| {
+            let a = Vector3::from(a);
+            let t = Vector3::from(t);
+            let n = t.norm();
+            if a.iter().all(|x| x.is_finite()) && n.is_finite() && n > 0.0 {
+                out.push((s.r0 * exp_so3(&a), t / n));
+            }
+        };
+        match self {
+            GrsrpSolver::Ten => {
+                for sol in generated::grsrp10::solve(&data).iter() {
+                    push(sol.a, sol.t, out);
+                }
+            }
+            GrsrpSolver::Twenty => {
+                for sol in generated::grsrp::solve(&data).iter() {
+                    push(sol.a, sol.t, out);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{essential_from_pose, exp_so3};
+
+    #[test]
+    fn eight_point_recovers_noise_free_essential() {
+        let r = exp_so3(&Vector3::new(0.1, -0.2, 0.05));
+        let t = Vector3::new(0.3, -0.1, 0.8).normalize();
+        let mut b1 = Vec::new();
+        let mut b2 = Vec::new();
+        for k in 0..12 {
+            let x = Vector3::new(
+                (k as f64 * 0.7).sin() * 3.0,
+                (k as f64 * 1.3).cos() * 2.0,
+                5.0 + k as f64,
+            );
+            b1.push(x);
+            b2.push(r * x + t);
+        }
+        let e = essential_8pt(&b1, &b2).unwrap();
+        let e_true = essential_from_pose(&r, &t).normalize();
+        let e = e.normalize();
+        assert!((e - e_true).norm() < 1e-9 || (e + e_true).norm() < 1e-9);
+        assert!(essential_8pt(&b1[..7], &b2[..7]).is_none());
+        let nan = vec![Vector3::new(f64::NAN, 0.0, 1.0); 8];
+        assert!(essential_8pt(&nan, &nan).is_none());
+    }
+}

@@ -1,0 +1,296 @@
+//! The image-pair file (`PAIR.json`) read by `rspose estimate` and written by `rspose simulate`.
+//!
+//! Schema (JSON object; all angles in radians, all pixels in pixels):
+//!
+//! ```text
+//! {
+//!   "camera": { "fx": f64, "fy": f64, "cx": f64, "cy": f64,
+//!               "width": f64, "height": f64, "readout": f64 },   // readout: λ, s/row
+//!   "gyro": [[wx, wy, wz], [wx, wy, wz]],   // measured ω of view 1 and view 2, rad/s, camera frame
+//!   "matches": [ [[u1, v1], [u2, v2]], ... ],  // pixel in image 1, pixel in image 2
+//!   "ground_truth": {                      // optional
+//!     "rotation": [[r00, r01, r02], [r10, r11, r12], [r20, r21, r22]],  // R = R2 R1^T, rows
+//!     "translation": [tx, ty, tz],         // t = R2 (C1 - C2), unit length
+//!     "omega": [[..3..], [..3..]],         // true ω1, ω2 (rad/s, camera frames)
+//!     "velocity": [[..3..], [..3..]],      // true d1, d2 (m/s, world frame)
+//!     "inliers": [bool, ...]               // one flag per match (false: simulated outlier)
+//!   }
+//! }
+//! ```
+//!
+//! Both images share one camera. [`PairFile::load`] parses and then validates every field,
+//! returning a [`PairFileError`] that names the offending field (`camera.fx`, `matches[3]`,
+//! `ground_truth.rotation`, ...).
+
+use crate::camera::{Camera, CameraError, View};
+use nalgebra::{Matrix3, Vector3};
+use serde::{Deserialize, Serialize};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// One pixel correspondence `[[u1, v1], [u2, v2]]` (image 1, image 2).
+pub type Match = [[f64; 2]; 2];
+
+/// Ground truth stored with a simulated pair (see the module documentation for conventions).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GroundTruth {
+    /// Relative rotation `R = R2 R1^T`, row-major rows.
+    pub rotation: [[f64; 3]; 3],
+    /// Unit relative translation `t = R2 (C1 - C2) / |.|`.
+    pub translation: [f64; 3],
+    /// True angular velocities ω1, ω2 (rad/s, camera frames).
+    pub omega: [[f64; 3]; 2],
+    /// True linear velocities d1, d2 (m/s, world frame).
+    pub velocity: [[f64; 3]; 2],
+    /// Per-match inlier flag (false: the simulator replaced the match by a random one).
+    pub inliers: Vec<bool>,
+}
+
+impl GroundTruth {
+    /// Rotation as a matrix.
+    pub fn rotation_matrix(&self) -> Matrix3<f64> {
+        let r = &self.rotation;
+        Matrix3::new(
+            r[0][0], r[0][1], r[0][2], r[1][0], r[1][1], r[1][2], r[2][0], r[2][1], r[2][2],
+        )
+    }
+
+    /// Translation as a vector.
+    pub fn translation_vector(&self) -> Vector3<f64> {
+        Vector3::from(self.translation)
+    }
+}
+
+/// A pair of rolling-shutter images with gyro readings and pixel matches (`PAIR.json`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PairFile {
+    /// The camera (both images).
+    pub camera: Camera,
+    /// Measured angular velocities of view 1 and view 2, rad/s, camera frames.
+    pub gyro: [[f64; 3]; 2],
+    /// Pixel matches `[[u1, v1], [u2, v2]]`.
+    pub matches: Vec<Match>,
+    /// Ground truth, present in simulated files.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ground_truth: Option<GroundTruth>,
+}
+
+/// Errors reading, validating or writing a pair file.
+#[derive(Debug, Error)]
+pub enum PairFileError {
+    /// The file could not be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The JSON is malformed or a field is missing or has the wrong type (serde names it).
+    #[error("{path}: invalid pair file: {source}")]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// The parse error (names the field, line and column).
+        source: serde_json::Error,
+    },
+    /// A field parsed but holds an invalid value.
+    #[error("invalid field `{field}`: {reason}")]
+    InvalidField {
+        /// Dotted path of the field, e.g. `camera.fx` or `matches[3]`.
+        field: String,
+        /// What is wrong with it.
+        reason: String,
+    },
+}
+
+fn invalid(field: impl Into<String>, reason: impl Into<String>) -> PairFileError {
+    PairFileError::InvalidField {
+        field: field.into(),
+        reason: reason.into(),
+    }
+}
+
+impl PairFile {
+    /// The two views (camera + measured gyro ω).
+    pub fn views(&self) -> (View, View) {
+        (
+            View::new(self.camera, Vector3::from(self.gyro[0])),
+            View::new(self.camera, Vector3::from(self.gyro[1])),
+        )
+    }
+
+    /// Check every field: camera parameters, finite gyro, finite pixels, and (if present) a
+    /// rotation ground truth that is a rotation, a unit translation, finite velocities and one
+    /// inlier flag per match.
+    pub fn validate(&self) -> Result<(), PairFileError> {
+        self.camera.validate().map_err(|e| {
+            let field = match &e {
+                CameraError::InvalidFocal { name, .. } => format!("camera.{name}"),
+                CameraError::InvalidPrincipalPoint { name, .. } => format!("camera.{name}"),
+                CameraError::InvalidReadout(_) => "camera.readout".into(),
+                CameraError::InvalidSize { .. } => "camera.width/height".into(),
+                CameraError::InvalidGyro(..) => "gyro".into(),
+            };
+            invalid(field, e.to_string())
+        })?;
+        for (i, w) in self.gyro.iter().enumerate() {
+            if !w.iter().all(|x| x.is_finite()) {
+                return Err(invalid(format!("gyro[{i}]"), "non-finite angular velocity"));
+            }
+        }
+        for (i, m) in self.matches.iter().enumerate() {
+            if !m.iter().flatten().all(|x| x.is_finite()) {
+                return Err(invalid(
+                    format!("matches[{i}]"),
+                    "non-finite pixel coordinate",
+                ));
+            }
+        }
+        if let Some(gt) = &self.ground_truth {
+            let r = gt.rotation_matrix();
+            if !r.iter().all(|x| x.is_finite())
+                || (r.transpose() * r - Matrix3::identity()).norm() > 1e-6
+                || (r.determinant() - 1.0).abs() > 1e-6
+            {
+                return Err(invalid("ground_truth.rotation", "not a rotation matrix"));
+            }
+            let t = gt.translation_vector();
+            if !t.iter().all(|x| x.is_finite()) || (t.norm() - 1.0).abs() > 1e-6 {
+                return Err(invalid("ground_truth.translation", "not a unit vector"));
+            }
+            if !gt.omega.iter().flatten().all(|x| x.is_finite()) {
+                return Err(invalid("ground_truth.omega", "non-finite value"));
+            }
+            if !gt.velocity.iter().flatten().all(|x| x.is_finite()) {
+                return Err(invalid("ground_truth.velocity", "non-finite value"));
+            }
+            if gt.inliers.len() != self.matches.len() {
+                return Err(invalid(
+                    "ground_truth.inliers",
+                    format!(
+                        "{} flags for {} matches",
+                        gt.inliers.len(),
+                        self.matches.len()
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Parse from a JSON string and [`validate`](Self::validate). `path` is only used in
+    /// error messages.
+    pub fn from_json_str(s: &str, path: &Path) -> Result<Self, PairFileError> {
+        let pair: PairFile = serde_json::from_str(s).map_err(|source| PairFileError::Parse {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        pair.validate()?;
+        Ok(pair)
+    }
+
+    /// Read, parse and validate a pair file.
+    pub fn load(path: impl AsRef<Path>) -> Result<Self, PairFileError> {
+        let path = path.as_ref();
+        let s = std::fs::read_to_string(path).map_err(|source| PairFileError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::from_json_str(&s, path)
+    }
+
+    /// Pretty JSON text of this file.
+    pub fn to_json_string(&self) -> String {
+        // Serialising plain numbers, arrays and bools cannot fail except on non-finite
+        // floats, which serde_json writes as `null`.
+        serde_json::to_string_pretty(self).unwrap_or_default()
+    }
+
+    /// Write atomically: validate, write `PATH.tmp-PID` in the same directory, sync, then
+    /// rename over `path`. On error no partial file is left at `path`.
+    pub fn save_atomic(&self, path: impl AsRef<Path>) -> Result<(), PairFileError> {
+        let path = path.as_ref();
+        self.validate()?;
+        let io = |source| PairFileError::Io {
+            path: path.to_path_buf(),
+            source,
+        };
+        let mut tmp_name = path.as_os_str().to_owned();
+        tmp_name.push(format!(".tmp-{}", std::process::id()));
+        let tmp = PathBuf::from(tmp_name);
+        let result = (|| {
+            let mut f = std::fs::File::create(&tmp)?;
+            f.write_all(self.to_json_string().as_bytes())?;
+            f.write_all(b"\n")?;
+            f.sync_all()?;
+            std::fs::rename(&tmp, path)
+        })();
+        if result.is_err() {
+            let _ = std::fs::remove_file(&tmp);
+        }
+        result.map_err(io)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> PairFile {
+        PairFile {
+            camera: Camera::paper(),
+            gyro: [[0.1, 0.2, 0.3], [0.0, -1.0, 0.5]],
+            matches: vec![[[1.0, 2.0], [3.0, 4.0]], [[5.0, 6.0], [7.0, 8.0]]],
+            ground_truth: Some(GroundTruth {
+                rotation: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+                translation: [0.0, 0.0, 1.0],
+                omega: [[0.0; 3]; 2],
+                velocity: [[0.0; 3]; 2],
+                inliers: vec![true, false],
+            }),
+        }
+    }
+
+    #[test]
+    fn roundtrip_and_atomic_save() {
+        let dir = std::env::temp_dir().join(format!("rspose-pairfile-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("pair.json");
+        let p = sample();
+        p.save_atomic(&path).unwrap();
+        assert_eq!(PairFile::load(&path).unwrap(), p);
+        let leftovers: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+        assert_eq!(leftovers.len(), 1);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn errors_name_the_field() {
+        let p = Path::new("x.json");
+        let mut bad = sample();
+        bad.camera.fx = -1.0;
+        let err = PairFile::from_json_str(&bad.to_json_string(), p).unwrap_err();
+        assert!(matches!(&err, PairFileError::InvalidField { field, .. } if field == "camera.fx"));
+        let mut bad = sample();
+        bad.ground_truth.as_mut().unwrap().inliers.pop();
+        let err = bad.validate().unwrap_err();
+        assert!(err.to_string().contains("ground_truth.inliers"));
+        let mut bad = sample();
+        bad.matches[1][0][1] = f64::NAN;
+        assert!(bad
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("matches[1]"));
+        // NaN serialises as null, which fails to parse with a field-naming message.
+        let err = PairFile::from_json_str(&bad.to_json_string(), p).unwrap_err();
+        assert!(matches!(err, PairFileError::Parse { .. }));
+        let err = PairFile::from_json_str(r#"{"camera": {"fx": 1}}"#, p).unwrap_err();
+        assert!(err.to_string().contains("missing field"), "{err}");
+        let err = PairFile::load("/nonexistent/dir/pair.json").unwrap_err();
+        assert!(matches!(err, PairFileError::Io { .. }));
+        assert!(PairFile::from_json_str(&sample().to_json_string(), p).is_ok());
+    }
+}

@@ -1,0 +1,124 @@
+//! Rolling-shutter row model (DESIGN §4).
+//!
+//! Row `v` of a view is exposed `v λ` seconds after row 0. With gyro angular velocity `ω`
+//! (camera frame) the row rotation is `Ω(v) = exp([v λ ω]×)`. Camera `c` at row `v` has
+//! orientation `Ω_c(v) R_c` (world-to-camera) and centre `C_c + v λ d_c` (`d_c` linear velocity,
+//! world frame), so a world point `X` has camera coordinates `Ω_c(v) R_c (X - C_c - v λ d_c)`.
+//! A bearing `m` observed at row `v` is brought to the row-0 frame by `Ω(v)^T m`.
+
+use crate::camera::{Camera, View};
+use crate::geometry::exp_so3;
+use nalgebra::{Matrix3, Vector2, Vector3};
+use thiserror::Error;
+
+/// Row rotation `Ω(v) = exp([v λ ω]×)` for row `v`, readout `λ` (s/row), `ω` (rad/s).
+pub fn row_rotation(v: f64, readout: f64, omega: &Vector3<f64>) -> Matrix3<f64> {
+    exp_so3(&(omega * (v * readout)))
+}
+
+/// Bearing of pixel `(u, v)` expressed in the row-0 camera frame: `Ω(v)^T K^-1 [u, v, 1]^T`
+/// (not rescaled: its third component is generally not 1).
+pub fn undistort_bearing(view: &View, u: f64, v: f64) -> Vector3<f64> {
+    row_rotation(v, view.camera.readout, &view.omega).transpose() * view.camera.bearing(u, v)
+}
+
+/// Pose of a moving rolling-shutter camera at row 0: `rotation = R_c` (world-to-camera),
+/// `centre = C_c` (world), linear velocity `velocity = d_c` (m/s, world frame), angular
+/// velocity `omega = ω` (rad/s, camera frame).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RsPose {
+    /// World-to-camera rotation at row 0.
+    pub rotation: Matrix3<f64>,
+    /// Camera centre at row 0, world frame.
+    pub centre: Vector3<f64>,
+    /// Linear velocity `d`, world frame, m/s.
+    pub velocity: Vector3<f64>,
+    /// Angular velocity `ω`, camera frame, rad/s.
+    pub omega: Vector3<f64>,
+}
+
+/// Why a world point has no rolling-shutter projection.
+#[derive(Debug, Clone, Copy, PartialEq, Error)]
+pub enum ProjectionError {
+    /// At some iterate the point is behind the camera (or the input is not finite).
+    #[error("point is behind the camera or not finite")]
+    BehindCamera,
+    /// The row fixed-point iteration did not converge within the iteration bound.
+    #[error("rolling-shutter row fixed point did not converge in {0} iterations")]
+    NotConverged(usize),
+}
+
+/// Maximum number of fixed-point iterations used by [`project_rs`].
+pub const MAX_ROW_ITERATIONS: usize = 100;
+
+/// Project world point `x` through the pose of the row it lands on: find `v` with
+/// `v = row of K Ω(v) R (x - C - v λ d)` by fixed-point iteration starting at the principal
+/// row (tolerance 1e-9 px, at most [`MAX_ROW_ITERATIONS`] iterations). Returns the pixel
+/// `(u, v)`; the caller checks whether it lies inside the image.
+pub fn project_rs(
+    camera: &Camera,
+    pose: &RsPose,
+    x: &Vector3<f64>,
+) -> Result<Vector2<f64>, ProjectionError> {
+    let mut v = camera.cy;
+    for _ in 0..MAX_ROW_ITERATIONS {
+        let s = v * camera.readout;
+        let r = exp_so3(&(pose.omega * s)) * pose.rotation;
+        let xc = r * (x - pose.centre - pose.velocity * s);
+        let p = camera.project(&xc).ok_or(ProjectionError::BehindCamera)?;
+        if (p.y - v).abs() < 1e-9 {
+            return Ok(p);
+        }
+        // Guard against run-away iterates (far outside any image): keep them bounded.
+        v = p.y.clamp(-1e7, 1e7);
+    }
+    Err(ProjectionError::NotConverged(MAX_ROW_ITERATIONS))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{essential_from_pose, exp_so3};
+
+    #[test]
+    fn projection_is_a_fixed_point_and_undistortion_inverts_it() {
+        let cam = Camera::paper();
+        let pose1 = RsPose {
+            rotation: Matrix3::identity(),
+            centre: Vector3::zeros(),
+            velocity: Vector3::zeros(),
+            omega: Vector3::new(1.0, -2.0, 1.5),
+        };
+        let r2 = exp_so3(&Vector3::new(0.1, -0.05, 0.2));
+        let c2 = Vector3::new(1.0, 0.3, -0.2);
+        let pose2 = RsPose {
+            rotation: r2,
+            centre: c2,
+            velocity: Vector3::zeros(),
+            omega: Vector3::new(-2.0, 0.5, 0.7),
+        };
+        let r = r2;
+        let t = -r2 * c2;
+        let e = essential_from_pose(&r, &t);
+        for x in [
+            Vector3::new(0.5, 0.3, 6.0),
+            Vector3::new(-3.0, 2.0, 20.0),
+            Vector3::new(4.0, -1.0, 9.0),
+        ] {
+            let p1 = project_rs(&cam, &pose1, &x).unwrap();
+            let p2 = project_rs(&cam, &pose2, &x).unwrap();
+            // Fixed point: the row used equals the row landed on.
+            let xc = row_rotation(p1.y, cam.readout, &pose1.omega) * x;
+            assert!((cam.project(&xc).unwrap() - p1).norm() < 1e-6);
+            let b1 = undistort_bearing(&View::new(cam, pose1.omega), p1.x, p1.y);
+            let b2 = undistort_bearing(&View::new(cam, pose2.omega), p2.x, p2.y);
+            assert!((b1.normalize() - x.normalize()).norm() < 1e-9);
+            assert!((b2.transpose() * e * b1)[0].abs() < 1e-9);
+        }
+        assert_eq!(
+            project_rs(&cam, &pose1, &Vector3::new(0.0, 0.0, -5.0)),
+            Err(ProjectionError::BehindCamera)
+        );
+        assert!(project_rs(&cam, &pose1, &Vector3::new(f64::NAN, 0.0, 5.0)).is_err());
+    }
+}

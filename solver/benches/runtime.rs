@@ -8,7 +8,7 @@ use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use nalgebra::SMatrix;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rspose::runtime::{gauss_jordan, lu_solve_template, real_eigenpairs, real_eigenpairs_hqr};
+use rspose::runtime::{gauss_jordan, lu_solve_template, real_eigenpairs};
 
 /// A random template: dense left block for small sizes; for big ones a sparse-ish block
 /// (density `d`) plus a strong diagonal so that it is non-singular.
@@ -69,12 +69,6 @@ fn bench_eigen(c: &mut Criterion) {
     });
     c.bench_function("real_eigenpairs 20x20", |b| {
         b.iter(|| real_eigenpairs(black_box(&m20)))
-    });
-    c.bench_function("real_eigenpairs_hqr 10x10", |b| {
-        b.iter(|| real_eigenpairs_hqr(black_box(&m10)))
-    });
-    c.bench_function("real_eigenpairs_hqr 20x20", |b| {
-        b.iter(|| real_eigenpairs_hqr(black_box(&m20)))
     });
     c.bench_function("nalgebra Schur::try_new only 10x10", |b| {
         b.iter(|| nalgebra::Schur::try_new(black_box(m10), f64::EPSILON, 310))

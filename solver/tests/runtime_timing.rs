@@ -5,7 +5,7 @@
 use nalgebra::SMatrix;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rspose::runtime::{gauss_jordan, lu_solve_template, real_eigenpairs, real_eigenpairs_hqr};
+use rspose::runtime::{gauss_jordan, lu_solve_template, real_eigenpairs};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -61,12 +61,6 @@ fn runtime_timings() {
             }),
             ("real_eigenpairs 20x20", 2, &mut || {
                 black_box(real_eigenpairs(black_box(&m20)));
-            }),
-            ("real_eigenpairs_hqr 10x10", 5, &mut || {
-                black_box(real_eigenpairs_hqr(black_box(&m10)));
-            }),
-            ("real_eigenpairs_hqr 20x20", 2, &mut || {
-                black_box(real_eigenpairs_hqr(black_box(&m20)));
             }),
         ],
     );

@@ -9,9 +9,11 @@
 //! the prime fields used for Gröbner bases, `f64`, and traced expressions for code emission.
 
 pub mod algebra;
+pub mod audit;
 pub mod eliminate;
 pub mod emit;
 pub mod groebner;
+pub mod interpret;
 pub mod problem;
 pub mod quotient;
 pub mod template;

@@ -17,3 +17,6 @@ pub use methods::{estimate_relative_pose, Estimate, EstimateError, EstimateOptio
 // --- end estimator side ---
 
 pub mod experiment;
+
+// --- numeric runtime used by the emitted solvers ---
+pub mod runtime;

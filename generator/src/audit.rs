@@ -1,0 +1,332 @@
+//! Numerical-stability audit of an elimination template over many random instances
+//! (`mingen audit`, DESIGN §6), through the interpreted solver of [`crate::interpret`].
+
+use crate::algebra::Poly;
+use crate::interpret::{normalized_residual, recover_eliminated, solve_template};
+use crate::template::EliminationTemplate;
+use nalgebra::Complex;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use std::fmt;
+
+/// An instance whose worst normalised residual exceeds this is a failure.
+pub const FAILURE_RESIDUAL: f64 = 1e-6;
+/// log10 residuals are clamped to `[LOG10_FLOOR, LOG10_CEIL]` (an exact zero residual
+/// counts as `LOG10_FLOOR`; an instance that could not be solved at all as `LOG10_CEIL`).
+pub const LOG10_FLOOR: f64 = -20.0;
+/// See [`LOG10_FLOOR`].
+pub const LOG10_CEIL: f64 = 20.0;
+
+/// Audit settings.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AuditOptions {
+    /// Number of random instances (default 1000).
+    pub instances: usize,
+    /// Seed of the `ChaCha8Rng` handed to the instance generator (default 1).
+    pub seed: u64,
+}
+
+impl Default for AuditOptions {
+    fn default() -> Self {
+        AuditOptions {
+            instances: 1000,
+            seed: 1,
+        }
+    }
+}
+
+/// Linearly eliminated unknowns of an instance (DESIGN §2, `eliminate`).
+#[derive(Clone, Debug)]
+pub struct EliminatedUnknowns {
+    /// Coefficient matrix (rows x k): entries are polynomials in the remaining unknowns
+    /// (the template's variables); its null vector gives the eliminated unknowns, see
+    /// [`recover_eliminated`] for the scaling.
+    pub matrix: Vec<Vec<Poly<f64>>>,
+    /// Positions of the k eliminated unknowns among the original unknowns, in order
+    /// (`ProblemLayout::eliminate`). The remaining unknowns fill the other positions in
+    /// order.
+    pub positions: Vec<usize>,
+}
+
+/// One random instance for [`audit`].
+#[derive(Clone, Debug)]
+pub struct AuditInstance {
+    /// The equations the template solves (after elimination, if any), in the template's
+    /// variables.
+    pub equations: Vec<Poly<f64>>,
+    /// The original equations, in all original unknowns: residuals are measured on these.
+    pub original: Vec<Poly<f64>>,
+    /// The eliminated unknowns, if the problem eliminates some.
+    pub eliminated: Option<EliminatedUnknowns>,
+}
+
+/// Result of an audit (serialised by [`AuditReport::to_json`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct AuditReport {
+    /// Number of instances run.
+    pub instances: usize,
+    /// Median over instances of the log10 of the worst normalised residual.
+    pub median_log10_residual: f64,
+    /// 99th percentile (nearest rank) of the same.
+    pub p99_log10_residual: f64,
+    /// Instances with a residual above [`FAILURE_RESIDUAL`], fewer solutions than
+    /// expected, or no solution at all (the interpreter failed).
+    pub failures: usize,
+    /// Unit-width bins of log10 residual: `(lower_edge, count)`, contiguous from the lowest
+    /// to the highest occupied bin.
+    pub histogram: Vec<(f64, usize)>,
+    /// Number of solutions (real and complex) expected per instance.
+    pub solutions_expected: usize,
+    /// Instances where the interpreter returned an error (counted in `failures`).
+    pub solve_errors: usize,
+    /// Instances with fewer finite solutions than expected (counted in `failures`).
+    pub missed_solutions: usize,
+    /// Mean number of real solutions per solved instance.
+    pub mean_real_solutions: f64,
+}
+
+/// Worst normalised residual of a solution over the equations.
+fn worst_residual(equations: &[Poly<f64>], s: &[Complex<f64>]) -> f64 {
+    equations
+        .iter()
+        .map(|e| normalized_residual(e, s))
+        .fold(0.0, |a, r| {
+            if r.is_nan() || a.is_nan() {
+                f64::NAN
+            } else {
+                a.max(r)
+            }
+        })
+}
+
+/// Outcome of one instance: (log10 worst residual, finite solutions, real solutions), or
+/// `None` if the instance could not be solved.
+fn run_instance(
+    template: &EliminationTemplate,
+    inst: &AuditInstance,
+) -> Option<(f64, usize, usize)> {
+    let sols = solve_template(template, &inst.equations).ok()?;
+    let mut worst: f64 = 0.0;
+    let mut finite = 0;
+    let mut real = 0;
+    for s in &sols {
+        if !s.iter().all(|z| z.re.is_finite() && z.im.is_finite()) {
+            continue;
+        }
+        let full = match &inst.eliminated {
+            None => s.clone(),
+            Some(el) => {
+                let Some(e) = recover_eliminated(&el.matrix, s) else {
+                    continue;
+                };
+                let n = s.len() + e.len();
+                let mut full = Vec::with_capacity(n);
+                let (mut si, mut ei) = (s.iter(), e.iter());
+                for pos in 0..n {
+                    let next = if el.positions.contains(&pos) {
+                        ei.next()
+                    } else {
+                        si.next()
+                    };
+                    full.push(*next?);
+                }
+                full
+            }
+        };
+        finite += 1;
+        let big = full.iter().map(|z| z.norm()).fold(1.0, f64::max);
+        if full
+            .iter()
+            .all(|z| z.im.abs() <= crate::interpret::REAL_TOL * big)
+        {
+            real += 1;
+        }
+        let r = worst_residual(&inst.original, &full);
+        worst = if r.is_nan() {
+            f64::INFINITY
+        } else {
+            worst.max(r)
+        };
+    }
+    let lg = if worst == 0.0 {
+        LOG10_FLOOR
+    } else {
+        worst.log10().clamp(LOG10_FLOOR, LOG10_CEIL)
+    };
+    Some((lg, finite, real))
+}
+
+/// Runs `opts.instances` random instances through the interpreted template.
+///
+/// `make_instance` draws one instance from the shared generator (seeded with
+/// `opts.seed`). Per solution `s` (complex included; eliminated unknowns recovered and
+/// merged back into the original order), the residual is the maximum over the original
+/// equations of `|f(s)| / sum_terms |c| |m(s)|`; per instance, the log10 of the worst
+/// residual over its solutions (clamped, see [`LOG10_FLOOR`]). An instance fails if that
+/// residual exceeds [`FAILURE_RESIDUAL`], if fewer than `expected_solutions` finite
+/// solutions were found, or if it could not be solved at all.
+pub fn audit(
+    template: &EliminationTemplate,
+    expected_solutions: usize,
+    opts: &AuditOptions,
+    mut make_instance: impl FnMut(&mut ChaCha8Rng) -> AuditInstance,
+) -> AuditReport {
+    let mut rng = ChaCha8Rng::seed_from_u64(opts.seed);
+    let mut logs = Vec::with_capacity(opts.instances);
+    let (mut failures, mut solve_errors, mut missed) = (0, 0, 0);
+    let (mut real_total, mut solved) = (0usize, 0usize);
+    for _ in 0..opts.instances {
+        let inst = make_instance(&mut rng);
+        match run_instance(template, &inst) {
+            None => {
+                solve_errors += 1;
+                failures += 1;
+                logs.push(LOG10_CEIL);
+            }
+            Some((lg, finite, real)) => {
+                solved += 1;
+                real_total += real;
+                let miss = finite < expected_solutions;
+                if miss {
+                    missed += 1;
+                }
+                if miss || lg > FAILURE_RESIDUAL.log10() {
+                    failures += 1;
+                }
+                logs.push(lg);
+            }
+        }
+    }
+    logs.sort_by(f64::total_cmp);
+    AuditReport {
+        instances: opts.instances,
+        median_log10_residual: median(&logs),
+        p99_log10_residual: quantile(&logs, 0.99),
+        failures,
+        histogram: histogram(&logs),
+        solutions_expected: expected_solutions,
+        solve_errors,
+        missed_solutions: missed,
+        mean_real_solutions: if solved > 0 {
+            real_total as f64 / solved as f64
+        } else {
+            0.0
+        },
+    }
+}
+
+fn median(sorted: &[f64]) -> f64 {
+    match sorted.len() {
+        0 => f64::NAN,
+        n if n % 2 == 1 => sorted[n / 2],
+        n => 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]),
+    }
+}
+
+/// Nearest-rank quantile.
+fn quantile(sorted: &[f64], p: f64) -> f64 {
+    if sorted.is_empty() {
+        return f64::NAN;
+    }
+    let rank = (p * sorted.len() as f64).ceil() as usize;
+    sorted[rank.clamp(1, sorted.len()) - 1]
+}
+
+fn histogram(sorted: &[f64]) -> Vec<(f64, usize)> {
+    let (Some(&lo), Some(&hi)) = (sorted.first(), sorted.last()) else {
+        return Vec::new();
+    };
+    let (lo, hi) = (lo.floor(), hi.floor());
+    let nbins = (hi - lo) as usize + 1;
+    let mut counts = vec![0usize; nbins];
+    for &x in sorted {
+        let b = ((x.floor() - lo) as usize).min(nbins - 1);
+        counts[b] += 1;
+    }
+    counts
+        .into_iter()
+        .enumerate()
+        .map(|(i, c)| (lo + i as f64, c))
+        .collect()
+}
+
+impl AuditReport {
+    /// JSON with the DESIGN §6 keys `instances`, `median_log10_residual`,
+    /// `p99_log10_residual`, `failures`, `histogram` (a list of
+    /// `{"lower_edge": e, "count": n}` for the bins `[e, e + 1)` of log10 residual), plus
+    /// `solutions_expected`, `solve_errors`, `missed_solutions`, `mean_real_solutions`.
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "instances": self.instances,
+            "median_log10_residual": self.median_log10_residual,
+            "p99_log10_residual": self.p99_log10_residual,
+            "failures": self.failures,
+            "histogram": self
+                .histogram
+                .iter()
+                .map(|(e, c)| serde_json::json!({"lower_edge": e, "count": c}))
+                .collect::<Vec<_>>(),
+            "solutions_expected": self.solutions_expected,
+            "solve_errors": self.solve_errors,
+            "missed_solutions": self.missed_solutions,
+            "mean_real_solutions": self.mean_real_solutions,
+        })
+    }
+
+    /// Text histogram, one line per bin: `[-13, -12)  ########  523`.
+    pub fn render_histogram(&self) -> String {
+        const WIDTH: usize = 50;
+        let max = self.histogram.iter().map(|b| b.1).max().unwrap_or(0).max(1);
+        let mut s = String::new();
+        for &(e, c) in &self.histogram {
+            let bar = (c * WIDTH).div_ceil(max);
+            let label = format!("[{}, {})", e, e + 1.0);
+            s.push_str(&format!("{label:>10}  {:<WIDTH$}  {c}\n", "#".repeat(bar)));
+        }
+        s
+    }
+}
+
+impl fmt::Display for AuditReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "instances:              {}", self.instances)?;
+        writeln!(f, "solutions expected:     {}", self.solutions_expected)?;
+        writeln!(f, "mean real solutions:    {:.2}", self.mean_real_solutions)?;
+        writeln!(
+            f,
+            "median log10 residual:  {:.2}",
+            self.median_log10_residual
+        )?;
+        writeln!(f, "p99 log10 residual:     {:.2}", self.p99_log10_residual)?;
+        let pct = if self.instances > 0 {
+            100.0 * self.failures as f64 / self.instances as f64
+        } else {
+            0.0
+        };
+        writeln!(
+            f,
+            "failures:               {} ({pct:.2} %; {} unsolved, {} with missed solutions)",
+            self.failures, self.solve_errors, self.missed_solutions
+        )?;
+        writeln!(f, "log10 residual histogram:")?;
+        write!(f, "{}", self.render_histogram())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn statistics() {
+        let v = [-15.0, -14.2, -13.0, -12.5, 3.0];
+        assert_eq!(median(&v), -13.0);
+        assert_eq!(quantile(&v, 0.99), 3.0);
+        assert_eq!(quantile(&v, 0.2), -15.0);
+        let h = histogram(&v);
+        assert_eq!(h.first(), Some(&(-15.0, 2)));
+        assert_eq!(h.len(), 19);
+        assert_eq!(h.last(), Some(&(3.0, 1)));
+        assert_eq!(h.iter().map(|b| b.1).sum::<usize>(), 5);
+    }
+}

@@ -1,0 +1,313 @@
+//! Elimination of row-major template matrices.
+//!
+//! Both routines work in place on a row-major `rows x cols` slice whose first `pivot_cols`
+//! columns are to be eliminated (the template's `excess | reducible` blocks) and whose
+//! remaining `cols - pivot_cols` columns are the right-hand side (the basis block).
+//!
+//! Measured (2-core shared VM, Xeon ~2.6 GHz, x86-64 baseline SSE2; minimum of
+//! interleaved batches from `tests/runtime_timing.rs`, copy of the input included):
+//! 10x20 dense: `gauss_jordan` ~0.85-0.93 µs, `lu_solve_template(first_row = 4)`
+//! ~0.66-0.72 µs. 100x120 (15 % dense + diagonal, fills in), criterion medians under
+//! load: `gauss_jordan` ~550-630 µs, `lu_solve_template(first_row = 80)` ~300-340 µs.
+//! `lu_solve_template` does less work because it back-substitutes only the rows the
+//! action matrix needs; prefer it in emitted code.
+
+/// Relative pivot tolerance: a pivot whose magnitude is at most `PIVOT_TOL * max|m_ij|`
+/// (over the whole input) makes the elimination fail.
+pub const PIVOT_TOL: f64 = 1e-14;
+
+/// Largest magnitude of the entries, or `None` if one is not finite. Branch-free over
+/// four lanes so that it vectorises (non-finite entries make the lane sums non-finite; a
+/// finite matrix whose entries sum beyond `f64::MAX` is rejected as well).
+#[inline]
+fn scale_of(m: &[f64]) -> Option<f64> {
+    let mut mx = [0.0f64; 4];
+    let mut sum = [0.0f64; 4];
+    let chunks = m.chunks_exact(4);
+    let rest = chunks.remainder();
+    for c in chunks {
+        for k in 0..4 {
+            let a = c[k].abs();
+            mx[k] = if a > mx[k] { a } else { mx[k] };
+            sum[k] += a;
+        }
+    }
+    for (k, &x) in rest.iter().enumerate() {
+        let a = x.abs();
+        mx[k] = if a > mx[k] { a } else { mx[k] };
+        sum[k] += a;
+    }
+    let total = (sum[0] + sum[1]) + (sum[2] + sum[3]);
+    if !total.is_finite() {
+        return None;
+    }
+    Some(mx[0].max(mx[1]).max(mx[2].max(mx[3])))
+}
+
+/// Row index of the largest `|m[i][j]|` over `i in j..rows`, and that magnitude.
+#[inline]
+fn find_pivot(m: &[f64], rows: usize, cols: usize, j: usize) -> (usize, f64) {
+    let mut p = j;
+    let mut best = m[j * cols + j].abs();
+    for i in j + 1..rows {
+        let a = m[i * cols + j].abs();
+        if a > best {
+            best = a;
+            p = i;
+        }
+    }
+    (p, best)
+}
+
+/// Swaps columns `j..cols` of rows `j < p` (columns before `j` are zero in both rows).
+#[inline]
+fn swap_rows_from(m: &mut [f64], cols: usize, j: usize, p: usize) {
+    if p != j {
+        let (a, b) = m.split_at_mut(p * cols);
+        a[j * cols + j..(j + 1) * cols].swap_with_slice(&mut b[j..cols]);
+    }
+}
+
+/// `row[j] := 0; row[j+1..] -= row[j] * prow` where `prow` is the pivot row from `j + 1`.
+#[inline(always)]
+fn eliminate_row(row: &mut [f64], j: usize, prow: &[f64]) {
+    let f = row[j];
+    if f != 0.0 {
+        row[j] = 0.0;
+        for (a, &b) in row[j + 1..].iter_mut().zip(prow) {
+            *a -= f * b;
+        }
+    }
+}
+
+/// Checks the arguments and returns the used part of `m`.
+#[inline]
+fn checked(m: &mut [f64], rows: usize, cols: usize, pivot_cols: usize) -> Option<&mut [f64]> {
+    let n = rows.checked_mul(cols)?;
+    if m.len() < n || pivot_cols > rows || pivot_cols > cols {
+        return None;
+    }
+    Some(&mut m[..n])
+}
+
+/// In-place Gauss-Jordan elimination with partial (row) pivoting of the row-major
+/// `rows x cols` matrix `m`, eliminating the first `pivot_cols` columns in order.
+///
+/// On success (`true`), for every `j < pivot_cols` row `j` has 1 at column `j` and every
+/// other row has 0 there (rows are permuted so that pivot `j` sits in row `j`); columns
+/// `pivot_cols..cols` hold the reduced right-hand side: row `j` reads
+/// `col_j + sum_k m[j][pivot_cols + k] * rhs_k`. Rows beyond `pivot_cols` (tall templates)
+/// are reduced too.
+///
+/// Returns `false` (leaving garbage) if some column gets no pivot larger than
+/// `PIVOT_TOL * max|m_ij|`, if an entry is not finite, if `m.len() < rows * cols`, or if
+/// `pivot_cols > min(rows, cols)`. Never panics, never allocates.
+pub fn gauss_jordan(m: &mut [f64], rows: usize, cols: usize, pivot_cols: usize) -> bool {
+    let Some(m) = checked(m, rows, cols, pivot_cols) else {
+        return false;
+    };
+    let Some(scale) = scale_of(m) else {
+        return false;
+    };
+    let tol = scale * PIVOT_TOL;
+    for j in 0..pivot_cols {
+        let (p, best) = find_pivot(m, rows, cols, j);
+        if !(best > tol && best <= f64::MAX) {
+            return false;
+        }
+        swap_rows_from(m, cols, j, p);
+        let (before, rest) = m.split_at_mut(j * cols);
+        let (prow, after) = rest.split_at_mut(cols);
+        let inv = 1.0 / prow[j];
+        prow[j] = 1.0;
+        for x in &mut prow[j + 1..] {
+            *x *= inv;
+        }
+        let prow = &prow[j + 1..];
+        for row in before.chunks_exact_mut(cols) {
+            eliminate_row(row, j, prow);
+        }
+        for row in after.chunks_exact_mut(cols) {
+            eliminate_row(row, j, prow);
+        }
+    }
+    true
+}
+
+/// Same contract as [`gauss_jordan`] but only rows `first_row..pivot_cols` are fully
+/// reduced: forward elimination with partial pivoting (unit pivots), then back
+/// substitution for rows `pivot_cols - 1` down to `first_row` only.
+///
+/// On success, rows `first_row..pivot_cols` are exactly what [`gauss_jordan`] leaves
+/// (1 on the diagonal, 0 elsewhere in the first `pivot_cols` columns, the reduced
+/// right-hand side after), up to rounding. Rows `< first_row` hold the unit upper
+/// triangular factor (not reduced), rows `>= pivot_cols` their forward-eliminated
+/// remainder. For a template ordered `excess | reducible | basis`, pass
+/// `first_row = n_excess`: the excess rows are never back-substituted.
+///
+/// Cost for the 5-point 10x20 template with `first_row = 4`: about 0.65x the flops of
+/// `gauss_jordan`; measured 0.75-0.8x its time at 10x20 and ~0.5x at 100x120.
+///
+/// Returns `false` on the same conditions as [`gauss_jordan`], or if
+/// `first_row > pivot_cols`. Never panics, never allocates.
+pub fn lu_solve_template(
+    m: &mut [f64],
+    rows: usize,
+    cols: usize,
+    pivot_cols: usize,
+    first_row: usize,
+) -> bool {
+    if first_row > pivot_cols {
+        return false;
+    }
+    let Some(m) = checked(m, rows, cols, pivot_cols) else {
+        return false;
+    };
+    let Some(scale) = scale_of(m) else {
+        return false;
+    };
+    let tol = scale * PIVOT_TOL;
+    // Forward elimination (rows below the pivot only), pivot rows scaled to unit pivots.
+    for j in 0..pivot_cols {
+        let (p, best) = find_pivot(m, rows, cols, j);
+        if !(best > tol && best <= f64::MAX) {
+            return false;
+        }
+        swap_rows_from(m, cols, j, p);
+        let (_, rest) = m.split_at_mut(j * cols);
+        let (prow, after) = rest.split_at_mut(cols);
+        let inv = 1.0 / prow[j];
+        prow[j] = 1.0;
+        for x in &mut prow[j + 1..] {
+            *x *= inv;
+        }
+        let prow = &prow[j + 1..];
+        for row in after.chunks_exact_mut(cols) {
+            eliminate_row(row, j, prow);
+        }
+    }
+    // Back substitution, bottom-up, for the requested rows only.
+    for k in (first_row..pivot_cols).rev() {
+        let (upper, lower) = m.split_at_mut((k + 1) * cols);
+        let rowk = &mut upper[k * cols..];
+        for (l, rowl) in (k + 1..pivot_cols).zip(lower.chunks_exact(cols)) {
+            let f = rowk[l];
+            if f != 0.0 {
+                rowk[l] = 0.0;
+                for (a, &b) in rowk[pivot_cols..].iter_mut().zip(&rowl[pivot_cols..]) {
+                    *a -= f * b;
+                }
+            }
+        }
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    fn random(rng: &mut ChaCha8Rng, rows: usize, cols: usize, density: f64) -> Vec<f64> {
+        (0..rows * cols)
+            .map(|_| {
+                if rng.gen::<f64>() < density {
+                    rng.gen_range(-1.0..1.0)
+                } else {
+                    0.0
+                }
+            })
+            .collect()
+    }
+
+    /// max |A X - B| where the original is [A | B] and X is read from the reduced rows.
+    fn check_solution(orig: &[f64], red: &[f64], rows: usize, cols: usize, pc: usize) -> f64 {
+        let r = cols - pc;
+        let mut worst: f64 = 0.0;
+        for i in 0..rows {
+            for c in 0..r {
+                // A X = B, X[k][c] = red[k][pc + c]; GJ row reads col_k + X_k rhs = 0 => A X = B.
+                let mut s = 0.0;
+                for k in 0..pc {
+                    s += orig[i * cols + k] * red[k * cols + pc + c];
+                }
+                worst = worst.max((s - orig[i * cols + pc + c]).abs());
+            }
+        }
+        worst
+    }
+
+    #[test]
+    fn gauss_jordan_reduces_random_templates() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        for &(rows, cols, density) in &[(10, 20, 1.0), (10, 20, 0.5), (30, 45, 0.3), (1, 3, 1.0)] {
+            for _ in 0..20 {
+                let orig = random(&mut rng, rows, cols, density);
+                let mut m = orig.clone();
+                if !gauss_jordan(&mut m, rows, cols, rows) {
+                    continue; // singular sparse draw
+                }
+                for i in 0..rows {
+                    for j in 0..rows {
+                        let want = if i == j { 1.0 } else { 0.0 };
+                        assert_eq!(m[i * cols + j], want);
+                    }
+                }
+                assert!(check_solution(&orig, &m, rows, cols, rows) < 1e-9);
+                let mut l = orig.clone();
+                let first = rows / 3;
+                assert!(lu_solve_template(&mut l, rows, cols, rows, first));
+                for i in first..rows {
+                    for j in 0..cols {
+                        let d = (l[i * cols + j] - m[i * cols + j]).abs();
+                        assert!(d < 1e-9, "row {i} col {j}: {d}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn tall_templates_and_partial_pivot_columns() {
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        let (rows, cols, pc) = (12, 20, 8);
+        let orig = random(&mut rng, rows, cols, 1.0);
+        let mut m = orig.clone();
+        assert!(gauss_jordan(&mut m, rows, cols, pc));
+        for i in 0..rows {
+            for j in 0..pc {
+                assert_eq!(m[i * cols + j], if i == j { 1.0 } else { 0.0 });
+            }
+        }
+    }
+
+    #[test]
+    fn failures_do_not_panic() {
+        let mut m = vec![0.0; 200];
+        assert!(!gauss_jordan(&mut m, 10, 20, 10));
+        assert!(!lu_solve_template(&mut m, 10, 20, 10, 4));
+        let mut m = vec![1.0; 10];
+        assert!(!gauss_jordan(&mut m, 10, 20, 10)); // too short
+        assert!(!gauss_jordan(&mut m, usize::MAX, 3, 1)); // overflow
+        assert!(!gauss_jordan(&mut m, 2, 5, 3)); // more pivots than rows
+        assert!(!lu_solve_template(&mut m, 2, 5, 2, 3));
+        let mut rng = ChaCha8Rng::seed_from_u64(1);
+        let mut m = random(&mut rng, 10, 20, 1.0);
+        m[57] = f64::NAN;
+        assert!(!gauss_jordan(&mut m.clone(), 10, 20, 10));
+        assert!(!lu_solve_template(&mut m, 10, 20, 10, 0));
+        let mut m = random(&mut rng, 10, 20, 1.0);
+        m[199] = f64::INFINITY;
+        assert!(!gauss_jordan(&mut m, 10, 20, 10));
+        // Rank-deficient left block: row 3 = 2 * row 1.
+        let mut m = random(&mut rng, 10, 20, 1.0);
+        for c in 0..10 {
+            m[3 * 20 + c] = 2.0 * m[20 + c];
+        }
+        assert!(!gauss_jordan(&mut m.clone(), 10, 20, 10));
+        assert!(!lu_solve_template(&mut m, 10, 20, 10, 4));
+        // Empty is fine.
+        assert!(gauss_jordan(&mut [], 0, 0, 0));
+    }
+}

@@ -1,0 +1,217 @@
+//! Null vectors of n x 3 matrices.
+
+#[inline]
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+#[inline]
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+#[inline]
+fn scaled(r: [f64; 3], s: f64) -> [f64; 3] {
+    [r[0] * s, r[1] * s, r[2] * s]
+}
+
+/// Rank threshold: the best cross product of two rows (scaled so that max |a_ij| = 1)
+/// must have a norm above this, otherwise the matrix has rank < 2.
+const RANK_TOL: f64 = 1e-12;
+
+/// Unit null vector (sign arbitrary) of the `n x 3` matrix with the given rows, `n >= 2`:
+/// in the least-squares sense, the unit `v` minimising `|A v|`.
+///
+/// Method: the cross product of the best-conditioned pair of rows (all pairs for
+/// `n <= 8`, else the largest row against every other) — exact to rounding when `A` has
+/// rank 2 — and, for `n > 2`, the eigenvector of the smallest eigenvalue of `A^T A`
+/// (closed-form 3x3 symmetric eigenvalue, then the best cross product of the rows of
+/// `A^T A - lambda I`); the candidate with the smaller `|A v|` wins (evaluated on the rows,
+/// not on `A^T A`, so noise-free inputs keep their full accuracy).
+///
+/// `None` if `n < 2`, an entry is not finite, or the rank is below 2.
+/// Never panics, never allocates.
+pub fn null_vector3(rows: &[[f64; 3]]) -> Option<[f64; 3]> {
+    let n = rows.len();
+    if n < 2 {
+        return None;
+    }
+    let mut s = 0.0f64;
+    for r in rows {
+        for &x in r {
+            let a = x.abs();
+            if !a.is_finite() {
+                return None;
+            }
+            s = s.max(a);
+        }
+    }
+    if s == 0.0 {
+        return None;
+    }
+    let inv = 1.0 / s;
+    let row = |i: usize| scaled(rows[i], inv);
+
+    let mut best = [0.0; 3];
+    let mut bn = 0.0;
+    let mut consider = |c: [f64; 3]| {
+        let cn = dot(c, c);
+        if cn > bn {
+            bn = cn;
+            best = c;
+        }
+    };
+    if n <= 8 {
+        for i in 0..n {
+            let ri = row(i);
+            for j in i + 1..n {
+                consider(cross(ri, row(j)));
+            }
+        }
+    } else {
+        let big = (0..n)
+            .max_by(|&a, &b| dot(row(a), row(a)).total_cmp(&dot(row(b), row(b))))
+            .unwrap_or(0);
+        let rb = row(big);
+        for j in 0..n {
+            if j != big {
+                consider(cross(rb, row(j)));
+            }
+        }
+    }
+    if bn.is_nan() || bn.sqrt() <= RANK_TOL {
+        return None;
+    }
+    let mut v = scaled(best, 1.0 / bn.sqrt());
+    if n == 2 {
+        return Some(v);
+    }
+
+    let resid = |v: [f64; 3]| -> f64 {
+        (0..n)
+            .map(|i| {
+                let d = dot(row(i), v);
+                d * d
+            })
+            .sum()
+    };
+    // Gram matrix of the scaled rows.
+    let mut g = [[0.0; 3]; 3];
+    for i in 0..n {
+        let r = row(i);
+        for a in 0..3 {
+            for b in 0..3 {
+                g[a][b] += r[a] * r[b];
+            }
+        }
+    }
+    // Smallest eigenvalue of G in closed form (trigonometric method for symmetric 3x3),
+    // then the null vector of G - lambda I as its best row cross product.
+    let p1 = g[0][1] * g[0][1] + g[0][2] * g[0][2] + g[1][2] * g[1][2];
+    let q = (g[0][0] + g[1][1] + g[2][2]) / 3.0;
+    let p2 = (g[0][0] - q).powi(2) + (g[1][1] - q).powi(2) + (g[2][2] - q).powi(2) + 2.0 * p1;
+    let p = (p2 / 6.0).sqrt();
+    if p > 0.0 {
+        let b = |i: usize, j: usize| (g[i][j] - if i == j { q } else { 0.0 }) / p;
+        let det = b(0, 0) * (b(1, 1) * b(2, 2) - b(1, 2) * b(2, 1))
+            - b(0, 1) * (b(1, 0) * b(2, 2) - b(1, 2) * b(2, 0))
+            + b(0, 2) * (b(1, 0) * b(2, 1) - b(1, 1) * b(2, 0));
+        let phi = (0.5 * det).clamp(-1.0, 1.0).acos() / 3.0;
+        let lmin = q + 2.0 * p * (phi + 2.0 * std::f64::consts::FRAC_PI_3).cos();
+        let h = [
+            [g[0][0] - lmin, g[0][1], g[0][2]],
+            [g[1][0], g[1][1] - lmin, g[1][2]],
+            [g[2][0], g[2][1], g[2][2] - lmin],
+        ];
+        let cands = [cross(h[1], h[2]), cross(h[2], h[0]), cross(h[0], h[1])];
+        let w = cands
+            .into_iter()
+            .max_by(|a, b| dot(*a, *a).total_cmp(&dot(*b, *b)))
+            .unwrap_or([0.0; 3]);
+        let wn = dot(w, w).sqrt();
+        if wn > 0.0 && wn <= f64::MAX {
+            let w = scaled(w, 1.0 / wn);
+            if resid(w) < resid(v) {
+                v = w;
+            }
+        }
+    }
+    Some(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    fn unit(rng: &mut ChaCha8Rng) -> [f64; 3] {
+        let v = [
+            rng.gen_range(-1.0..1.0),
+            rng.gen_range(-1.0..1.0),
+            rng.gen_range(-1.0f64..1.0),
+        ];
+        scaled(v, 1.0 / dot(v, v).sqrt())
+    }
+
+    #[test]
+    fn exact_null_vectors() {
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        for n in [2usize, 3, 5, 12] {
+            for _ in 0..100 {
+                let t = unit(&mut rng);
+                // Rows orthogonal to t: random vectors minus their component along t.
+                let rows: Vec<[f64; 3]> = (0..n)
+                    .map(|_| {
+                        let r = unit(&mut rng);
+                        let d = dot(r, t);
+                        let r = [r[0] - d * t[0], r[1] - d * t[1], r[2] - d * t[2]];
+                        scaled(r, rng.gen_range(0.1..10.0))
+                    })
+                    .collect();
+                let v = null_vector3(&rows).unwrap();
+                assert!((dot(v, t).abs() - 1.0).abs() < 1e-12);
+                assert!((dot(v, v) - 1.0).abs() < 1e-14);
+            }
+        }
+    }
+
+    #[test]
+    fn least_squares_with_noise() {
+        let mut rng = ChaCha8Rng::seed_from_u64(6);
+        for _ in 0..100 {
+            let rows: Vec<[f64; 3]> = (0..6).map(|_| unit(&mut rng)).collect();
+            let v = null_vector3(&rows).unwrap();
+            // Compare with nalgebra's smallest eigenvector of A^T A.
+            let a = nalgebra::DMatrix::from_fn(6, 3, |i, j| rows[i][j]);
+            let eig = (a.transpose() * &a).symmetric_eigen();
+            let k = eig.eigenvalues.imin();
+            let e = eig.eigenvectors.column(k);
+            let c = (v[0] * e[0] + v[1] * e[1] + v[2] * e[2]).abs();
+            let r = |v: [f64; 3]| rows.iter().map(|r| dot(*r, v).powi(2)).sum::<f64>();
+            let opt = eig.eigenvalues[k];
+            assert!(r(v) <= opt * (1.0 + 1e-9) + 1e-15, "{c} {} {}", r(v), opt);
+        }
+    }
+
+    #[test]
+    fn degenerate_inputs() {
+        assert_eq!(null_vector3(&[]), None);
+        assert_eq!(null_vector3(&[[1.0, 2.0, 3.0]]), None);
+        assert_eq!(null_vector3(&[[1.0, 2.0, 3.0], [2.0, 4.0, 6.0]]), None);
+        assert_eq!(null_vector3(&[[0.0; 3]; 5]), None);
+        assert_eq!(null_vector3(&[[1.0, f64::NAN, 3.0], [0.0, 1.0, 0.0]]), None);
+        assert_eq!(
+            null_vector3(&[[1.0, 0.0, 0.0], [f64::INFINITY, 1.0, 0.0]]),
+            None
+        );
+        let v = null_vector3(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]).unwrap();
+        assert_eq!(v[2].abs(), 1.0);
+        let v = null_vector3(&[[1e300, 0.0, 0.0], [0.0, 1e-300, 0.0]]);
+        assert!(v.is_none() || v.unwrap().iter().all(|x| x.is_finite()));
+    }
+}

@@ -1,22 +1,37 @@
-//! rspose: gyro-aided rolling-shutter relative pose.
+//! # rspose — gyro-aided relative pose of rolling-shutter cameras
+//!
+//! Matches between two rolling-shutter (RS) images plus the gyroscope reading of each view
+//! in; relative pose out. Conventions (DESIGN §4): pixel (u, v) with v the image row;
+//! bearing m = K⁻¹[u, v, 1]ᵀ; row rotation Ω(v) = exp([v λ ω]×); relative pose refers to
+//! row 0 of each image, R = R₂R₁ᵀ, t = R₂(C₁ − C₂), |t| = 1.
+//!
+//! - Minimal solvers: [`generated`] (emitted by `mingen` from `templates/*.mp`) on the
+//!   shared numeric [`runtime`], adapted for the estimator in [`minimal`].
+//! - Model: [`camera`], [`rolling_shutter`], [`geometry`], [`epipolar`].
+//! - Estimation: [`ransac`], [`refine`], [`methods`] (one file per method) behind
+//!   [`estimate_relative_pose`].
+//! - Data and evaluation: [`pair_file`], [`simulate`], [`evaluate`], [`experiment`].
 
-// --- estimator side (camera model, geometry, simulator, robust estimation, methods) ---
+// Minimal solvers and their numeric runtime.
+pub mod generated;
+pub mod minimal;
+pub mod runtime;
+
+// Camera model and geometry.
 pub mod camera;
 pub mod epipolar;
-pub mod evaluate;
 pub mod geometry;
+pub mod rolling_shutter;
+
+// Robust estimation, refinement and the methods.
 pub mod methods;
-pub mod minimal;
-pub mod pair_file;
 pub mod ransac;
 pub mod refine;
-pub mod rolling_shutter;
+
+// Data, simulation, evaluation and the paper's experiments.
+pub mod evaluate;
+pub mod experiment;
+pub mod pair_file;
 pub mod simulate;
 
 pub use methods::{estimate_relative_pose, Estimate, EstimateError, EstimateOptions, Method};
-// --- end estimator side ---
-
-pub mod experiment;
-
-// --- numeric runtime used by the emitted solvers ---
-pub mod runtime;

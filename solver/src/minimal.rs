@@ -15,58 +15,11 @@
 use crate::geometry::{epipolar_nullspace, exp_so3};
 use nalgebra::{Matrix3, SMatrix, Vector3};
 
-// TODO(generated): the emitted solvers do not exist yet on this branch. Replace the stub
-// below by `use crate::generated;` and set `GENERATED_AVAILABLE = true` (delete the stub
-// module) once `solver/src/generated/{gs5pt,grsrp10,grsrp}.rs` are merged.
-/// Whether the generated minimal solvers are linked in. While `false`, methods needing them
-/// return [`crate::methods::EstimateError::SolverUnavailable`].
-pub const GENERATED_AVAILABLE: bool = false;
+use crate::generated;
 
-#[allow(dead_code)]
-mod generated {
-    //! Stub with the exact API of the emitted solvers; returns no solutions.
-    pub mod gs5pt {
-        pub struct Data {
-            pub e1: [[f64; 3]; 3],
-            pub e2: [[f64; 3]; 3],
-            pub e3: [[f64; 3]; 3],
-            pub e4: [[f64; 3]; 3],
-        }
-        pub struct Solution {
-            pub x: f64,
-            pub y: f64,
-            pub z: f64,
-        }
-        pub fn solve(_: &Data) -> Vec<Solution> {
-            Vec::new()
-        }
-    }
-    pub mod grsrp10 {
-        pub struct Data {
-            pub x1: [[f64; 2]; 5],
-            pub x2: [[f64; 2]; 5],
-            pub v1: [f64; 5],
-            pub v2: [f64; 5],
-            pub w1: [f64; 3],
-            pub w2: [f64; 3],
-            pub r0: [[f64; 3]; 3],
-        }
-        pub struct Solution {
-            pub a: [f64; 3],
-            pub t: [f64; 3],
-        }
-        pub fn solve(_: &Data) -> Vec<Solution> {
-            Vec::new()
-        }
-    }
-    pub mod grsrp {
-        pub use super::grsrp10::{Data, Solution};
-        pub fn solve(_: &Data) -> Vec<Solution> {
-            Vec::new()
-        }
-    }
-}
-// END TODO(generated)
+/// Whether the generated minimal solvers are linked in (they always are; kept so callers
+/// written against a build without them still compile).
+pub const GENERATED_AVAILABLE: bool = true;
 
 /// Which essential-matrix solver the `gsrp`, `rectified` (and `R_0` of `grsrp`) use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -214,15 +167,21 @@ impl GrsrpSolver {
 
     /// Solve one sample; appends `(R = R_0 exp([a]×), t / |t|)` for each finite solution.
     pub fn solve(&self, s: &GrsrpSample, out: &mut Vec<(Matrix3<f64>, Vector3<f64>)>) {
-        let data = generated::grsrp10::Data {
-            x1: s.x1,
-            x2: s.x2,
-            v1: s.v1,
-            v2: s.v2,
-            w1: s.w1.into(),
-            w2: s.w2.into(),
-            r0: rows(&s.r0),
-        };
+        // grsrp10 and grsrp are emitted from problem files with the same data
+        // declarations, hence structurally identical `Data` types.
+        macro_rules! data {
+            ($module:ident) => {
+                generated::$module::Data {
+                    x1: s.x1,
+                    x2: s.x2,
+                    v1: s.v1,
+                    v2: s.v2,
+                    w1: s.w1.into(),
+                    w2: s.w2.into(),
+                    r0: rows(&s.r0),
+                }
+            };
+        }
         let push = |a: [f64; 3], t: [f64; 3], out: &mut Vec<(Matrix3<f64>, Vector3<f64>)>| {
             let a = Vector3::from(a);
             let t = Vector3::from(t);
@@ -233,12 +192,12 @@ impl GrsrpSolver {
         };
         match self {
             GrsrpSolver::Ten => {
-                for sol in generated::grsrp10::solve(&data).iter() {
+                for sol in generated::grsrp10::solve(&data!(grsrp10)).iter() {
                     push(sol.a, sol.t, out);
                 }
             }
             GrsrpSolver::Twenty => {
-                for sol in generated::grsrp::solve(&data).iter() {
+                for sol in generated::grsrp::solve(&data!(grsrp)).iter() {
                     push(sol.a, sol.t, out);
                 }
             }

@@ -264,7 +264,6 @@ fn require_generated() -> bool {
 }
 
 #[test]
-#[ignore = "needs generated solvers"]
 fn rectified_noise_free_is_exact() {
     if !require_generated() {
         return;
@@ -286,7 +285,6 @@ fn rectified_noise_free_is_exact() {
 }
 
 #[test]
-#[ignore = "needs generated solvers"]
 fn paper_accuracy_at_2_5_rad_s() {
     if !require_generated() {
         return;
@@ -325,7 +323,6 @@ fn paper_accuracy_at_2_5_rad_s() {
 }
 
 #[test]
-#[ignore = "needs generated solvers"]
 fn grsrp_variants_and_r0_sources_agree() {
     if !require_generated() {
         return;

@@ -24,6 +24,7 @@ fn run(f: Fixture, opts: &TemplateOptions) -> Generated {
         g.seconds.2,
         t.elapsed().as_secs_f64()
     );
+    println!("    basis: {} {:?}", g.built.basis_choice, g.built.template.basis);
     for (step, r, c) in &g.built.history {
         println!("    {step}: {r}x{c}");
     }
@@ -130,4 +131,27 @@ fn inconsistent_input_is_an_error() {
         }
     ));
     assert!(e.to_string().contains("inconsistent"));
+}
+
+#[test]
+#[ignore]
+fn explore_basis_selection() {
+    use mingen::template::select::{explore, BasisOrder};
+    let a = analyse(&Fixture::Grsrp, 2024).unwrap();
+    let mut orders = Vec::new();
+    let mut perm = vec![0usize, 1, 2, 3, 4, 5];
+    // Heap's algorithm, all 720 permutations.
+    fn heap(k: usize, a: &mut Vec<usize>, out: &mut Vec<BasisOrder>) {
+        if k == 1 {
+            out.push(BasisOrder::Grevlex(a.clone()));
+            return;
+        }
+        for i in 0..k {
+            heap(k - 1, a, out);
+            if k % 2 == 0 { a.swap(i, k - 1) } else { a.swap(0, k - 1) }
+        }
+    }
+    heap(6, &mut perm, &mut orders);
+    orders.push(BasisOrder::DegreeThenSet(0b111000, true));
+    explore::<{ mingen::algebra::P1 }>(&a.equations, 6, a.count, &[3], &orders, 4);
 }

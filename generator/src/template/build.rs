@@ -5,6 +5,8 @@
 //! ## Public API
 //! - [`build_template`]`(&equations, &basis, action_var, &opts)`: the shrunk template for
 //!   one action variable, from the equations of one random instance mod P.
+//!   Besides the given (standard-monomial) basis it tries bases selected among the
+//!   template's columns ([`super::select`], `opts.basis_selection`) and keeps the smallest.
 //! - [`best_template`]: tries every unknown as action variable and keeps the best.
 //! - [`generate`]`(&source, &opts)`: the whole algebra pipeline from an
 //!   [`InstanceSource`]: [`analyse`] (count and basis, confirmed), [`best_template`],
@@ -17,7 +19,7 @@
 //! blocks); the basis block does not enter the test.
 
 use super::linalg::{gauss_jordan, is_squarefree};
-use super::select;
+use super::select::{self, SelectedTemplate};
 use super::shrink::shrink;
 use super::validate::{nf_action_charpoly, validate, ValidationReport};
 use super::{EliminationTemplate, TemplateRow};
@@ -313,25 +315,29 @@ pub fn build_template<const P: u32>(
             break;
         }
     }
-    let mut best: Option<(usize, Blocks, Vec<Candidate>, Vec<ShrinkStep>, String)> =
-        best.map(|(score, kept, history)| {
-            (
-                score,
-                blocks,
-                kept,
-                history,
-                "standard monomials (grevlex)".to_string(),
-            )
-        });
+    let mut best: Option<SelectedTemplate> = best.map(|(score, kept, history)| SelectedTemplate {
+        score,
+        blocks,
+        kept,
+        history,
+        label: "standard monomials (grevlex)".to_string(),
+    });
     if opts.basis_selection {
         let maxeq = eqs.iter().filter_map(|f| f.degree()).max().unwrap_or(0);
         if let Some(sel) = select::best_selected::<P>(eqs, nvars, &action, basis.len(), maxeq) {
-            if best.as_ref().map_or(true, |b| sel.score < b.0) {
-                best = Some((sel.score, sel.blocks, sel.kept, sel.history, sel.label));
+            if best.as_ref().map_or(true, |b| sel.score < b.score) {
+                best = Some(sel);
             }
         }
     }
-    let Some((_, blocks, kept, history, basis_choice)) = best else {
+    let Some(SelectedTemplate {
+        blocks,
+        kept,
+        history,
+        label: basis_choice,
+        ..
+    }) = best
+    else {
         return Err(TemplateError::NotReducible {
             action: show(&action),
             max_degree: d0 + opts.max_extra_degree,
@@ -485,7 +491,9 @@ pub fn best_template<const P: u32>(
 pub struct Generated {
     /// Number of solutions.
     pub count: usize,
-    /// Quotient basis (descending grevlex).
+    /// Standard monomials of the Gröbner basis (descending grevlex). The template's own
+    /// basis, `built.template.basis`, may differ (basis selection): emitters and `inspect`
+    /// must use the template's.
     pub basis: Vec<Monomial>,
     /// The chosen template with its shrink history.
     pub built: BuiltTemplate,

@@ -4,7 +4,7 @@
 
 use super::build::{candidates, Blocks, Candidate, ShrinkStep};
 use super::linalg::gauss_jordan;
-use super::shrink::shrink;
+use super::shrink::{shrink, shrink_quick};
 use crate::algebra::{Fp, Monomial, MonomialOrder, Poly};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -174,8 +174,9 @@ pub(crate) struct SelectedTemplate {
 
 /// Basis selection for one action: for the candidate degrees `maxeq + 1 ..= maxeq + 3`
 /// (stopping at the first that succeeds), and each of [`basis_orders`], selects a basis
-/// ([`select_basis`]) and, if the candidates reduce it, shrinks; returns the smallest
-/// template (fewest rows * cols, ties to the earlier order). Deterministic.
+/// ([`select_basis`]); each distinct basis that the candidates reduce is screened with
+/// [`shrink_quick`], and the best (fewest rows * cols, ties to the earlier order) is
+/// shrunk with every strategy ([`shrink`]). Deterministic.
 pub(crate) fn best_selected<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     nvars: usize,
@@ -188,7 +189,7 @@ pub(crate) fn best_selected<const P: u32>(
         let cands = candidates(eqs, d);
         let refs: Vec<&Candidate> = cands.iter().collect();
         let mut seen: BTreeSet<Vec<Monomial>> = BTreeSet::new();
-        let mut best: Option<SelectedTemplate> = None;
+        let mut screened: Option<(usize, Blocks, &BasisOrder)> = None;
         for o in &orders {
             let Some(b) = select_basis::<P>(&cands, nvars, action, count, o) else {
                 continue;
@@ -200,30 +201,33 @@ pub(crate) fn best_selected<const P: u32>(
             if !blocks.reducible_by::<P>(&refs) {
                 continue;
             }
+            let kept = shrink_quick::<P>(&blocks, cands.clone());
+            let score =
+                kept.len() * (blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + count);
+            if screened.as_ref().map_or(true, |x| score < x.0) {
+                screened = Some((score, blocks, o));
+            }
+        }
+        if let Some((_, blocks, o)) = screened {
             let ne = blocks.excess_of(cands.iter()).len();
             let mut history = vec![(
                 format!("all multiples up to degree {d}"),
                 cands.len(),
-                ne + blocks.reducible.len() + b.len(),
+                ne + blocks.reducible.len() + count,
             )];
-            let kept = shrink::<P>(&blocks, cands.clone(), &mut history);
+            let kept = shrink::<P>(&blocks, cands, &mut history);
             let score =
                 kept.len() * (blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + count);
-            if best.as_ref().map_or(true, |x| score < x.score) {
-                best = Some(SelectedTemplate {
-                    score,
-                    blocks,
-                    kept,
-                    history,
-                    label: format!(
-                        "selected by elimination of all multiples up to degree {d}, columns in {}",
-                        o.describe()
-                    ),
-                });
-            }
-        }
-        if best.is_some() {
-            return best;
+            return Some(SelectedTemplate {
+                score,
+                blocks,
+                kept,
+                history,
+                label: format!(
+                    "selected by elimination of all multiples up to degree {d}, columns in {}",
+                    o.describe()
+                ),
+            });
         }
     }
     None
@@ -269,4 +273,38 @@ pub fn explore<const P: u32>(
             println!("SUMMARY action {av}: {r}x{c} ({n} orders) B {b:?}");
         }
     }
+}
+
+/// Exploration helper: shrinks the template of the basis selected with `order` at degree
+/// `d` under `tries` random removal orders and prints the sizes; not part of the API.
+#[doc(hidden)]
+pub fn explore_random_shrink<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    nvars: usize,
+    count: usize,
+    action_var: usize,
+    order: &BasisOrder,
+    d: u32,
+    tries: u64,
+) {
+    use rand::seq::SliceRandom;
+    use rand::SeedableRng;
+    let action = Monomial::var(nvars, action_var);
+    let cands = candidates(eqs, d);
+    let b = select_basis::<P>(&cands, nvars, &action, count, order).expect("basis");
+    let blocks = Blocks::new(&b, &action);
+    let mut sizes = BTreeMap::new();
+    for seed in 0..tries {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let mut rows = cands.clone();
+        rows.shuffle(&mut rng);
+        if seed % 2 == 0 {
+            rows.sort_by_key(|c| c.degree);
+        }
+        let mut h = Vec::new();
+        let kept = super::shrink::shrink_ordered::<P>(&blocks, rows, &mut h);
+        let nc = blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + count;
+        *sizes.entry((kept.len(), nc)).or_insert(0) += 1;
+    }
+    println!("action {action_var} {order:?}: {sizes:?}");
 }

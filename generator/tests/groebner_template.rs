@@ -24,6 +24,10 @@ fn run(f: Fixture, opts: &TemplateOptions) -> Generated {
         g.seconds.2,
         t.elapsed().as_secs_f64()
     );
+    println!(
+        "    basis: {} {:?}",
+        g.built.basis_choice, g.built.template.basis
+    );
     for (step, r, c) in &g.built.history {
         println!("    {step}: {r}x{c}");
     }
@@ -61,14 +65,18 @@ fn grsrp10_10_solutions_10x20() {
 #[test]
 fn grsrp_20_solutions_template_below_205x225() {
     // Default: only actions with distinct eigenvalues (the t_i; the a_j have the double
-    // eigenvalues of the ±t symmetry).
+    // eigenvalues of the ±t symmetry). The basis is selected by elimination (t before a),
+    // not the grevlex standard monomials (whose cubics t_i*t3^2 need degree-6 multiples).
     let g = run(Fixture::Grsrp, &opts100());
     assert_eq!(g.count, 20);
     assert!(g.built.distinct_eigenvalues);
     let (r, c) = g.built.template.size();
     let t = &g.built.template;
     assert_eq!(r, t.n_excess + t.n_reducible, "square left block");
-    assert!(r <= 228 && c <= 248, "{r}x{c} regressed");
+    assert!(r <= 80 && c <= 100, "{r}x{c} regressed");
+    assert!(g.built.basis_choice.starts_with("selected"));
+    let action_var = g.built.template.action.0.iter().position(|&e| e == 1);
+    assert!(matches!(action_var, Some(3..=5)), "a t action");
     // Smallest over all actions, ignoring the eigenvalue requirement.
     let opts = TemplateOptions {
         require_distinct_eigenvalues: false,
@@ -78,7 +86,14 @@ fn grsrp_20_solutions_template_below_205x225() {
     let g = run(Fixture::Grsrp, &opts);
     let (r, c) = g.built.template.size();
     assert!(r * c < 205 * 225);
-    assert!(r <= 192 && c <= 212, "{r}x{c} regressed");
+    assert!(r <= 80 && c <= 100, "{r}x{c} regressed");
+}
+
+#[test]
+fn grsrp_gravity_validates() {
+    let g = run(Fixture::GrsrpGravity, &opts100());
+    assert!(g.built.distinct_eigenvalues);
+    assert_eq!(g.validation.unwrap().instances, 100);
 }
 
 #[test]
@@ -130,4 +145,55 @@ fn inconsistent_input_is_an_error() {
         }
     ));
     assert!(e.to_string().contains("inconsistent"));
+}
+
+#[test]
+#[ignore]
+fn explore_basis_selection() {
+    use mingen::template::select::{explore, BasisOrder};
+    let a = analyse(&Fixture::Grsrp, 2024).unwrap();
+    let mut orders = Vec::new();
+    let mut perm = vec![0usize, 1, 2, 3, 4, 5];
+    // Heap's algorithm, all 720 permutations.
+    fn heap(k: usize, a: &mut Vec<usize>, out: &mut Vec<BasisOrder>) {
+        if k == 1 {
+            out.push(BasisOrder::Grevlex(a.clone()));
+            return;
+        }
+        for i in 0..k {
+            heap(k - 1, a, out);
+            if k % 2 == 0 {
+                a.swap(i, k - 1)
+            } else {
+                a.swap(0, k - 1)
+            }
+        }
+    }
+    heap(6, &mut perm, &mut orders);
+    orders.push(BasisOrder::DegreeThenSet(0b111000, true));
+    explore::<{ mingen::algebra::P1 }>(&a.equations, 6, a.count, &[3], &orders, 4);
+}
+
+#[test]
+#[ignore]
+fn explore_random_shrink_orders() {
+    use mingen::template::select::{explore_random_shrink, BasisOrder};
+    let a = analyse(&Fixture::Grsrp, 2024).unwrap();
+    for (av, o) in [
+        (3, BasisOrder::Grevlex(vec![3, 4, 5, 0, 1, 2])),
+        (5, BasisOrder::DegreeThenSet(0b111000, true)),
+    ] {
+        explore_random_shrink::<{ mingen::algebra::P1 }>(&a.equations, 6, a.count, av, &o, 4, 40);
+    }
+}
+
+#[test]
+#[ignore]
+fn explore_gravity_selection() {
+    use mingen::template::select::{basis_orders, explore};
+    let a = analyse(&Fixture::GrsrpGravity, 2024).unwrap();
+    for d in 3..=5 {
+        println!("d = {d}");
+        explore::<{ mingen::algebra::P1 }>(&a.equations, 5, a.count, &[2, 4], &basis_orders(5), d);
+    }
 }

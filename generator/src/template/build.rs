@@ -5,6 +5,8 @@
 //! ## Public API
 //! - [`build_template`]`(&equations, &basis, action_var, &opts)`: the shrunk template for
 //!   one action variable, from the equations of one random instance mod P.
+//!   Besides the given (standard-monomial) basis it tries bases selected among the
+//!   template's columns ([`super::select`], `opts.basis_selection`) and keeps the smallest.
 //! - [`best_template`]: tries every unknown as action variable and keeps the best.
 //! - [`generate`]`(&source, &opts)`: the whole algebra pipeline from an
 //!   [`InstanceSource`]: [`analyse`] (count and basis, confirmed), [`best_template`],
@@ -17,6 +19,7 @@
 //! blocks); the basis block does not enter the test.
 
 use super::linalg::{gauss_jordan, is_squarefree};
+use super::select::{self, SelectedTemplate};
 use super::shrink::shrink;
 use super::validate::{nf_action_charpoly, validate, ValidationReport};
 use super::{EliminationTemplate, TemplateRow};
@@ -99,6 +102,12 @@ pub struct TemplateOptions {
     /// (products with every exponent `<= d - 1, d - 2, ...`); 0 by default (no gain seen
     /// on the shipped problems).
     pub exponent_caps: usize,
+    /// Also choose the quotient basis among the template's columns (see
+    /// [`super::select`]): for each of a few column orders (grevlex under the variable
+    /// permutations of [`super::select::basis_orders`]), the basis B is read off a Gaussian
+    /// elimination of all multiples up to a low degree, and the smallest template over the
+    /// standard basis and these bases is kept (ties to the standard basis). On by default.
+    pub basis_selection: bool,
     /// Seed of all random choices (instances).
     pub seed: u64,
 }
@@ -111,6 +120,7 @@ impl Default for TemplateOptions {
             require_distinct_eigenvalues: true,
             validate_instances: 10,
             exponent_caps: 0,
+            basis_selection: true,
             seed: 2024,
         }
     }
@@ -128,6 +138,9 @@ pub struct BuiltTemplate {
     pub history: Vec<ShrinkStep>,
     /// Whether the action matrix has distinct eigenvalues on the build instance.
     pub distinct_eigenvalues: bool,
+    /// How the basis was obtained: `"standard monomials (grevlex)"` or the column order of
+    /// the basis selection.
+    pub basis_choice: String,
 }
 
 /// The candidate rows and their monomials, as used by build and shrink.
@@ -302,7 +315,29 @@ pub fn build_template<const P: u32>(
             break;
         }
     }
-    let Some((_, kept, history)) = best else {
+    let mut best: Option<SelectedTemplate> = best.map(|(score, kept, history)| SelectedTemplate {
+        score,
+        blocks,
+        kept,
+        history,
+        label: "standard monomials (grevlex)".to_string(),
+    });
+    if opts.basis_selection {
+        let maxeq = eqs.iter().filter_map(|f| f.degree()).max().unwrap_or(0);
+        if let Some(sel) = select::best_selected::<P>(eqs, nvars, &action, basis.len(), maxeq) {
+            if best.as_ref().map_or(true, |b| sel.score < b.score) {
+                best = Some(sel);
+            }
+        }
+    }
+    let Some(SelectedTemplate {
+        blocks,
+        kept,
+        history,
+        label: basis_choice,
+        ..
+    }) = best
+    else {
         return Err(TemplateError::NotReducible {
             action: show(&action),
             max_degree: d0 + opts.max_extra_degree,
@@ -310,7 +345,7 @@ pub fn build_template<const P: u32>(
     };
     let template = assemble::<P>(nvars, &blocks, &kept, &action);
     debug_assert!(blocks.reducible_by::<P>(&kept.iter().collect::<Vec<_>>()));
-    // Distinct eigenvalues of the action matrix on this instance.
+    // Distinct eigenvalues of the action matrix on this instance (basis independent).
     let distinct = match groebner(nvars, eqs) {
         Ok(gb) => is_squarefree::<P>(&nf_action_charpoly::<P>(&gb, basis, &action)),
         Err(_) => false,
@@ -319,6 +354,7 @@ pub fn build_template<const P: u32>(
         template,
         history,
         distinct_eigenvalues: distinct,
+        basis_choice,
     })
 }
 
@@ -390,9 +426,38 @@ pub fn best_template<const P: u32>(
     } else {
         opts.actions.clone()
     };
+    // Basis selection costs most for actions that cannot be chosen anyway: with
+    // `require_distinct_eigenvalues`, actions with a repeated eigenvalue get the standard
+    // basis only, as long as some action has distinct eigenvalues.
+    let distinct: Vec<bool> = match groebner(nvars, eqs) {
+        Ok(gb) => actions
+            .iter()
+            .map(|&v| {
+                is_squarefree::<P>(&nf_action_charpoly::<P>(
+                    &gb,
+                    basis,
+                    &Monomial::var(nvars, v),
+                ))
+            })
+            .collect(),
+        Err(_) => vec![false; actions.len()],
+    };
+    let standard_only = TemplateOptions {
+        basis_selection: false,
+        ..opts.clone()
+    };
+    let skip_selection = opts.require_distinct_eigenvalues && distinct.iter().any(|&d| d);
     let all: Vec<(usize, Result<BuiltTemplate, TemplateError>)> = actions
         .iter()
-        .map(|&v| (v, build_template(eqs, basis, v, opts)))
+        .zip(&distinct)
+        .map(|(&v, &d)| {
+            let o = if skip_selection && !d {
+                &standard_only
+            } else {
+                opts
+            };
+            (v, build_template(eqs, basis, v, o))
+        })
         .collect();
     let score = |b: &BuiltTemplate| {
         let (r, c) = b.template.size();
@@ -426,7 +491,9 @@ pub fn best_template<const P: u32>(
 pub struct Generated {
     /// Number of solutions.
     pub count: usize,
-    /// Quotient basis (descending grevlex).
+    /// Standard monomials of the Gröbner basis (descending grevlex). The template's own
+    /// basis, `built.template.basis`, may differ (basis selection): emitters and `inspect`
+    /// must use the template's.
     pub basis: Vec<Monomial>,
     /// The chosen template with its shrink history.
     pub built: BuiltTemplate,

@@ -24,6 +24,7 @@ use crate::algebra::Monomial;
 
 pub mod build;
 mod linalg;
+pub mod select;
 pub mod shrink;
 pub mod validate;
 

@@ -138,8 +138,17 @@ pub(crate) fn shrink<const P: u32>(
     rows
 }
 
+/// A cheaper [`shrink`] for screening: one removal strategy (highest degree first).
+pub(crate) fn shrink_quick<const P: u32>(
+    blocks: &Blocks,
+    mut cands: Vec<Candidate>,
+) -> Vec<Candidate> {
+    order_rows(blocks, &mut cands, Strategy::Degree);
+    shrink_ordered::<P>(blocks, cands, &mut Vec::new())
+}
+
 /// Shrinks with the rows already in keep-preference order.
-fn shrink_ordered<const P: u32>(
+pub(crate) fn shrink_ordered<const P: u32>(
     blocks: &Blocks,
     cands: Vec<Candidate>,
     history: &mut Vec<ShrinkStep>,

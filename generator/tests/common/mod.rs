@@ -98,6 +98,9 @@ pub enum Fixture {
     Grsrp,
     /// G-RSRP with t eliminated: the 10 maximal minors in a1 a2 a3; 10 solutions.
     Grsrp10,
+    /// G-RSRP with known gravity (`templates/grsrp_gravity.mp`): unknowns c s t1 t2 t3,
+    /// 3 bilinear point equations, c^2 + s^2 = 1, t't = 1.
+    GrsrpGravity,
     /// G-RSRP without its last point equation: positive-dimensional.
     GrsrpMissingPoint,
     /// x = 0 and x = 1 in (x, y): inconsistent.
@@ -109,6 +112,7 @@ impl InstanceSource for Fixture {
         match self {
             Fixture::Gs5pt | Fixture::Grsrp10 => 3,
             Fixture::Grsrp | Fixture::GrsrpMissingPoint => 6,
+            Fixture::GrsrpGravity => 5,
             Fixture::Inconsistent => 2,
         }
     }
@@ -117,6 +121,7 @@ impl InstanceSource for Fixture {
             Fixture::Gs5pt => &["x", "y", "z"],
             Fixture::Grsrp10 => &["a1", "a2", "a3"],
             Fixture::Grsrp | Fixture::GrsrpMissingPoint => &["a1", "a2", "a3", "t1", "t2", "t3"],
+            Fixture::GrsrpGravity => &["c", "s", "t1", "t2", "t3"],
             Fixture::Inconsistent => &["x", "y"],
         };
         v.iter().map(|s| s.to_string()).collect()
@@ -146,6 +151,7 @@ impl InstanceSource for Fixture {
                 }
                 eqs
             }
+            Fixture::GrsrpGravity => gravity(rng),
             Fixture::Inconsistent => {
                 let x = Poly::<Fp<P>>::var(2, 0);
                 vec![x.clone(), x.sub(&cst(2, Fp::new(1)))]
@@ -203,5 +209,42 @@ fn gs5pt<const P: u32>(rng: &mut InstanceRng) -> Vec<Poly<Fp<P>>> {
             eqs.push(two.mul(&eete[i][j]).sub(&tr.mul(&e[i][j])));
         }
     }
+    eqs
+}
+
+/// G-RSRP with known gravity: x2' [t]x (I + v2 [w2]x) G2' Ry(c, s) G1 (I - v1 [w1]x) x1 = 0.
+fn gravity<const P: u32>(rng: &mut InstanceRng) -> Vec<Poly<Fp<P>>> {
+    let n = 5;
+    let g1 = cayley::<P>(rng);
+    let g2 = cayley::<P>(rng);
+    let w1: [Fp<P>; 3] = std::array::from_fn(|_| rnd(rng));
+    let w2: [Fp<P>; 3] = std::array::from_fn(|_| rnd(rng));
+    let (c, s) = (Poly::<Fp<P>>::var(n, 0), Poly::<Fp<P>>::var(n, 1));
+    let t: P3<P> = std::array::from_fn(|i| Poly::var(n, 2 + i));
+    let z = Poly::<Fp<P>>::zero(n);
+    let one = cst(n, Fp::new(1));
+    let ry: [P3<P>; 3] = [
+        [c.clone(), z.clone(), s.clone()],
+        [z.clone(), one.clone(), z.clone()],
+        [s.neg(), z.clone(), c.clone()],
+    ];
+    let g2t: [[Fp<P>; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| g2[j][i]));
+    let mut eqs = Vec::new();
+    for _ in 0..3 {
+        let x1 = [rnd(rng), rnd(rng), Fp::new(1)];
+        let x2 = [rnd(rng), rnd(rng), Fp::new(1)];
+        let (v1, v2) = (rnd::<P>(rng), rnd::<P>(rng));
+        let x1p = constvec(n, x1);
+        let w1x = cross(&constvec(n, w1), &x1p);
+        let u: P3<P> = std::array::from_fn(|i| x1p[i].sub(&w1x[i].mul(&cst(n, v1))));
+        let u = matvec(&g1, &u);
+        let u: P3<P> = std::array::from_fn(|i| dot(&ry[i], &u));
+        let u = matvec(&g2t, &u);
+        let wu = cross(&constvec(n, w2), &u);
+        let w: P3<P> = std::array::from_fn(|i| u[i].add(&wu[i].mul(&cst(n, v2))));
+        eqs.push(dot(&t, &cross(&w, &constvec(n, x2))));
+    }
+    eqs.push(c.mul(&c).add(&s.mul(&s)).sub(&one));
+    eqs.push(dot(&t, &t).sub(&one));
     eqs
 }

@@ -1,0 +1,310 @@
+//! Basis selection (in the spirit of Larsson et al. 2018): instead of the standard
+//! monomials of the Gröbner basis, choose the quotient basis B among the columns of a
+//! candidate template by Gaussian elimination with a chosen column order.
+
+use super::build::{candidates, Blocks, Candidate, ShrinkStep};
+use super::linalg::gauss_jordan;
+use super::shrink::{shrink, shrink_quick};
+use crate::algebra::{Fp, Monomial, MonomialOrder, Poly};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// A preference order for basis monomials: monomials with a larger key are eliminated
+/// first (kept out of B).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum BasisOrder {
+    /// Grevlex with the variables permuted: `perm[k]` is the k-th largest variable.
+    Grevlex(Vec<usize>),
+    /// Total degree, then the degree in the variables `set` (larger first), then grevlex.
+    DegreeThenSet(u64, bool),
+}
+
+fn key_cmp(o: &BasisOrder, a: &Monomial, b: &Monomial) -> std::cmp::Ordering {
+    match o {
+        BasisOrder::Grevlex(perm) => {
+            let pa = Monomial(perm.iter().map(|&i| a.0[i]).collect());
+            let pb = Monomial(perm.iter().map(|&i| b.0[i]).collect());
+            MonomialOrder::Grevlex.cmp(&pa, &pb)
+        }
+        &BasisOrder::DegreeThenSet(mask, larger_first) => {
+            let ds = |m: &Monomial| -> u32 {
+                m.0.iter()
+                    .enumerate()
+                    .filter(|(i, _)| mask >> i & 1 == 1)
+                    .map(|(_, &e)| e as u32)
+                    .sum()
+            };
+            let c = a.degree().cmp(&b.degree());
+            let c = c.then_with(|| {
+                if larger_first {
+                    ds(a).cmp(&ds(b))
+                } else {
+                    ds(b).cmp(&ds(a))
+                }
+            });
+            c.then_with(|| MonomialOrder::Grevlex.cmp(a, b))
+        }
+    }
+}
+
+/// Chooses a basis of `count` monomials among the columns of `cands` whose product with
+/// `action` is a column too, by Gaussian elimination with the columns ordered by `order`
+/// (largest first, 1 and the variables last): the last `count` non-pivot columns.
+pub(crate) fn select_basis<const P: u32>(
+    cands: &[Candidate],
+    nvars: usize,
+    action: &Monomial,
+    count: usize,
+    order: &BasisOrder,
+) -> Option<Vec<Monomial>> {
+    let cols: BTreeSet<Monomial> = cands
+        .iter()
+        .flat_map(|c| c.terms.iter().map(|(m, _)| m.clone()))
+        .collect();
+    let forced: Vec<Monomial> = std::iter::once(Monomial::one(nvars))
+        .chain((0..nvars).map(|i| Monomial::var(nvars, i)))
+        .collect();
+    let mut pool: Vec<Monomial> = cols
+        .iter()
+        .filter(|m| cols.contains(&m.mul(action)) && !forced.contains(m))
+        .cloned()
+        .collect();
+    pool.sort_by(|a, b| key_cmp(order, b, a));
+    let pool_set: BTreeSet<&Monomial> = pool.iter().chain(forced.iter()).collect();
+    let mut excess: Vec<Monomial> = cols
+        .iter()
+        .filter(|m| !pool_set.contains(m))
+        .cloned()
+        .collect();
+    excess.sort_by(|a, b| MonomialOrder::Grevlex.cmp(b, a));
+    let ordered: Vec<Monomial> = excess
+        .iter()
+        .chain(pool.iter())
+        .chain(forced.iter())
+        .cloned()
+        .collect();
+    let idx: BTreeMap<&Monomial, usize> = ordered.iter().enumerate().map(|(i, m)| (m, i)).collect();
+    let mut dense: Vec<Vec<u32>> = cands
+        .iter()
+        .map(|c| {
+            let mut v = vec![0u32; ordered.len()];
+            for (m, x) in &c.terms {
+                v[idx[m]] = *x;
+            }
+            v
+        })
+        .collect();
+    let piv = gauss_jordan::<P>(&mut dense, ordered.len(), false);
+    let pivset: BTreeSet<usize> = piv.into_iter().collect();
+    let nonpiv: Vec<usize> = (excess.len()..ordered.len())
+        .filter(|c| !pivset.contains(c))
+        .collect();
+    if nonpiv.len() < count {
+        return None;
+    }
+    let b: Vec<Monomial> = nonpiv[nonpiv.len() - count..]
+        .iter()
+        .map(|&c| ordered[c].clone())
+        .collect();
+    if forced.iter().any(|f| !b.contains(f)) {
+        return None;
+    }
+    let mut b = b;
+    b.sort_by(|x, y| MonomialOrder::Grevlex.cmp(y, x));
+    Some(b)
+}
+
+/// The column orders tried by [`best_selected`]: grevlex under the cyclic rotations of
+/// the variables and of their reversal (2n orders for n variables, the identity first),
+/// without duplicates.
+pub fn basis_orders(nvars: usize) -> Vec<BasisOrder> {
+    let mut out: Vec<BasisOrder> = Vec::new();
+    for rev in [false, true] {
+        for r in 0..nvars {
+            let perm: Vec<usize> = (0..nvars)
+                .map(|k| {
+                    let v = (k + r) % nvars;
+                    if rev {
+                        nvars - 1 - v
+                    } else {
+                        v
+                    }
+                })
+                .collect();
+            let o = BasisOrder::Grevlex(perm);
+            if !out.contains(&o) {
+                out.push(o);
+            }
+        }
+    }
+    out
+}
+
+impl BasisOrder {
+    /// A human-readable description (variables as `x0, x1, ...`).
+    pub fn describe(&self) -> String {
+        match self {
+            BasisOrder::Grevlex(perm) => format!(
+                "grevlex with {}",
+                perm.iter()
+                    .map(|i| format!("x{i}"))
+                    .collect::<Vec<_>>()
+                    .join(" > ")
+            ),
+            BasisOrder::DegreeThenSet(mask, larger_first) => format!(
+                "degree, then {} degree in variables {mask:#b} first",
+                if *larger_first { "larger" } else { "smaller" }
+            ),
+        }
+    }
+}
+
+/// The best template found by basis selection.
+pub(crate) struct SelectedTemplate {
+    /// `rows * cols`.
+    pub(crate) score: usize,
+    /// Blocks for the selected basis.
+    pub(crate) blocks: Blocks,
+    /// Kept rows.
+    pub(crate) kept: Vec<Candidate>,
+    /// Construction and shrink history.
+    pub(crate) history: Vec<ShrinkStep>,
+    /// Description of the basis choice.
+    pub(crate) label: String,
+}
+
+/// Basis selection for one action: for the candidate degrees `maxeq + 1 ..= maxeq + 3`
+/// (stopping at the first that succeeds), and each of [`basis_orders`], selects a basis
+/// ([`select_basis`]); each distinct basis that the candidates reduce is screened with
+/// [`shrink_quick`], and the best (fewest rows * cols, ties to the earlier order) is
+/// shrunk with every strategy ([`shrink`]). Deterministic.
+pub(crate) fn best_selected<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    nvars: usize,
+    action: &Monomial,
+    count: usize,
+    maxeq: u32,
+) -> Option<SelectedTemplate> {
+    let orders = basis_orders(nvars);
+    for d in maxeq + 1..=maxeq + 3 {
+        let cands = candidates(eqs, d);
+        let refs: Vec<&Candidate> = cands.iter().collect();
+        let mut seen: BTreeSet<Vec<Monomial>> = BTreeSet::new();
+        let mut screened: Option<(usize, Blocks, &BasisOrder)> = None;
+        for o in &orders {
+            let Some(b) = select_basis::<P>(&cands, nvars, action, count, o) else {
+                continue;
+            };
+            if !seen.insert(b.clone()) {
+                continue;
+            }
+            let blocks = Blocks::new(&b, action);
+            if !blocks.reducible_by::<P>(&refs) {
+                continue;
+            }
+            let kept = shrink_quick::<P>(&blocks, cands.clone());
+            let score =
+                kept.len() * (blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + count);
+            if screened.as_ref().map_or(true, |x| score < x.0) {
+                screened = Some((score, blocks, o));
+            }
+        }
+        if let Some((_, blocks, o)) = screened {
+            let ne = blocks.excess_of(cands.iter()).len();
+            let mut history = vec![(
+                format!("all multiples up to degree {d}"),
+                cands.len(),
+                ne + blocks.reducible.len() + count,
+            )];
+            let kept = shrink::<P>(&blocks, cands, &mut history);
+            let score =
+                kept.len() * (blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + count);
+            return Some(SelectedTemplate {
+                score,
+                blocks,
+                kept,
+                history,
+                label: format!(
+                    "selected by elimination of all multiples up to degree {d}, columns in {}",
+                    o.describe()
+                ),
+            });
+        }
+    }
+    None
+}
+
+/// Exploration helper (prints sizes); not part of the stable API.
+#[doc(hidden)]
+pub fn explore<const P: u32>(
+    eqs: &[crate::algebra::Poly<crate::algebra::Fp<P>>],
+    nvars: usize,
+    count: usize,
+    actions: &[usize],
+    orders: &[BasisOrder],
+    d: u32,
+) {
+    let cands = candidates(eqs, d);
+    for &av in actions {
+        let action = Monomial::var(nvars, av);
+        let mut seen: BTreeMap<Vec<Monomial>, (usize, usize, usize)> = BTreeMap::new();
+        for o in orders {
+            let Some(b) = select_basis::<P>(&cands, nvars, &action, count, o) else {
+                continue;
+            };
+            if let Some(e) = seen.get_mut(&b) {
+                e.2 += 1;
+                continue;
+            }
+            let blocks = Blocks::new(&b, &action);
+            let refs: Vec<&Candidate> = cands.iter().collect();
+            if !blocks.reducible_by::<P>(&refs) {
+                seen.insert(b, (0, 0, 1));
+                continue;
+            }
+            let mut h = Vec::new();
+            let kept = shrink::<P>(&blocks, cands.clone(), &mut h);
+            let nc = blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + b.len();
+            println!("action {av} {o:?}: {}x{} B {:?}", kept.len(), nc, b);
+            seen.insert(b, (kept.len(), nc, 1));
+        }
+        let mut v: Vec<_> = seen.into_iter().collect();
+        v.sort_by_key(|(_, (r, c, _))| r * c);
+        for (b, (r, c, n)) in v {
+            println!("SUMMARY action {av}: {r}x{c} ({n} orders) B {b:?}");
+        }
+    }
+}
+
+/// Exploration helper: shrinks the template of the basis selected with `order` at degree
+/// `d` under `tries` random removal orders and prints the sizes; not part of the API.
+#[doc(hidden)]
+pub fn explore_random_shrink<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    nvars: usize,
+    count: usize,
+    action_var: usize,
+    order: &BasisOrder,
+    d: u32,
+    tries: u64,
+) {
+    use rand::seq::SliceRandom;
+    use rand::SeedableRng;
+    let action = Monomial::var(nvars, action_var);
+    let cands = candidates(eqs, d);
+    let b = select_basis::<P>(&cands, nvars, &action, count, order).expect("basis");
+    let blocks = Blocks::new(&b, &action);
+    let mut sizes = BTreeMap::new();
+    for seed in 0..tries {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let mut rows = cands.clone();
+        rows.shuffle(&mut rng);
+        if seed % 2 == 0 {
+            rows.sort_by_key(|c| c.degree);
+        }
+        let mut h = Vec::new();
+        let kept = super::shrink::shrink_ordered::<P>(&blocks, rows, &mut h);
+        let nc = blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + count;
+        *sizes.entry((kept.len(), nc)).or_insert(0) += 1;
+    }
+    println!("action {action_var} {order:?}: {sizes:?}");
+}

@@ -114,8 +114,9 @@ pub fn generated_mod_rs(names: &[String]) -> String {
          //! Minimal solvers emitted by `mingen generate --all`, one module per problem file\n\
          //! `templates/<name>.mp`. Regenerate with `cargo run --release -p mingen -- generate --all`.\n\n",
     );
+    // rustfmt would reformat prettyplease's output and make the files stale.
     for n in names {
-        s.push_str(&format!("pub mod {n};\n"));
+        s.push_str(&format!("#[rustfmt::skip]\npub mod {n};\n"));
     }
     s
 }

@@ -2,7 +2,11 @@
 //! Minimal solvers emitted by `mingen generate --all`, one module per problem file
 //! `templates/<name>.mp`. Regenerate with `cargo run --release -p mingen -- generate --all`.
 
+#[rustfmt::skip]
 pub mod grsrp;
+#[rustfmt::skip]
 pub mod grsrp10;
+#[rustfmt::skip]
 pub mod grsrp_gravity;
+#[rustfmt::skip]
 pub mod gs5pt;

@@ -27,6 +27,83 @@ pub struct Data {
     /// `G2: rotation` — a 3x3 rotation matrix, row-major (`[row][column]`).
     pub g2: [[f64; 3]; 3],
 }
+impl Data {
+    /// Number of scalar data slots: the length of the flat form of [`from_slots`](Self::from_slots) / [`to_slots`](Self::to_slots).
+    pub const SLOTS: usize = 42;
+    /// The data from its flat form, in the problem's slot order: symbols in declaration order, arrays element by element, a point as `x, y`, a matrix row-major.
+    ///
+    /// Slot order: x1[0].x, x1[0].y, x1[1].x, x1[1].y, x1[2].x, x1[2].y, ..., G2[2][0], G2[2][1], G2[2][2].
+    #[must_use]
+    pub fn from_slots(slots: &[f64; 42]) -> Data {
+        Data {
+            x1: [[slots[0], slots[1]], [slots[2], slots[3]], [slots[4], slots[5]]],
+            x2: [[slots[6], slots[7]], [slots[8], slots[9]], [slots[10], slots[11]]],
+            v1: [slots[12], slots[13], slots[14]],
+            v2: [slots[15], slots[16], slots[17]],
+            w1: [slots[18], slots[19], slots[20]],
+            w2: [slots[21], slots[22], slots[23]],
+            g1: [
+                [slots[24], slots[25], slots[26]],
+                [slots[27], slots[28], slots[29]],
+                [slots[30], slots[31], slots[32]],
+            ],
+            g2: [
+                [slots[33], slots[34], slots[35]],
+                [slots[36], slots[37], slots[38]],
+                [slots[39], slots[40], slots[41]],
+            ],
+        }
+    }
+    /// The flat form of the data (inverse of [`from_slots`](Self::from_slots)).
+    #[must_use]
+    pub fn to_slots(&self) -> [f64; 42] {
+        let data = self;
+        [
+            data.x1[0][0],
+            data.x1[0][1],
+            data.x1[1][0],
+            data.x1[1][1],
+            data.x1[2][0],
+            data.x1[2][1],
+            data.x2[0][0],
+            data.x2[0][1],
+            data.x2[1][0],
+            data.x2[1][1],
+            data.x2[2][0],
+            data.x2[2][1],
+            data.v1[0],
+            data.v1[1],
+            data.v1[2],
+            data.v2[0],
+            data.v2[1],
+            data.v2[2],
+            data.w1[0],
+            data.w1[1],
+            data.w1[2],
+            data.w2[0],
+            data.w2[1],
+            data.w2[2],
+            data.g1[0][0],
+            data.g1[0][1],
+            data.g1[0][2],
+            data.g1[1][0],
+            data.g1[1][1],
+            data.g1[1][2],
+            data.g1[2][0],
+            data.g1[2][1],
+            data.g1[2][2],
+            data.g2[0][0],
+            data.g2[0][1],
+            data.g2[0][2],
+            data.g2[1][0],
+            data.g2[1][1],
+            data.g2[1][2],
+            data.g2[2][0],
+            data.g2[2][1],
+            data.g2[2][2],
+        ]
+    }
+}
 /// One real solution of `grsrp_gravity`: one field per unknown symbol (lowercased).
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Solution {
@@ -36,6 +113,15 @@ pub struct Solution {
     pub s: f64,
     /// Unknown `t[3]` (`t1` .. `t3`).
     pub t: [f64; 3],
+}
+impl Solution {
+    /// Number of scalar unknowns (eliminated ones included).
+    pub const UNKNOWNS: usize = 5;
+    /// The solution as a flat array in the problem's unknown order: c, s, t1, t2, t3.
+    #[must_use]
+    pub fn to_unknowns(&self) -> [f64; 5] {
+        [self.c, self.s, self.t[0], self.t[1], self.t[2]]
+    }
 }
 /// The largest number of real solutions [`solve`] returns.
 pub const MAX_SOLUTIONS: usize = 12;
@@ -47,11 +133,7 @@ pub type Solutions = crate::runtime::SolutionSet<Solution, MAX_SOLUTIONS>;
 ///
 /// Never panics: non-finite or degenerate data gives no solutions.
 #[must_use]
-#[allow(
-    clippy::similar_names,
-    clippy::many_single_char_names,
-    clippy::too_many_lines
-)]
+#[allow(clippy::similar_names, clippy::many_single_char_names, clippy::too_many_lines)]
 pub fn solve(data: &Data) -> Solutions {
     let mut out = Solutions::new();
     let d: [f64; 42] = [
@@ -235,23 +317,32 @@ pub fn solve(data: &Data) -> Solutions {
     let c122 = d[13] * d[19];
     let c123 = d[13] * d[18];
     let c124 = c112 - (c94 * c122 - c103 * c123)
-        + (d[2] * (c94 - c103 * c121 + c112 * c122) + d[3] * (c103 + c94 * c121 - c112 * c123));
+        + (d[2] * (c94 - c103 * c121 + c112 * c122)
+            + d[3] * (c103 + c94 * c121 - c112 * c123));
     let c125 = c113 - (c95 * c122 - c104 * c123)
-        + (d[2] * (c95 - c104 * c121 + c113 * c122) + d[3] * (c104 + c95 * c121 - c113 * c123));
+        + (d[2] * (c95 - c104 * c121 + c113 * c122)
+            + d[3] * (c104 + c95 * c121 - c113 * c123));
     let c126 = c114 - (c96 * c122 - c105 * c123)
-        + (d[2] * (c96 - c105 * c121 + c114 * c122) + d[3] * (c105 + c96 * c121 - c114 * c123));
+        + (d[2] * (c96 - c105 * c121 + c114 * c122)
+            + d[3] * (c105 + c96 * c121 - c114 * c123));
     let c127 = c115 - (c97 * c122 - c106 * c123)
-        + (d[2] * (c97 - c106 * c121 + c115 * c122) + d[3] * (c106 + c97 * c121 - c115 * c123));
+        + (d[2] * (c97 - c106 * c121 + c115 * c122)
+            + d[3] * (c106 + c97 * c121 - c115 * c123));
     let c128 = c116 - (c98 * c122 - c107 * c123)
-        + (d[2] * (c98 - c107 * c121 + c116 * c122) + d[3] * (c107 + c98 * c121 - c116 * c123));
+        + (d[2] * (c98 - c107 * c121 + c116 * c122)
+            + d[3] * (c107 + c98 * c121 - c116 * c123));
     let c129 = c117 - (c99 * c122 - c108 * c123)
-        + (d[2] * (c99 - c108 * c121 + c117 * c122) + d[3] * (c108 + c99 * c121 - c117 * c123));
+        + (d[2] * (c99 - c108 * c121 + c117 * c122)
+            + d[3] * (c108 + c99 * c121 - c117 * c123));
     let c130 = c118 - (c100 * c122 - c109 * c123)
-        + (d[2] * (c100 - c109 * c121 + c118 * c122) + d[3] * (c109 + c100 * c121 - c118 * c123));
+        + (d[2] * (c100 - c109 * c121 + c118 * c122)
+            + d[3] * (c109 + c100 * c121 - c118 * c123));
     let c131 = c119 - (c101 * c122 - c110 * c123)
-        + (d[2] * (c101 - c110 * c121 + c119 * c122) + d[3] * (c110 + c101 * c121 - c119 * c123));
+        + (d[2] * (c101 - c110 * c121 + c119 * c122)
+            + d[3] * (c110 + c101 * c121 - c119 * c123));
     let c132 = c120 - (c102 * c122 - c111 * c123)
-        + (d[2] * (c102 - c111 * c121 + c120 * c122) + d[3] * (c111 + c102 * c121 - c120 * c123));
+        + (d[2] * (c102 - c111 * c121 + c120 * c122)
+            + d[3] * (c111 + c102 * c121 - c120 * c123));
     let c133 = d[17] * d[23];
     let c134 = d[17] * d[22];
     let c135 = d[17] * d[21];
@@ -297,23 +388,32 @@ pub fn solve(data: &Data) -> Solutions {
     let c175 = d[14] * d[19];
     let c176 = d[14] * d[18];
     let c177 = c165 - (c147 * c175 - c156 * c176)
-        + (d[4] * (c147 - c156 * c174 + c165 * c175) + d[5] * (c156 + c147 * c174 - c165 * c176));
+        + (d[4] * (c147 - c156 * c174 + c165 * c175)
+            + d[5] * (c156 + c147 * c174 - c165 * c176));
     let c178 = c166 - (c148 * c175 - c157 * c176)
-        + (d[4] * (c148 - c157 * c174 + c166 * c175) + d[5] * (c157 + c148 * c174 - c166 * c176));
+        + (d[4] * (c148 - c157 * c174 + c166 * c175)
+            + d[5] * (c157 + c148 * c174 - c166 * c176));
     let c179 = c167 - (c149 * c175 - c158 * c176)
-        + (d[4] * (c149 - c158 * c174 + c167 * c175) + d[5] * (c158 + c149 * c174 - c167 * c176));
+        + (d[4] * (c149 - c158 * c174 + c167 * c175)
+            + d[5] * (c158 + c149 * c174 - c167 * c176));
     let c180 = c168 - (c150 * c175 - c159 * c176)
-        + (d[4] * (c150 - c159 * c174 + c168 * c175) + d[5] * (c159 + c150 * c174 - c168 * c176));
+        + (d[4] * (c150 - c159 * c174 + c168 * c175)
+            + d[5] * (c159 + c150 * c174 - c168 * c176));
     let c181 = c169 - (c151 * c175 - c160 * c176)
-        + (d[4] * (c151 - c160 * c174 + c169 * c175) + d[5] * (c160 + c151 * c174 - c169 * c176));
+        + (d[4] * (c151 - c160 * c174 + c169 * c175)
+            + d[5] * (c160 + c151 * c174 - c169 * c176));
     let c182 = c170 - (c152 * c175 - c161 * c176)
-        + (d[4] * (c152 - c161 * c174 + c170 * c175) + d[5] * (c161 + c152 * c174 - c170 * c176));
+        + (d[4] * (c152 - c161 * c174 + c170 * c175)
+            + d[5] * (c161 + c152 * c174 - c170 * c176));
     let c183 = c171 - (c153 * c175 - c162 * c176)
-        + (d[4] * (c153 - c162 * c174 + c171 * c175) + d[5] * (c162 + c153 * c174 - c171 * c176));
+        + (d[4] * (c153 - c162 * c174 + c171 * c175)
+            + d[5] * (c162 + c153 * c174 - c171 * c176));
     let c184 = c172 - (c154 * c175 - c163 * c176)
-        + (d[4] * (c154 - c163 * c174 + c172 * c175) + d[5] * (c163 + c154 * c174 - c172 * c176));
+        + (d[4] * (c154 - c163 * c174 + c172 * c175)
+            + d[5] * (c163 + c154 * c174 - c172 * c176));
     let c185 = c173 - (c155 * c175 - c164 * c176)
-        + (d[4] * (c155 - c164 * c174 + c173 * c175) + d[5] * (c164 + c155 * c174 - c173 * c176));
+        + (d[4] * (c155 - c164 * c174 + c173 * c175)
+            + d[5] * (c164 + c155 * c174 - c173 * c176));
     let mut m = vec![0.0f64; 9180];
     m[0] = c79;
     m[1] = -c76;
@@ -1000,14 +1100,7 @@ pub fn solve(data: &Data) -> Solutions {
     a[(9, 4)] = 1.0;
     a[(10, 5)] = 1.0;
     a[(11, 10)] = 1.0;
-    for (j, s) in [
-        (0, 8658),
-        (1, 8760),
-        (2, 8862),
-        (3, 8964),
-        (4, 9066),
-        (5, 9168),
-    ] {
+    for (j, s) in [(0, 8658), (1, 8760), (2, 8862), (3, 8964), (4, 9066), (5, 9168)] {
         for (k, x) in m[s..s + 12].iter().enumerate() {
             a[(j, k)] = -x;
         }
@@ -1023,19 +1116,18 @@ pub fn solve(data: &Data) -> Solutions {
         let u2 = v[8] / w;
         let u3 = v[9] / w;
         let u4 = v[10] / w;
-        if !u0.is_finite()
-            || !u1.is_finite()
-            || !u2.is_finite()
-            || !u3.is_finite()
+        if !u0.is_finite() || !u1.is_finite() || !u2.is_finite() || !u3.is_finite()
             || !u4.is_finite()
         {
             continue;
         }
-        if !out.push(Solution {
-            c: u0,
-            s: u1,
-            t: [u2, u3, u4],
-        }) {
+        if !out
+            .push(Solution {
+                c: u0,
+                s: u1,
+                t: [u2, u3, u4],
+            })
+        {
             break;
         }
     }

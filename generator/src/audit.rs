@@ -365,4 +365,3 @@ mod tests {
         assert_eq!(h.iter().map(|b| b.1).sum::<usize>(), 5);
     }
 }
-

@@ -10,13 +10,7 @@ use mingen::template::TemplateOptions;
 fn audit(name: &str, instances: usize) -> mingen::audit::AuditReport {
     let plan = plan_file(&problem_file(name), &TemplateOptions::default())
         .unwrap_or_else(|e| panic!("planning {name}: {e}"));
-    let report = audit_plan(
-        &plan,
-        &AuditOptions {
-            instances,
-            seed: 1,
-        },
-    );
+    let report = audit_plan(&plan, &AuditOptions { instances, seed: 1 });
     println!("{name}:\n{report}");
     assert_eq!(report.instances, instances);
     assert_eq!(report.solutions_expected, plan.generated.count);

@@ -2,7 +2,9 @@
 //! (`mingen audit`, DESIGN §6), through the interpreted solver of [`crate::interpret`].
 
 use crate::algebra::Poly;
+use crate::instance::random_data_f64;
 use crate::interpret::{normalized_residual, recover_eliminated, solve_template};
+use crate::pipeline::SolverPlan;
 use crate::template::EliminationTemplate;
 use nalgebra::Complex;
 use rand::SeedableRng;
@@ -311,6 +313,39 @@ impl fmt::Display for AuditReport {
         writeln!(f, "log10 residual histogram:")?;
         write!(f, "{}", self.render_histogram())
     }
+}
+
+/// Audits a planned problem (`mingen audit FILE`): [`audit`] on `plan`'s template with
+/// `options.instances` random f64 instances ([`crate::instance::random_data_f64`], drawn from
+/// the audit's seeded generator). Each instance's template equations and elimination come
+/// from [`SolverPlan::equations`], the residuals are measured on the original equations
+/// (`plan.problem.evaluate`, all unknowns, eliminated ones recovered and merged back), and
+/// `plan.generated.count` solutions are expected per instance.
+///
+/// ```no_run
+/// # use mingen::{audit::{audit_plan, AuditOptions}, generate::plan_file, template::TemplateOptions};
+/// let plan = plan_file("templates/gs5pt.mp".as_ref(), &TemplateOptions::default()).unwrap();
+/// println!("{}", audit_plan(&plan, &AuditOptions::default()));
+/// ```
+pub fn audit_plan(plan: &SolverPlan, options: &AuditOptions) -> AuditReport {
+    let layout = &plan.problem.layout;
+    audit(
+        &plan.generated.built.template,
+        plan.generated.count,
+        options,
+        |rng| {
+            let data = random_data_f64(layout, rng);
+            let (equations, eliminated) = plan.equations::<f64>(&data);
+            AuditInstance {
+                equations,
+                original: plan.problem.evaluate::<f64>(&data),
+                eliminated: eliminated.map(|e| EliminatedUnknowns {
+                    matrix: e.coefficient_matrix,
+                    positions: e.eliminated,
+                }),
+            }
+        },
+    )
 }
 
 #[cfg(test)]

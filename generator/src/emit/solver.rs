@@ -492,11 +492,108 @@ fn emit_data(layout: &ProblemLayout) -> Result<TokenStream, EmitError> {
         "Input data of `{}`: one field per data symbol of the problem file (lowercased).",
         layout.name
     ));
+    let slot_impl = emit_data_slots(layout, &idents)?;
     Ok(quote! {
         #d
         #derive
         pub struct Data { #(#fields)* }
         #default_impl
+        #slot_impl
+    })
+}
+
+/// `impl Data { SLOTS, from_slots, to_slots }`: the data as a flat array in slot order
+/// (the order `solve` flattens it in and `mingen::instance::random_data_f64` draws it in).
+fn emit_data_slots(layout: &ProblemLayout, idents: &[Ident]) -> Result<TokenStream, EmitError> {
+    let n_slots = layout.data_slot_count();
+    let mut reads: Vec<Option<TokenStream>> = vec![None; n_slots];
+    let mut inits = Vec::new();
+    for (ds, field) in layout.data.iter().zip(idents) {
+        let per = ds.kind.slots();
+        let mut elements = Vec::new();
+        for e in 0..ds.len.unwrap_or(1) {
+            let mut slot = |k: usize| -> Result<TokenStream, EmitError> {
+                let s = ds.first_slot + e * per + k;
+                match reads.get_mut(s) {
+                    Some(x @ None) => *x = Some(slot_access(field, ds, e, k)),
+                    _ => {
+                        return Err(EmitError::Invalid(format!(
+                            "data slot {s} of `{}` is out of range or used twice",
+                            ds.name
+                        )))
+                    }
+                }
+                let s = lit(s);
+                Ok(quote!(slots[#s]))
+            };
+            elements.push(match ds.kind {
+                DataKind::Scalar => slot(0)?,
+                DataKind::Vec3 | DataKind::Point => {
+                    let xs = (0..per).map(&mut slot).collect::<Result<Vec<_>, _>>()?;
+                    quote!([#(#xs),*])
+                }
+                DataKind::Mat3 | DataKind::Rotation => {
+                    let mut rows = Vec::new();
+                    for r in 0..3 {
+                        let xs = (3 * r..3 * r + 3)
+                            .map(&mut slot)
+                            .collect::<Result<Vec<_>, _>>()?;
+                        rows.push(quote!([#(#xs),*]));
+                    }
+                    quote!([#(#rows),*])
+                }
+            });
+        }
+        let value = match ds.len {
+            Some(_) => quote!([#(#elements),*]),
+            None => elements.pop().expect("one element"),
+        };
+        inits.push(quote!(#field: #value,));
+    }
+    let reads = reads
+        .into_iter()
+        .enumerate()
+        .map(|(s, x)| {
+            x.ok_or_else(|| EmitError::Invalid(format!("data slot {s} belongs to no symbol")))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let n = lit(n_slots);
+    let names = layout.data_slot_names();
+    let order = if names.len() <= 12 {
+        names.join(", ")
+    } else {
+        format!(
+            "{}, ..., {}",
+            names[..6].join(", "),
+            names[names.len() - 3..].join(", ")
+        )
+    };
+    let d_slots = doc(
+        "Number of scalar data slots: the length of the flat form of \
+         [`from_slots`](Self::from_slots) / [`to_slots`](Self::to_slots).",
+    );
+    let d_from = [
+        doc("The data from its flat form, in the problem's slot order: symbols in declaration order, arrays element by element, a point as `x, y`, a matrix row-major."),
+        doc(""),
+        doc(format!("Slot order: {order}.")),
+    ];
+    let d_to = doc("The flat form of the data (inverse of [`from_slots`](Self::from_slots)).");
+    Ok(quote! {
+        impl Data {
+            #d_slots
+            pub const SLOTS: usize = #n;
+            #(#d_from)*
+            #[must_use]
+            pub fn from_slots(slots: &[f64; #n]) -> Data {
+                Data { #(#inits)* }
+            }
+            #d_to
+            #[must_use]
+            pub fn to_slots(&self) -> [f64; #n] {
+                let data = self;
+                [#(#reads),*]
+            }
+        }
     })
 }
 
@@ -551,12 +648,46 @@ fn emit_solution(layout: &ProblemLayout) -> Result<TokenStream, EmitError> {
         "One real solution of `{}`: one field per unknown symbol (lowercased).",
         layout.name
     ));
+    let unknowns_impl = emit_solution_unknowns(layout, &idents);
     Ok(quote! {
         #d
         #derive
         pub struct Solution { #(#fields)* }
         #default_impl
+        #unknowns_impl
     })
+}
+
+/// `impl Solution { UNKNOWNS, to_unknowns }`: the solution as a flat array in the problem's
+/// unknown order (`ProblemLayout::unknown_names`, eliminated unknowns included).
+fn emit_solution_unknowns(layout: &ProblemLayout, idents: &[Ident]) -> TokenStream {
+    let mut values = Vec::new();
+    for (u, id) in layout.unknowns.iter().zip(idents) {
+        match u.len {
+            None => values.push(quote!(self.#id)),
+            Some(n) => values.extend((0..n).map(|e| {
+                let e = lit(e);
+                quote!(self.#id[#e])
+            })),
+        }
+    }
+    let n = lit(values.len());
+    let d_n = doc("Number of scalar unknowns (eliminated ones included).");
+    let d_to = doc(format!(
+        "The solution as a flat array in the problem's unknown order: {}.",
+        layout.unknown_names().join(", ")
+    ));
+    quote! {
+        impl Solution {
+            #d_n
+            pub const UNKNOWNS: usize = #n;
+            #d_to
+            #[must_use]
+            pub fn to_unknowns(&self) -> [f64; #n] {
+                [#(#values),*]
+            }
+        }
+    }
 }
 
 struct Stats {

@@ -26,6 +26,93 @@ pub struct Data {
     /// `R0: rotation` — a 3x3 rotation matrix, row-major (`[row][column]`).
     pub r0: [[f64; 3]; 3],
 }
+impl Data {
+    /// Number of scalar data slots: the length of the flat form of [`from_slots`](Self::from_slots) / [`to_slots`](Self::to_slots).
+    pub const SLOTS: usize = 45;
+    /// The data from its flat form, in the problem's slot order: symbols in declaration order, arrays element by element, a point as `x, y`, a matrix row-major.
+    ///
+    /// Slot order: x1[0].x, x1[0].y, x1[1].x, x1[1].y, x1[2].x, x1[2].y, ..., R0[2][0], R0[2][1], R0[2][2].
+    #[must_use]
+    pub fn from_slots(slots: &[f64; 45]) -> Data {
+        Data {
+            x1: [
+                [slots[0], slots[1]],
+                [slots[2], slots[3]],
+                [slots[4], slots[5]],
+                [slots[6], slots[7]],
+                [slots[8], slots[9]],
+            ],
+            x2: [
+                [slots[10], slots[11]],
+                [slots[12], slots[13]],
+                [slots[14], slots[15]],
+                [slots[16], slots[17]],
+                [slots[18], slots[19]],
+            ],
+            v1: [slots[20], slots[21], slots[22], slots[23], slots[24]],
+            v2: [slots[25], slots[26], slots[27], slots[28], slots[29]],
+            w1: [slots[30], slots[31], slots[32]],
+            w2: [slots[33], slots[34], slots[35]],
+            r0: [
+                [slots[36], slots[37], slots[38]],
+                [slots[39], slots[40], slots[41]],
+                [slots[42], slots[43], slots[44]],
+            ],
+        }
+    }
+    /// The flat form of the data (inverse of [`from_slots`](Self::from_slots)).
+    #[must_use]
+    pub fn to_slots(&self) -> [f64; 45] {
+        let data = self;
+        [
+            data.x1[0][0],
+            data.x1[0][1],
+            data.x1[1][0],
+            data.x1[1][1],
+            data.x1[2][0],
+            data.x1[2][1],
+            data.x1[3][0],
+            data.x1[3][1],
+            data.x1[4][0],
+            data.x1[4][1],
+            data.x2[0][0],
+            data.x2[0][1],
+            data.x2[1][0],
+            data.x2[1][1],
+            data.x2[2][0],
+            data.x2[2][1],
+            data.x2[3][0],
+            data.x2[3][1],
+            data.x2[4][0],
+            data.x2[4][1],
+            data.v1[0],
+            data.v1[1],
+            data.v1[2],
+            data.v1[3],
+            data.v1[4],
+            data.v2[0],
+            data.v2[1],
+            data.v2[2],
+            data.v2[3],
+            data.v2[4],
+            data.w1[0],
+            data.w1[1],
+            data.w1[2],
+            data.w2[0],
+            data.w2[1],
+            data.w2[2],
+            data.r0[0][0],
+            data.r0[0][1],
+            data.r0[0][2],
+            data.r0[1][0],
+            data.r0[1][1],
+            data.r0[1][2],
+            data.r0[2][0],
+            data.r0[2][1],
+            data.r0[2][2],
+        ]
+    }
+}
 /// One real solution of `grsrp10`: one field per unknown symbol (lowercased).
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Solution {
@@ -33,6 +120,15 @@ pub struct Solution {
     pub a: [f64; 3],
     /// Unknown `t[3]` (`t1` .. `t3`).
     pub t: [f64; 3],
+}
+impl Solution {
+    /// Number of scalar unknowns (eliminated ones included).
+    pub const UNKNOWNS: usize = 6;
+    /// The solution as a flat array in the problem's unknown order: a1, a2, a3, t1, t2, t3.
+    #[must_use]
+    pub fn to_unknowns(&self) -> [f64; 6] {
+        [self.a[0], self.a[1], self.a[2], self.t[0], self.t[1], self.t[2]]
+    }
 }
 /// The largest number of real solutions [`solve`] returns.
 pub const MAX_SOLUTIONS: usize = 10;

@@ -27,6 +27,83 @@ pub struct Data {
     /// `G2: rotation` — a 3x3 rotation matrix, row-major (`[row][column]`).
     pub g2: [[f64; 3]; 3],
 }
+impl Data {
+    /// Number of scalar data slots: the length of the flat form of [`from_slots`](Self::from_slots) / [`to_slots`](Self::to_slots).
+    pub const SLOTS: usize = 42;
+    /// The data from its flat form, in the problem's slot order: symbols in declaration order, arrays element by element, a point as `x, y`, a matrix row-major.
+    ///
+    /// Slot order: x1[0].x, x1[0].y, x1[1].x, x1[1].y, x1[2].x, x1[2].y, ..., G2[2][0], G2[2][1], G2[2][2].
+    #[must_use]
+    pub fn from_slots(slots: &[f64; 42]) -> Data {
+        Data {
+            x1: [[slots[0], slots[1]], [slots[2], slots[3]], [slots[4], slots[5]]],
+            x2: [[slots[6], slots[7]], [slots[8], slots[9]], [slots[10], slots[11]]],
+            v1: [slots[12], slots[13], slots[14]],
+            v2: [slots[15], slots[16], slots[17]],
+            w1: [slots[18], slots[19], slots[20]],
+            w2: [slots[21], slots[22], slots[23]],
+            g1: [
+                [slots[24], slots[25], slots[26]],
+                [slots[27], slots[28], slots[29]],
+                [slots[30], slots[31], slots[32]],
+            ],
+            g2: [
+                [slots[33], slots[34], slots[35]],
+                [slots[36], slots[37], slots[38]],
+                [slots[39], slots[40], slots[41]],
+            ],
+        }
+    }
+    /// The flat form of the data (inverse of [`from_slots`](Self::from_slots)).
+    #[must_use]
+    pub fn to_slots(&self) -> [f64; 42] {
+        let data = self;
+        [
+            data.x1[0][0],
+            data.x1[0][1],
+            data.x1[1][0],
+            data.x1[1][1],
+            data.x1[2][0],
+            data.x1[2][1],
+            data.x2[0][0],
+            data.x2[0][1],
+            data.x2[1][0],
+            data.x2[1][1],
+            data.x2[2][0],
+            data.x2[2][1],
+            data.v1[0],
+            data.v1[1],
+            data.v1[2],
+            data.v2[0],
+            data.v2[1],
+            data.v2[2],
+            data.w1[0],
+            data.w1[1],
+            data.w1[2],
+            data.w2[0],
+            data.w2[1],
+            data.w2[2],
+            data.g1[0][0],
+            data.g1[0][1],
+            data.g1[0][2],
+            data.g1[1][0],
+            data.g1[1][1],
+            data.g1[1][2],
+            data.g1[2][0],
+            data.g1[2][1],
+            data.g1[2][2],
+            data.g2[0][0],
+            data.g2[0][1],
+            data.g2[0][2],
+            data.g2[1][0],
+            data.g2[1][1],
+            data.g2[1][2],
+            data.g2[2][0],
+            data.g2[2][1],
+            data.g2[2][2],
+        ]
+    }
+}
 /// One real solution of `grsrp_gravity`: one field per unknown symbol (lowercased).
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Solution {
@@ -36,6 +113,15 @@ pub struct Solution {
     pub s: f64,
     /// Unknown `t[3]` (`t1` .. `t3`).
     pub t: [f64; 3],
+}
+impl Solution {
+    /// Number of scalar unknowns (eliminated ones included).
+    pub const UNKNOWNS: usize = 5;
+    /// The solution as a flat array in the problem's unknown order: c, s, t1, t2, t3.
+    #[must_use]
+    pub fn to_unknowns(&self) -> [f64; 5] {
+        [self.c, self.s, self.t[0], self.t[1], self.t[2]]
+    }
 }
 /// The largest number of real solutions [`solve`] returns.
 pub const MAX_SOLUTIONS: usize = 12;

@@ -19,6 +19,81 @@ pub struct Data {
     /// `E4: mat3` — a 3x3 matrix, row-major (`[row][column]`).
     pub e4: [[f64; 3]; 3],
 }
+impl Data {
+    /// Number of scalar data slots: the length of the flat form of [`from_slots`](Self::from_slots) / [`to_slots`](Self::to_slots).
+    pub const SLOTS: usize = 36;
+    /// The data from its flat form, in the problem's slot order: symbols in declaration order, arrays element by element, a point as `x, y`, a matrix row-major.
+    ///
+    /// Slot order: E1[0][0], E1[0][1], E1[0][2], E1[1][0], E1[1][1], E1[1][2], ..., E4[2][0], E4[2][1], E4[2][2].
+    #[must_use]
+    pub fn from_slots(slots: &[f64; 36]) -> Data {
+        Data {
+            e1: [
+                [slots[0], slots[1], slots[2]],
+                [slots[3], slots[4], slots[5]],
+                [slots[6], slots[7], slots[8]],
+            ],
+            e2: [
+                [slots[9], slots[10], slots[11]],
+                [slots[12], slots[13], slots[14]],
+                [slots[15], slots[16], slots[17]],
+            ],
+            e3: [
+                [slots[18], slots[19], slots[20]],
+                [slots[21], slots[22], slots[23]],
+                [slots[24], slots[25], slots[26]],
+            ],
+            e4: [
+                [slots[27], slots[28], slots[29]],
+                [slots[30], slots[31], slots[32]],
+                [slots[33], slots[34], slots[35]],
+            ],
+        }
+    }
+    /// The flat form of the data (inverse of [`from_slots`](Self::from_slots)).
+    #[must_use]
+    pub fn to_slots(&self) -> [f64; 36] {
+        let data = self;
+        [
+            data.e1[0][0],
+            data.e1[0][1],
+            data.e1[0][2],
+            data.e1[1][0],
+            data.e1[1][1],
+            data.e1[1][2],
+            data.e1[2][0],
+            data.e1[2][1],
+            data.e1[2][2],
+            data.e2[0][0],
+            data.e2[0][1],
+            data.e2[0][2],
+            data.e2[1][0],
+            data.e2[1][1],
+            data.e2[1][2],
+            data.e2[2][0],
+            data.e2[2][1],
+            data.e2[2][2],
+            data.e3[0][0],
+            data.e3[0][1],
+            data.e3[0][2],
+            data.e3[1][0],
+            data.e3[1][1],
+            data.e3[1][2],
+            data.e3[2][0],
+            data.e3[2][1],
+            data.e3[2][2],
+            data.e4[0][0],
+            data.e4[0][1],
+            data.e4[0][2],
+            data.e4[1][0],
+            data.e4[1][1],
+            data.e4[1][2],
+            data.e4[2][0],
+            data.e4[2][1],
+            data.e4[2][2],
+        ]
+    }
+}
 /// One real solution of `gs5pt`: one field per unknown symbol (lowercased).
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Solution {
@@ -28,6 +103,15 @@ pub struct Solution {
     pub y: f64,
     /// Unknown `z`.
     pub z: f64,
+}
+impl Solution {
+    /// Number of scalar unknowns (eliminated ones included).
+    pub const UNKNOWNS: usize = 3;
+    /// The solution as a flat array in the problem's unknown order: x, y, z.
+    #[must_use]
+    pub fn to_unknowns(&self) -> [f64; 3] {
+        [self.x, self.y, self.z]
+    }
 }
 /// The largest number of real solutions [`solve`] returns.
 pub const MAX_SOLUTIONS: usize = 10;

@@ -1,0 +1,70 @@
+//! `mingen::audit::audit_plan`, the library side of `mingen audit FILE`, on shipped problems.
+
+mod common;
+
+use common::problem_file;
+use mingen::audit::{audit_plan, AuditOptions};
+use mingen::generate::plan_file;
+use mingen::template::TemplateOptions;
+
+fn audit(name: &str, instances: usize) -> mingen::audit::AuditReport {
+    let plan = plan_file(&problem_file(name), &TemplateOptions::default())
+        .unwrap_or_else(|e| panic!("planning {name}: {e}"));
+    let report = audit_plan(&plan, &AuditOptions { instances, seed: 1 });
+    println!("{name}:\n{report}");
+    assert_eq!(report.instances, instances);
+    assert_eq!(report.solutions_expected, plan.generated.count);
+    assert_eq!(
+        report.histogram.iter().map(|b| b.1).sum::<usize>(),
+        instances
+    );
+    // Deterministic for a fixed seed.
+    let again = audit_plan(
+        &plan,
+        &AuditOptions {
+            instances: 20,
+            seed: 1,
+        },
+    );
+    let first = audit_plan(
+        &plan,
+        &AuditOptions {
+            instances: 20,
+            seed: 1,
+        },
+    );
+    assert_eq!(again, first);
+    report
+}
+
+#[test]
+fn audit_plan_gs5pt() {
+    let r = audit("gs5pt", 1000);
+    assert!(
+        r.median_log10_residual < -11.0,
+        "gs5pt: median log10 residual {}",
+        r.median_log10_residual
+    );
+    assert!(
+        (r.failures as f64) <= 0.005 * r.instances as f64,
+        "gs5pt: {} failures of {}",
+        r.failures,
+        r.instances
+    );
+}
+
+#[test]
+fn audit_plan_grsrp10_with_elimination() {
+    let r = audit("grsrp10", 1000);
+    assert!(
+        r.median_log10_residual < -11.0,
+        "grsrp10: median log10 residual {}",
+        r.median_log10_residual
+    );
+    assert!(
+        (r.failures as f64) <= 0.005 * r.instances as f64,
+        "grsrp10: {} failures of {}",
+        r.failures,
+        r.instances
+    );
+}

@@ -327,9 +327,20 @@ pub fn solve_template(
     let (one, vars) = readout_indices(template)?;
     let a = action_matrix(template, equations)?;
     let n = a.nrows();
-    let eigenvalues = Schur::try_new(a.clone(), f64::EPSILON, 100 * n + 100)
-        .ok_or(InterpretError::NoConvergence)?
-        .complex_eigenvalues();
+    // nalgebra's Francis iteration has no exceptional shifts and can need several hundred
+    // sweeps on the symmetric spectra (±λ) of sign-symmetric problems: a generous cap, then
+    // retries on shifted matrices (same eigenvectors, eigenvalues moved by σ).
+    let max_iter = 1000 + 100 * n;
+    let mut eigenvalues = None;
+    for factor in [0.0, 0.618, -1.7] {
+        let sigma = factor * a.norm() / n.max(1) as f64;
+        let shifted = &a + DMatrix::<f64>::identity(n, n) * sigma;
+        if let Some(s) = Schur::try_new(shifted, f64::EPSILON, max_iter) {
+            eigenvalues = Some(s.complex_eigenvalues().map(|z| z - sigma));
+            break;
+        }
+    }
+    let eigenvalues = eigenvalues.ok_or(InterpretError::NoConvergence)?;
     let ac: DMatrix<Complex<f64>> = a.map(|x| Complex::new(x, 0.0));
     let mut out = Vec::with_capacity(n);
     for &lam in eigenvalues.iter() {

@@ -21,7 +21,9 @@
 //!   not) round differently. Allowed on a per-problem fraction (`max_value_differs`) if the
 //!   emitted solutions are about as accurate as the interpreted ones (worst normalised
 //!   residual on the original equations at most 100 times the interpreter's, or below
-//!   1e-10); otherwise the instance is an *emitted worse* failure.
+//!   1e-10, or below the audit's failure threshold [`GOOD_RESIDUAL`] — both then solve the
+//!   instance as well as DESIGN §7 asks); otherwise the instance is an *emitted worse*
+//!   failure.
 
 mod common;
 
@@ -198,6 +200,15 @@ fn run(name: &str, seed: u64) -> Tally {
                 t.worst_agreeing = t.worst_agreeing.max(worst);
             } else {
                 t.count_differs += 1;
+                if std::env::var("AGREEMENT_DEBUG").is_ok() {
+                    let original = plan.problem.evaluate::<f64>(&data);
+                    eprintln!(
+                        "{} residuals emitted {:e} interpreted {:e}",
+                        describe(k, &a, &b, &data),
+                        worst_residual(&original, &a),
+                        worst_residual(&original, &b)
+                    );
+                }
             }
             continue;
         }
@@ -209,7 +220,7 @@ fn run(name: &str, seed: u64) -> Tally {
             } else {
                 t.count_differs += 1;
             }
-        } else if ra <= (100.0 * rb).max(1e-10) {
+        } else if ra <= (100.0 * rb).max(1e-10) || ra < GOOD_RESIDUAL {
             t.value_differs += 1;
         } else {
             t.emitted_worse.push(format!(

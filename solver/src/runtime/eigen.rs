@@ -5,12 +5,28 @@ use nalgebra::allocator::Allocator;
 use nalgebra::{Const, DefaultAllocator, DimDiff, DimSub, SMatrix, SVector, Schur, U1};
 
 /// A complex-conjugate pair of the real Schur form whose imaginary part is at most
-/// `NEAR_REAL_TOL * max|m_ij|` is taken as one real (double) eigenvalue, its real part
-/// (a real double root perturbed by rounding splits into such a pair).
+/// `NEAR_REAL_TOL * |real part|` (at least `eps * max|m_ij|`) is taken as one real (double)
+/// eigenvalue, its real part (a real double root perturbed by rounding splits into such a
+/// pair). Relative to the eigenvalue, not to the matrix: badly scaled action matrices have
+/// entries many orders above their eigenvalues, and a tolerance on the entries would pass
+/// genuinely complex pairs off as real.
 pub const NEAR_REAL_TOL: f64 = 1e-8;
 
-/// Maximum number of QR sweeps per eigenvalue given to the Schur decomposition.
-const SWEEPS_PER_EIGENVALUE: usize = 30;
+/// Shifts tried, as multiples of `|m|_F / N`, when the Schur iteration does not converge.
+/// Action matrices of problems with a sign symmetry (solutions `(a, t)` and `(a, -t)`, action
+/// variable from `t`) have eigenvalues in `±λ` pairs, on which Francis double-shift QR
+/// without exceptional shifts can stall; `m + σI` has the same eigenvectors and breaks the
+/// symmetry of the spectrum.
+const RETRY_SHIFTS: [f64; 2] = [0.618, -1.7];
+
+/// Iteration cap of the Schur decomposition: `BASE_SWEEPS + SWEEPS_PER_EIGENVALUE * N`.
+/// nalgebra's Francis iteration has no exceptional shifts, and action matrices whose
+/// spectrum is symmetric (`±λ` pairs and `±a ± bi` quadruples from a sign symmetry of the
+/// problem) were seen to need several hundred sweeps at N = 12; the cap only bounds the
+/// rare slow cases (typical matrices converge in a few sweeps per eigenvalue).
+const SWEEPS_PER_EIGENVALUE: usize = 100;
+/// See [`SWEEPS_PER_EIGENVALUE`].
+const BASE_SWEEPS: usize = 1000;
 
 /// Real eigenvalues and unit eigenvectors of `m`: `m v = lambda v`, `|v| = 1` (the sign of
 /// `v` is arbitrary). At most `N` pairs, in the order of the real Schur form's diagonal.
@@ -47,9 +63,18 @@ where
     if scale == 0.0 {
         return out;
     }
-    let Some(schur) =
-        Schur::<f64, Const<N>>::try_new(*m, f64::EPSILON, SWEEPS_PER_EIGENVALUE * N + 10)
-    else {
+    let max_iter = BASE_SWEEPS + SWEEPS_PER_EIGENVALUE * N;
+    let mut shift = 0.0;
+    let mut schur = Schur::<f64, Const<N>>::try_new(*m, f64::EPSILON, max_iter);
+    for factor in RETRY_SHIFTS {
+        if schur.is_some() {
+            break;
+        }
+        shift = factor * m.norm() / N as f64;
+        let shifted = m + SMatrix::<f64, N, N>::identity() * shift;
+        schur = Schur::<f64, Const<N>>::try_new(shifted, f64::EPSILON, max_iter);
+    }
+    let Some(schur) = schur else {
         return out;
     };
     let (q, t) = schur.unpack();
@@ -80,7 +105,7 @@ where
                 for lam in [mean + s, mean - s] {
                     ctx.push_block2(&q, &second, i, lam, &mut out);
                 }
-            } else if (-disc).sqrt() <= NEAR_REAL_TOL * scale {
+            } else if (-disc).sqrt() <= (NEAR_REAL_TOL * (mean - shift).abs()).max(smin) {
                 ctx.push_block2(&q, &second, i, mean, &mut out);
             }
             i += 2;
@@ -92,6 +117,9 @@ where
             push_vector(&q, &y, i, lam, &mut out);
             i += 1;
         }
+    }
+    for pair in out.as_mut_slice() {
+        pair.0 -= shift;
     }
     out
 }

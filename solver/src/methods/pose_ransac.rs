@@ -7,7 +7,7 @@ use crate::camera::View;
 use crate::epipolar::{PointData, PoseModel, ResidualKind};
 use crate::geometry::{fix_translation_sign, pose_from_essential, skew};
 use crate::minimal::{EssentialSolver, GrsrpSample, GrsrpSolver};
-use crate::ransac::{ransac, RansacEstimator, RansacOptions, RansacResult};
+use crate::ransac::{ransac, RansacEstimator, RansacOptions, RansacResult, Score};
 use crate::refine::{refine_pose, LmOptions, Loss, Pose};
 use nalgebra::{Matrix3, Vector3};
 
@@ -98,13 +98,19 @@ impl RansacEstimator for EssentialRansac<'_> {
     }
     fn generate_models(&mut self, sample: &[usize], models: &mut Vec<Hypothesis>) {
         let (b1, b2) = self.bearings();
-        let s1: Vec<Vector3<f64>> = sample.iter().map(|&i| b1[i]).collect();
-        let s2: Vec<Vector3<f64>> = sample.iter().map(|&i| b2[i]).collect();
+        let mut buf1 = [Vector3::zeros(); 8];
+        let mut buf2 = [Vector3::zeros(); 8];
+        let k = sample.len().min(8);
+        for (j, &i) in sample.iter().take(k).enumerate() {
+            buf1[j] = b1[i];
+            buf2[j] = b2[i];
+        }
+        let (s1, s2) = (&buf1[..k], &buf2[..k]);
         let mut es = std::mem::take(&mut self.es);
         es.clear();
-        self.solver.solve(&s1, &s2, &mut es);
+        self.solver.solve(s1, s2, &mut es);
         for e in &es {
-            if let Some((r, t)) = pose_from_essential(e, &s1, &s2) {
+            if let Some((r, t)) = pose_from_essential(e, s1, s2) {
                 models.push(Hypothesis::new(r, t));
             }
         }
@@ -119,6 +125,12 @@ impl RansacEstimator for EssentialRansac<'_> {
         } else {
             f64::INFINITY
         }
+    }
+    fn score_bounded(&self, m: &Hypothesis, thr_sq: f64, bound: f64) -> Score {
+        let (msac, inliers) = self
+            .data
+            .msac(self.model, self.kind, &m.r, &m.t, &m.e, thr_sq, bound);
+        Score { msac, inliers }
     }
     fn refine(&self, m: &Hypothesis, inliers: &[usize]) -> Option<Hypothesis> {
         let res = refine_pose(
@@ -166,8 +178,8 @@ impl RansacEstimator for GrsrpRansac<'_> {
         let mut sols = std::mem::take(&mut self.sols);
         sols.clear();
         self.solver.solve(&s, &mut sols);
-        let b1: Vec<Vector3<f64>> = sample.iter().map(|&i| d.b1[i]).collect();
-        let b2: Vec<Vector3<f64>> = sample.iter().map(|&i| d.b2[i]).collect();
+        let b1: [Vector3<f64>; 5] = std::array::from_fn(|k| d.b1[sample[k]]);
+        let b2: [Vector3<f64>; 5] = std::array::from_fn(|k| d.b2[sample[k]]);
         for (r, t) in &sols {
             let t = fix_translation_sign(r, t, &b1, &b2);
             models.push(Hypothesis::new(*r, t));
@@ -183,6 +195,12 @@ impl RansacEstimator for GrsrpRansac<'_> {
         } else {
             f64::INFINITY
         }
+    }
+    fn score_bounded(&self, m: &Hypothesis, thr_sq: f64, bound: f64) -> Score {
+        let (msac, inliers) =
+            self.data
+                .msac(PoseModel::PaperLinear, self.kind, &m.r, &m.t, &m.e, thr_sq, bound);
+        Score { msac, inliers }
     }
     fn refine(&self, m: &Hypothesis, inliers: &[usize]) -> Option<Hypothesis> {
         let res = refine_pose(

@@ -15,9 +15,9 @@
 //! pixels).
 
 use crate::camera::View;
+use crate::geometry::skew;
 use crate::pair_file::Match;
 use crate::rolling_shutter::row_rotation;
-use crate::geometry::skew;
 use nalgebra::{Matrix3, Vector3};
 
 /// Which two-view model a residual follows (see the module documentation).
@@ -397,7 +397,10 @@ mod tests {
                 }
                 let (s, k) = d.msac(model, kind, &r, &t, &e, thr_sq, f64::INFINITY);
                 assert_eq!(k, inl, "{model:?} {kind:?}");
-                assert!((s - sum).abs() <= 1e-9 * sum, "{model:?} {kind:?} {s} {sum}");
+                assert!(
+                    (s - sum).abs() <= 1e-9 * sum,
+                    "{model:?} {kind:?} {s} {sum}"
+                );
                 let (s2, _) = d.msac(model, kind, &r, &t, &e, thr_sq, 0.5 * sum);
                 assert!(s2 > 0.5 * sum && s2 <= sum * (1.0 + 1e-9), "{s2} {sum}");
             }

@@ -433,11 +433,12 @@ impl LmProblem<17> for NrsrpProblem<'_> {
         for (i, o) in out.iter_mut().enumerate() {
             let s1 = self.data.v1[i] / self.height;
             let s2 = self.data.v2[i] / self.height;
-            let f1 = crate::geometry::exp_so3(&(s.phi[0] * s1)).tr_mul(&self.data.m1[i]);
-            let f2 = r.tr_mul(&crate::geometry::exp_so3(&(s.phi[1] * s2)).tr_mul(&self.data.m2[i]));
+            let f1 = SmallRotation::new(&(s.phi[0] * s1)).apply_transpose(&self.data.m1[i]);
+            let h2 = SmallRotation::new(&(s.phi[1] * s2)).apply_transpose(&self.data.m2[i]);
+            let f2 = r.tr_mul(&h2.normalize());
             let c1 = s.delta[0] * s1;
             let c2 = c2_0 + s.delta[1] * s2;
-            *o = (c2 - c1).dot(&f1.normalize().cross(&f2.normalize()));
+            *o = (c2 - c1).dot(&f1.normalize().cross(&f2));
         }
     }
     fn retract(&self, s: &NrsrpState, d: &SVector<f64, 17>) -> NrsrpState {
@@ -473,17 +474,17 @@ impl LmProblem<17> for NrsrpProblem<'_> {
         for (i, (o, j)) in out.iter_mut().zip(jac.iter_mut()).enumerate() {
             let s1 = d.v1[i] / self.height;
             let s2 = d.v2[i] / self.height;
-            let a1 = s.phi[0] * s1;
-            let a2 = s.phi[1] * s2;
-            let f1 = crate::geometry::exp_so3(&a1).tr_mul(&d.m1[i]).normalize();
-            let h2 = crate::geometry::exp_so3(&a2).tr_mul(&d.m2[i]).normalize();
+            let q1 = SmallRotation::new(&(s.phi[0] * s1));
+            let q2 = SmallRotation::new(&(s.phi[1] * s2));
+            let f1 = q1.apply_transpose(&d.m1[i]).normalize();
+            let h2 = q2.apply_transpose(&d.m2[i]).normalize();
             let f2 = r.tr_mul(&h2);
             let dd = -rt + s.delta[1] * s2 - s.delta[0] * s1;
             let n = f1.cross(&f2);
             *o = dd.dot(&n);
             let jth = rt.cross(&n) - f2.cross(&dd.cross(&f1));
-            let jp1 = right_jacobian_so3(&a1).tr_mul(&f2.cross(&dd).cross(&f1)) * s1;
-            let jp2 = right_jacobian_so3(&a2).tr_mul(&(r * dd.cross(&f1)).cross(&h2)) * s2;
+            let jp1 = q1.right_jacobian_transpose(&f2.cross(&dd).cross(&f1)) * s1;
+            let jp2 = q2.right_jacobian_transpose(&(r * dd.cross(&f1)).cross(&h2)) * s2;
             let jd1 = n * -s1;
             let jd2 = n * s2;
             j[0] = jth.x;
@@ -502,18 +503,41 @@ impl LmProblem<17> for NrsrpProblem<'_> {
     }
 }
 
-/// Right Jacobian of SO(3): `exp(φ + δ) ≈ exp(φ) exp(J_r(φ) δ)`,
-/// `J_r = I - (1 - cos θ)/θ² [φ]× + (θ - sin θ)/θ³ [φ]×²`.
-fn right_jacobian_so3(phi: &Vector3<f64>) -> Matrix3<f64> {
-    let th2 = phi.norm_squared();
-    let k = skew(phi);
-    let (a, b) = if th2 < 1e-8 {
-        (0.5 - th2 / 24.0, 1.0 / 6.0 - th2 / 120.0)
-    } else {
-        let th = th2.sqrt();
-        ((1.0 - th.cos()) / th2, (th - th.sin()) / (th2 * th))
-    };
-    Matrix3::identity() - k * a + k * k * b
+/// `exp([φ]×)` kept as its Rodrigues coefficients, applied to vectors without forming the
+/// matrix: `exp([φ]×) v = v + a φ × v + b φ × (φ × v)` with `a = sin θ / θ`,
+/// `b = (1 - cos θ) / θ²`; the right Jacobian
+/// `J_r = I - b [φ]× + c [φ]×²`, `c = (θ - sin θ) / θ³` (`exp(φ + δ) ≈ exp(φ) exp(J_r δ)`).
+struct SmallRotation {
+    phi: Vector3<f64>,
+    a: f64,
+    b: f64,
+    c: f64,
+}
+
+impl SmallRotation {
+    fn new(phi: &Vector3<f64>) -> Self {
+        let th2 = phi.norm_squared();
+        let (a, b, c) = if th2 < 1e-8 {
+            (1.0 - th2 / 6.0, 0.5 - th2 / 24.0, 1.0 / 6.0 - th2 / 120.0)
+        } else {
+            let th = th2.sqrt();
+            let (sn, cs) = th.sin_cos();
+            (sn / th, (1.0 - cs) / th2, (th - sn) / (th2 * th))
+        };
+        SmallRotation { phi: *phi, a, b, c }
+    }
+
+    /// `exp([φ]×)^T v = exp([-φ]×) v`.
+    fn apply_transpose(&self, v: &Vector3<f64>) -> Vector3<f64> {
+        let pv = self.phi.cross(v);
+        v - pv * self.a + self.phi.cross(&pv) * self.b
+    }
+
+    /// `J_r(φ)^T x = x + b φ × x + c φ × (φ × x)`.
+    fn right_jacobian_transpose(&self, x: &Vector3<f64>) -> Vector3<f64> {
+        let px = self.phi.cross(x);
+        x + px * self.b + self.phi.cross(&px) * self.c
+    }
 }
 
 /// Refine the NRSRP model on all points with the Cauchy loss (see [`NrsrpProblem`]).
@@ -613,8 +637,14 @@ mod tests {
         };
         let state = NrsrpState {
             pose: start,
-            phi: [Vector3::new(0.1, -0.05, 0.08), Vector3::new(-0.07, 0.02, 0.1)],
-            delta: [Vector3::new(0.01, 0.02, -0.03), Vector3::new(-0.02, 0.0, 0.04)],
+            phi: [
+                Vector3::new(0.1, -0.05, 0.08),
+                Vector3::new(-0.07, 0.02, 0.1),
+            ],
+            delta: [
+                Vector3::new(0.01, 0.02, -0.03),
+                Vector3::new(-0.02, 0.0, 0.04),
+            ],
         };
         check_jacobian(&p, &state, 1e-5);
     }

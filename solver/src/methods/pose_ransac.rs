@@ -46,6 +46,21 @@ pub(crate) fn threshold(view1: &View, view2: &View, t: Threshold) -> (ResidualKi
     }
 }
 
+/// Residual kind and squared threshold of the global-shutter model:
+/// [`RobustOptions::global_shutter_threshold`] widened by the rolling-shutter allowance.
+pub(crate) fn gs_threshold(view1: &View, view2: &View, o: &RobustOptions) -> (ResidualKind, f64) {
+    match o.global_shutter_threshold {
+        Threshold::SampsonPixels(px) => {
+            let rs = |v: &View| {
+                v.camera.mean_focal() * v.camera.readout * v.camera.height * v.omega.norm()
+            };
+            let px = px + o.rolling_shutter_allowance * rs(view1).max(rs(view2));
+            threshold(view1, view2, Threshold::SampsonPixels(px))
+        }
+        t => threshold(view1, view2, t),
+    }
+}
+
 pub(crate) fn ransac_options(r: &RobustOptions, thr_sq: f64) -> RansacOptions {
     RansacOptions {
         threshold_sq: thr_sq,
@@ -197,9 +212,15 @@ impl RansacEstimator for GrsrpRansac<'_> {
         }
     }
     fn score_bounded(&self, m: &Hypothesis, thr_sq: f64, bound: f64) -> Score {
-        let (msac, inliers) =
-            self.data
-                .msac(PoseModel::PaperLinear, self.kind, &m.r, &m.t, &m.e, thr_sq, bound);
+        let (msac, inliers) = self.data.msac(
+            PoseModel::PaperLinear,
+            self.kind,
+            &m.r,
+            &m.t,
+            &m.e,
+            thr_sq,
+            bound,
+        );
         Score { msac, inliers }
     }
     fn refine(&self, m: &Hypothesis, inliers: &[usize]) -> Option<Hypothesis> {

@@ -244,7 +244,7 @@ fn essential_rotations(e: &Matrix3<f64>) -> Option<([Matrix3<f64>; 2], Vector3<f
         (c01, n01)
     };
     // For an essential matrix with |E|_F = √2 the largest row cross product has norm ≥ 1/3.
-    if !(cn > 1e-4) {
+    if cn.is_nan() || cn <= 1e-4 {
         return None;
     }
     let t = c / cn.sqrt();
@@ -324,7 +324,7 @@ pub fn epipolar_nullspace(
     let mut betas = [0.0f64; 5];
     for j in 0..5 {
         let norm = a[j][j..].iter().map(|x| x * x).sum::<f64>().sqrt();
-        if !(norm > 0.0) {
+        if norm.is_nan() || norm <= 0.0 {
             continue; // H_j = I (rank-deficient sample); Q stays orthogonal.
         }
         let alpha = if a[j][j] > 0.0 { -norm } else { norm };
@@ -332,7 +332,7 @@ pub fn epipolar_nullspace(
         v[j..].copy_from_slice(&a[j][j..]);
         v[j] -= alpha;
         let vn = v[j..].iter().map(|x| x * x).sum::<f64>();
-        if !(vn > 0.0) {
+        if vn.is_nan() || vn <= 0.0 {
             continue;
         }
         let beta = 2.0 / vn;

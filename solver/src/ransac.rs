@@ -29,6 +29,27 @@ pub trait RansacEstimator {
     fn score(&self, model: &Self::Model, threshold_sq: f64) -> Score {
         msac_score(self, model, threshold_sq)
     }
+    /// Like [`score`](Self::score), but may stop early once the MSAC sum exceeds `bound`
+    /// (the model cannot beat a model scoring `bound`); the returned score then has
+    /// `msac > bound` and an incomplete inlier count. [`ransac`] calls this with the best
+    /// score so far, so most hypotheses are rejected after a few points.
+    fn score_bounded(&self, model: &Self::Model, threshold_sq: f64, bound: f64) -> Score {
+        let mut msac = 0.0;
+        let mut inliers = 0;
+        for i in 0..self.num_data() {
+            let r = self.residual_sq(model, i);
+            if r < threshold_sq {
+                msac += r;
+                inliers += 1;
+            } else {
+                msac += threshold_sq;
+            }
+            if msac > bound {
+                break;
+            }
+        }
+        Score { msac, inliers }
+    }
 }
 
 /// MSAC score (`Σ min(r², τ²)`, lower is better) and the number of inliers (`r² < τ²`).
@@ -186,7 +207,7 @@ pub fn ransac<E: RansacEstimator>(est: &mut E, options: &RansacOptions) -> Ransa
         models.clear();
         est.generate_models(&sample, &mut models);
         for m in &models {
-            let sc = est.score(m, thr);
+            let sc = est.score_bounded(m, thr, result.score.msac);
             if !sc.better_than(&result.score) {
                 continue;
             }
@@ -201,7 +222,7 @@ pub fn ransac<E: RansacEstimator>(est: &mut E, options: &RansacOptions) -> Ransa
                     }
                     match est.refine(&best_model, &inl) {
                         Some(r) => {
-                            let rs = est.score(&r, thr);
+                            let rs = est.score_bounded(&r, thr, best_score.msac);
                             if rs.better_than(&best_score) {
                                 best_model = r;
                                 best_score = rs;

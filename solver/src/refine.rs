@@ -84,6 +84,18 @@ pub trait LmProblem<const N: usize> {
     fn retract(&self, state: &Self::State, delta: &SVector<f64, N>) -> Self::State;
     /// The robust loss.
     fn loss(&self) -> Loss;
+    /// Residuals of `state` into `out` and their analytic Jacobian into `jac` (`jac[i]` is
+    /// the gradient of residual `i` with respect to the tangent step `δ` at `δ = 0`, i.e.
+    /// of `residuals(retract(state, δ))`). Return `false` (the default) to have
+    /// [`levenberg_marquardt`] use central finite differences instead.
+    fn residuals_and_jacobian(
+        &self,
+        _state: &Self::State,
+        _out: &mut [f64],
+        _jac: &mut [SVector<f64, N>],
+    ) -> bool {
+        false
+    }
 }
 
 /// Result of [`levenberg_marquardt`].
@@ -134,7 +146,7 @@ pub fn levenberg_marquardt<const N: usize, P: LmProblem<N>>(
     let mut grad = SVector::<f64, N>::zeros();
     while result.iterations < options.max_iterations {
         result.iterations += 1;
-        if need_jacobian {
+        if need_jacobian && !problem.residuals_and_jacobian(&result.state, &mut r, &mut jac) {
             for k in 0..N {
                 let mut d = SVector::<f64, N>::zeros();
                 d[k] = h;
@@ -145,6 +157,8 @@ pub fn levenberg_marquardt<const N: usize, P: LmProblem<N>>(
                     jac[i][k] = (rp[i] - rm[i]) / (2.0 * h);
                 }
             }
+        }
+        if need_jacobian {
             hess.fill(0.0);
             grad.fill(0.0);
             for i in 0..n {
@@ -268,6 +282,94 @@ impl LmProblem<5> for PoseProblem<'_> {
     fn loss(&self) -> Loss {
         self.loss
     }
+    /// Analytic Jacobian. Every model is `r = c2^T [t]× M c1` with `M = A2 R`:
+    /// global shutter `c = m`, `A2 = I`; exact angular `c = Ω^T m`, `A2 = I`; the paper's
+    /// model `c1 = (I - v1[w1]×) m1`, `c2 = m2`, `A2 = I + v2 [w2]×`. With `y = M c1`,
+    /// `u = t × y` and `w = M^T (c2 × t)`: `r = c2 · u = c1 · w`,
+    /// `∂r/∂θ = c1 × w`, `∂r/∂t_k = b_k · (y × c2)`. Sampson: the image gradients are
+    /// `g2 = P2 u`, `g1 = P1 w` (`P = Ω` for the exact model, `P1 = I + v1[w1]×` for the
+    /// paper's, else `I`; x and y components), with `∂u/∂θ_j = t × M (e_j × c1)`,
+    /// `∂u/∂t_k = b_k × y`, `∂w/∂θ_j = w × e_j`, `∂w/∂t_k = M^T (c2 × b_k)`, and
+    /// `∂(r/|g|) = ∂r/|g| - r ∂|g|² / (2|g|³)`.
+    fn residuals_and_jacobian(
+        &self,
+        s: &Pose,
+        out: &mut [f64],
+        jac: &mut [SVector<f64, 5>],
+    ) -> bool {
+        let d = self.data;
+        let rot = s.matrix();
+        let t = s.translation;
+        let (tb1, tb2) = tangent_basis(&t);
+        let w2r = skew(&d.w2) * rot;
+        for ((o, j), &i) in out.iter_mut().zip(jac.iter_mut()).zip(self.indices) {
+            let (c1, c2, m) = match self.model {
+                PoseModel::GlobalShutter => (d.m1[i], d.m2[i], rot),
+                PoseModel::ExactAngular => (d.b1[i], d.b2[i], rot),
+                PoseModel::PaperLinear => (d.l1[i], d.m2[i], rot + w2r * d.v2[i]),
+            };
+            let y = m * c1;
+            let u = t.cross(&y);
+            let w = m.tr_mul(&c2.cross(&t));
+            let res = c2.dot(&u);
+            let jth = c1.cross(&w);
+            let yc = y.cross(&c2);
+            let jr = [jth.x, jth.y, jth.z, tb1.dot(&yc), tb2.dot(&yc)];
+            if self.kind == ResidualKind::Algebraic {
+                *o = res;
+                *j = SVector::<f64, 5>::from(jr);
+                continue;
+            }
+            // Sampson.
+            let ex = [
+                Vector3::new(0.0, -c1.z, c1.y),
+                Vector3::new(c1.z, 0.0, -c1.x),
+                Vector3::new(-c1.y, c1.x, 0.0),
+            ];
+            let du = [
+                t.cross(&(m * ex[0])),
+                t.cross(&(m * ex[1])),
+                t.cross(&(m * ex[2])),
+                tb1.cross(&y),
+                tb2.cross(&y),
+            ];
+            let dw = [
+                Vector3::new(0.0, w.z, -w.y),
+                Vector3::new(-w.z, 0.0, w.x),
+                Vector3::new(w.y, -w.x, 0.0),
+                m.tr_mul(&c2.cross(&tb1)),
+                m.tr_mul(&c2.cross(&tb2)),
+            ];
+            let model = self.model;
+            let (om1, om2) = (&d.omega1[i], &d.omega2[i]);
+            let a1 = d.w1 * d.v1[i];
+            let p1 = |x: &Vector3<f64>| match model {
+                PoseModel::GlobalShutter => *x,
+                PoseModel::ExactAngular => om1 * x,
+                PoseModel::PaperLinear => x + a1.cross(x),
+            };
+            let p2 = |x: &Vector3<f64>| {
+                if model == PoseModel::ExactAngular {
+                    om2 * x
+                } else {
+                    *x
+                }
+            };
+            let g1 = p1(&w);
+            let g2 = p2(&u);
+            let ss = g1.x * g1.x + g1.y * g1.y + g2.x * g2.x + g2.y * g2.y;
+            let sn = ss.sqrt();
+            *o = if ss > 0.0 { res / sn } else { f64::INFINITY };
+            let k = res / (ss * sn);
+            for q in 0..5 {
+                let a = p1(&dw[q]);
+                let b = p2(&du[q]);
+                let dss = g1.x * a.x + g1.y * a.y + g2.x * b.x + g2.y * b.y; // half of ∂|g|²
+                j[q] = jr[q] / sn - k * dss;
+            }
+        }
+        true
+    }
 }
 
 /// Refine `(R, t)` on the points `indices` under `model`/`kind` (see the module
@@ -331,11 +433,12 @@ impl LmProblem<17> for NrsrpProblem<'_> {
         for (i, o) in out.iter_mut().enumerate() {
             let s1 = self.data.v1[i] / self.height;
             let s2 = self.data.v2[i] / self.height;
-            let f1 = crate::geometry::exp_so3(&(s.phi[0] * s1)).tr_mul(&self.data.m1[i]);
-            let f2 = r.tr_mul(&crate::geometry::exp_so3(&(s.phi[1] * s2)).tr_mul(&self.data.m2[i]));
+            let f1 = SmallRotation::new(&(s.phi[0] * s1)).apply_transpose(&self.data.m1[i]);
+            let h2 = SmallRotation::new(&(s.phi[1] * s2)).apply_transpose(&self.data.m2[i]);
+            let f2 = r.tr_mul(&h2.normalize());
             let c1 = s.delta[0] * s1;
             let c2 = c2_0 + s.delta[1] * s2;
-            *o = (c2 - c1).dot(&f1.normalize().cross(&f2.normalize()));
+            *o = (c2 - c1).dot(&f1.normalize().cross(&f2));
         }
     }
     fn retract(&self, s: &NrsrpState, d: &SVector<f64, 17>) -> NrsrpState {
@@ -348,6 +451,92 @@ impl LmProblem<17> for NrsrpProblem<'_> {
     }
     fn loss(&self) -> Loss {
         Loss::Cauchy(self.cauchy_scale)
+    }
+    /// Analytic Jacobian. With unit rays `F1 = exp(s1 φ1)^T m1 / |m1|`,
+    /// `H2 = exp(s2 φ2)^T m2 / |m2|`, `F2 = R^T H2`, `D = c2 - c1`, `N = F1 × F2`,
+    /// `r = D · N`: `∂r/∂θ = (R^T t) × N - F2 × (D × F1)`, `∂r/∂t_k = -(R^T b_k) · N`,
+    /// `∂r/∂φ1 = s1 J_r(s1 φ1)^T ((F2 × D) × F1)`,
+    /// `∂r/∂φ2 = s2 J_r(s2 φ2)^T ((R (D × F1)) × H2)`, `∂r/∂δ1 = -s1 N`, `∂r/∂δ2 = s2 N`
+    /// (`J_r` the right Jacobian of SO(3)).
+    fn residuals_and_jacobian(
+        &self,
+        s: &NrsrpState,
+        out: &mut [f64],
+        jac: &mut [SVector<f64, 17>],
+    ) -> bool {
+        let r = s.pose.matrix();
+        let t = s.pose.translation;
+        let (tb1, tb2) = tangent_basis(&t);
+        let rt = r.tr_mul(&t);
+        let rb1 = r.tr_mul(&tb1);
+        let rb2 = r.tr_mul(&tb2);
+        let d = self.data;
+        for (i, (o, j)) in out.iter_mut().zip(jac.iter_mut()).enumerate() {
+            let s1 = d.v1[i] / self.height;
+            let s2 = d.v2[i] / self.height;
+            let q1 = SmallRotation::new(&(s.phi[0] * s1));
+            let q2 = SmallRotation::new(&(s.phi[1] * s2));
+            let f1 = q1.apply_transpose(&d.m1[i]).normalize();
+            let h2 = q2.apply_transpose(&d.m2[i]).normalize();
+            let f2 = r.tr_mul(&h2);
+            let dd = -rt + s.delta[1] * s2 - s.delta[0] * s1;
+            let n = f1.cross(&f2);
+            *o = dd.dot(&n);
+            let jth = rt.cross(&n) - f2.cross(&dd.cross(&f1));
+            let jp1 = q1.right_jacobian_transpose(&f2.cross(&dd).cross(&f1)) * s1;
+            let jp2 = q2.right_jacobian_transpose(&(r * dd.cross(&f1)).cross(&h2)) * s2;
+            let jd1 = n * -s1;
+            let jd2 = n * s2;
+            j[0] = jth.x;
+            j[1] = jth.y;
+            j[2] = jth.z;
+            j[3] = -rb1.dot(&n);
+            j[4] = -rb2.dot(&n);
+            for k in 0..3 {
+                j[5 + k] = jp1[k];
+                j[8 + k] = jp2[k];
+                j[11 + k] = jd1[k];
+                j[14 + k] = jd2[k];
+            }
+        }
+        true
+    }
+}
+
+/// `exp([φ]×)` kept as its Rodrigues coefficients, applied to vectors without forming the
+/// matrix: `exp([φ]×) v = v + a φ × v + b φ × (φ × v)` with `a = sin θ / θ`,
+/// `b = (1 - cos θ) / θ²`; the right Jacobian
+/// `J_r = I - b [φ]× + c [φ]×²`, `c = (θ - sin θ) / θ³` (`exp(φ + δ) ≈ exp(φ) exp(J_r δ)`).
+struct SmallRotation {
+    phi: Vector3<f64>,
+    a: f64,
+    b: f64,
+    c: f64,
+}
+
+impl SmallRotation {
+    fn new(phi: &Vector3<f64>) -> Self {
+        let th2 = phi.norm_squared();
+        let (a, b, c) = if th2 < 1e-8 {
+            (1.0 - th2 / 6.0, 0.5 - th2 / 24.0, 1.0 / 6.0 - th2 / 120.0)
+        } else {
+            let th = th2.sqrt();
+            let (sn, cs) = th.sin_cos();
+            (sn / th, (1.0 - cs) / th2, (th - sn) / (th2 * th))
+        };
+        SmallRotation { phi: *phi, a, b, c }
+    }
+
+    /// `exp([φ]×)^T v = exp([-φ]×) v`.
+    fn apply_transpose(&self, v: &Vector3<f64>) -> Vector3<f64> {
+        let pv = self.phi.cross(v);
+        v - pv * self.a + self.phi.cross(&pv) * self.b
+    }
+
+    /// `J_r(φ)^T x = x + b φ × x + c φ × (φ × x)`.
+    fn right_jacobian_transpose(&self, x: &Vector3<f64>) -> Vector3<f64> {
+        let px = self.phi.cross(x);
+        x + px * self.b + self.phi.cross(&px) * self.c
     }
 }
 
@@ -378,6 +567,86 @@ mod tests {
             &(gt_r * exp_so3(&Vector3::new(0.02, -0.015, 0.01))),
             &(gt_t + Vector3::new(0.05, -0.04, 0.03)),
         )
+    }
+
+    /// Analytic Jacobian of `p` at `state` against central finite differences.
+    fn check_jacobian<const N: usize, P: LmProblem<N>>(p: &P, state: &P::State, tol: f64) {
+        let n = p.num_residuals();
+        let mut r = vec![0.0; n];
+        let mut r0 = vec![0.0; n];
+        let mut jac = vec![SVector::<f64, N>::zeros(); n];
+        assert!(p.residuals_and_jacobian(state, &mut r, &mut jac));
+        p.residuals(state, &mut r0);
+        let (mut rp, mut rm) = (vec![0.0; n], vec![0.0; n]);
+        let h = 1e-6;
+        for k in 0..N {
+            let mut d = SVector::<f64, N>::zeros();
+            d[k] = h;
+            p.residuals(&p.retract(state, &d), &mut rp);
+            d[k] = -h;
+            p.residuals(&p.retract(state, &d), &mut rm);
+            for i in 0..n {
+                let fd = (rp[i] - rm[i]) / (2.0 * h);
+                let scale = jac[i].norm().max(1e-3);
+                assert!(
+                    (fd - jac[i][k]).abs() <= tol * scale,
+                    "residual {i} param {k}: analytic {} fd {fd}",
+                    jac[i][k]
+                );
+            }
+        }
+        for i in 0..n {
+            assert!((r[i] - r0[i]).abs() <= 1e-12 * (1.0 + r0[i].abs()));
+        }
+    }
+
+    #[test]
+    fn analytic_jacobians_match_finite_differences() {
+        let pair = simulate(&SimulationOptions {
+            seed: 21,
+            points: 40,
+            angular_velocity: 2.0,
+            ..Default::default()
+        })
+        .unwrap();
+        let gt = pair.ground_truth.clone().unwrap();
+        let (v1, v2) = pair.views();
+        let d = PointData::new(&v1, &v2, &pair.matches);
+        let idx: Vec<usize> = (0..d.len()).collect();
+        let start = perturbed(&gt.rotation_matrix(), &gt.translation_vector());
+        for model in [
+            PoseModel::GlobalShutter,
+            PoseModel::ExactAngular,
+            PoseModel::PaperLinear,
+        ] {
+            for kind in [ResidualKind::Algebraic, ResidualKind::Sampson] {
+                let p = PoseProblem {
+                    data: &d,
+                    indices: &idx,
+                    model,
+                    kind,
+                    loss: Loss::Trivial,
+                };
+                check_jacobian(&p, &start, 1e-5);
+            }
+        }
+        let p = NrsrpProblem {
+            data: &d,
+            height: v1.camera.height,
+            cauchy_scale: 0.01,
+        };
+        let state = NrsrpState {
+            pose: start,
+            phi: [
+                Vector3::new(0.1, -0.05, 0.08),
+                Vector3::new(-0.07, 0.02, 0.1),
+            ],
+            delta: [
+                Vector3::new(0.01, 0.02, -0.03),
+                Vector3::new(-0.02, 0.0, 0.04),
+            ],
+        };
+        check_jacobian(&p, &state, 1e-5);
     }
 
     #[test]

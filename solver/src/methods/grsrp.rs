@@ -1,4 +1,5 @@
-//! `grsrp` / `grsrp+`: the paper's method. `R_0` comes from `gsrp` (default), `rectified`
+//! `grsrp` / `grsrp+`: the paper's method. `R_0` comes from `gsrp` (the paper), `rectified`
+//! (the library default)
 //! or is given ([`super::R0Source`]); the generated G-RSRP solver (10 or 20 solutions,
 //! [`crate::minimal::GrsrpSolver`]) runs on 5-point samples in RANSAC, each solution
 //! `R = R_0 exp([a]×)`, `t` (sign by cheirality on the sample), scored with the paper's model

@@ -1,11 +1,12 @@
 //! `gsrp`: global-shutter relative pose. The generated 5-point solver (Nistér/Stewénius) on
 //! bearings `m = K^-1 [u, v, 1]^T` in RANSAC, scored with the global-shutter epipolar
-//! residual `m2^T [t]× R m1` (algebraic or Sampson, per [`super::Threshold`]); the gyro is
+//! residual `m2^T [t]× R m1` (algebraic or Sampson, per
+//! [`super::RobustOptions::global_shutter_threshold`]); the gyro is
 //! ignored. With [`super::RobustOptions::final_refinement`] the result is refined by LM on
 //! the Sampson error over the inliers. Also the initialiser of `nrsrp` and (by default) the
 //! source of `R_0` for `grsrp`.
 
-use super::pose_ransac::{indices, orient, run, threshold, EssentialRansac, Hypothesis};
+use super::pose_ransac::{gs_threshold, indices, orient, run, EssentialRansac, Hypothesis};
 use super::{Estimate, EstimateError, EstimateOptions, Method};
 use crate::camera::View;
 use crate::epipolar::{PointData, PoseModel, ResidualKind};
@@ -19,7 +20,7 @@ pub(crate) fn run_on(
     view2: &View,
     options: &EstimateOptions,
 ) -> Result<Estimate, EstimateError> {
-    let (kind, thr_sq) = threshold(view1, view2, options.robust.threshold);
+    let (kind, thr_sq) = gs_threshold(view1, view2, &options.robust);
     let mut est = EssentialRansac {
         data,
         undistorted: false,

@@ -23,7 +23,9 @@ pub fn estimate(
     let still1 = View::new(view1.camera, Vector3::zeros());
     let still2 = View::new(view2.camera, Vector3::zeros());
     let data = PointData::new(&still1, &still2, matches);
-    let init = gsrp::run_on(&data, &still1, &still2, options)?;
+    // The original views only size the initialisation's inlier threshold
+    // (`RobustOptions::rolling_shutter_allowance`); the estimation itself uses no gyro.
+    let init = gsrp::run_on(&data, view1, view2, options)?;
     let height = view1.camera.height;
     let f = 0.5 * (view1.camera.mean_focal() + view2.camera.mean_focal());
     let start = NrsrpState {

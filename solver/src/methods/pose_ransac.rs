@@ -7,7 +7,7 @@ use crate::camera::View;
 use crate::epipolar::{PointData, PoseModel, ResidualKind};
 use crate::geometry::{fix_translation_sign, pose_from_essential, skew};
 use crate::minimal::{EssentialSolver, GrsrpSample, GrsrpSolver};
-use crate::ransac::{ransac, RansacEstimator, RansacOptions, RansacResult};
+use crate::ransac::{ransac, RansacEstimator, RansacOptions, RansacResult, Score};
 use crate::refine::{refine_pose, LmOptions, Loss, Pose};
 use nalgebra::{Matrix3, Vector3};
 
@@ -43,6 +43,21 @@ pub(crate) fn threshold(view1: &View, view2: &View, t: Threshold) -> (ResidualKi
             let f = 0.5 * (view1.camera.mean_focal() + view2.camera.mean_focal());
             (ResidualKind::Sampson, (px / f).powi(2))
         }
+    }
+}
+
+/// Residual kind and squared threshold of the global-shutter model:
+/// [`RobustOptions::global_shutter_threshold`] widened by the rolling-shutter allowance.
+pub(crate) fn gs_threshold(view1: &View, view2: &View, o: &RobustOptions) -> (ResidualKind, f64) {
+    match o.global_shutter_threshold {
+        Threshold::SampsonPixels(px) => {
+            let rs = |v: &View| {
+                v.camera.mean_focal() * v.camera.readout * v.camera.height * v.omega.norm()
+            };
+            let px = px + o.rolling_shutter_allowance * rs(view1).max(rs(view2));
+            threshold(view1, view2, Threshold::SampsonPixels(px))
+        }
+        t => threshold(view1, view2, t),
     }
 }
 
@@ -98,13 +113,19 @@ impl RansacEstimator for EssentialRansac<'_> {
     }
     fn generate_models(&mut self, sample: &[usize], models: &mut Vec<Hypothesis>) {
         let (b1, b2) = self.bearings();
-        let s1: Vec<Vector3<f64>> = sample.iter().map(|&i| b1[i]).collect();
-        let s2: Vec<Vector3<f64>> = sample.iter().map(|&i| b2[i]).collect();
+        let mut buf1 = [Vector3::zeros(); 8];
+        let mut buf2 = [Vector3::zeros(); 8];
+        let k = sample.len().min(8);
+        for (j, &i) in sample.iter().take(k).enumerate() {
+            buf1[j] = b1[i];
+            buf2[j] = b2[i];
+        }
+        let (s1, s2) = (&buf1[..k], &buf2[..k]);
         let mut es = std::mem::take(&mut self.es);
         es.clear();
-        self.solver.solve(&s1, &s2, &mut es);
+        self.solver.solve(s1, s2, &mut es);
         for e in &es {
-            if let Some((r, t)) = pose_from_essential(e, &s1, &s2) {
+            if let Some((r, t)) = pose_from_essential(e, s1, s2) {
                 models.push(Hypothesis::new(r, t));
             }
         }
@@ -119,6 +140,12 @@ impl RansacEstimator for EssentialRansac<'_> {
         } else {
             f64::INFINITY
         }
+    }
+    fn score_bounded(&self, m: &Hypothesis, thr_sq: f64, bound: f64) -> Score {
+        let (msac, inliers) = self
+            .data
+            .msac(self.model, self.kind, &m.r, &m.t, &m.e, thr_sq, bound);
+        Score { msac, inliers }
     }
     fn refine(&self, m: &Hypothesis, inliers: &[usize]) -> Option<Hypothesis> {
         let res = refine_pose(
@@ -166,8 +193,8 @@ impl RansacEstimator for GrsrpRansac<'_> {
         let mut sols = std::mem::take(&mut self.sols);
         sols.clear();
         self.solver.solve(&s, &mut sols);
-        let b1: Vec<Vector3<f64>> = sample.iter().map(|&i| d.b1[i]).collect();
-        let b2: Vec<Vector3<f64>> = sample.iter().map(|&i| d.b2[i]).collect();
+        let b1: [Vector3<f64>; 5] = std::array::from_fn(|k| d.b1[sample[k]]);
+        let b2: [Vector3<f64>; 5] = std::array::from_fn(|k| d.b2[sample[k]]);
         for (r, t) in &sols {
             let t = fix_translation_sign(r, t, &b1, &b2);
             models.push(Hypothesis::new(*r, t));
@@ -183,6 +210,18 @@ impl RansacEstimator for GrsrpRansac<'_> {
         } else {
             f64::INFINITY
         }
+    }
+    fn score_bounded(&self, m: &Hypothesis, thr_sq: f64, bound: f64) -> Score {
+        let (msac, inliers) = self.data.msac(
+            PoseModel::PaperLinear,
+            self.kind,
+            &m.r,
+            &m.t,
+            &m.e,
+            thr_sq,
+            bound,
+        );
+        Score { msac, inliers }
     }
     fn refine(&self, m: &Hypothesis, inliers: &[usize]) -> Option<Hypothesis> {
         let res = refine_pose(

@@ -28,6 +28,21 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Numerical stability of a problem's template: random real instances through the
+    /// interpreted template, normalised residuals, failures, a histogram.
+    Audit {
+        /// The problem file.
+        file: PathBuf,
+        /// Number of random instances.
+        #[arg(long, default_value_t = 1000)]
+        instances: usize,
+        /// Seed of the random instances.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Print one JSON object instead of text.
+        #[arg(long)]
+        json: bool,
+    },
     /// Emit solver/src/generated/<name>.rs for problem files (or all of templates/*.mp).
     Generate {
         /// Problem files.
@@ -95,6 +110,12 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Inspect { file, json } => inspect(&file, json),
         Command::Generate { files, all, check } => generate(files, all, check),
+        Command::Audit {
+            file,
+            instances,
+            seed,
+            json,
+        } => audit(&file, instances, seed, json),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -262,6 +283,28 @@ fn print_plan(out: &mut String, plan: &mingen::pipeline::SolverPlan) {
         g.seconds.1,
         g.seconds.2
     );
+}
+
+fn audit(file: &PathBuf, instances: usize, seed: u64, as_json: bool) -> Result<(), CliError> {
+    if instances == 0 {
+        return Err(CliError {
+            message: "--instances must be at least 1".into(),
+            code: 2,
+        });
+    }
+    let plan = plan_file(file, &TemplateOptions::default())?;
+    let options = mingen::audit::AuditOptions { instances, seed };
+    let report = mingen::audit::audit_plan(&plan, &options);
+    if as_json {
+        let text = serde_json::to_string_pretty(&report.to_json()).unwrap_or_default();
+        return emit(&format!("{text}\n"));
+    }
+    let (rows, cols) = plan.generated.built.template.size();
+    emit(&format!(
+        "problem {} (template {rows} x {cols}, {} solutions)\n{report}",
+        plan.problem.name(),
+        plan.generated.count
+    ))
 }
 
 fn generate(files: Vec<PathBuf>, all: bool, check: bool) -> Result<(), CliError> {

@@ -37,18 +37,27 @@ pub struct Solution {
 pub const MAX_SOLUTIONS: usize = 20;
 /// The real solutions of one instance.
 pub type Solutions = crate::runtime::SolutionSet<Solution, MAX_SOLUTIONS>;
+/// The elimination template's `[rows, cols, pivot columns, first reduced row]`.
+#[doc(hidden)]
+pub const TEMPLATE_SHAPE: [usize; 4] = [228, 248, 228, 214];
 /// Solves `grsrp`: all real solutions of the problem's equations for the given data.
 ///
-/// Fills a 228 x 248 elimination template, reduces it by Gauss-Jordan elimination, builds the 20 x 20 action matrix of `t2` on the basis [t1*t3^2, t2*t3^2, t3^3, a3^2, a3*t2, t1*t2, t2^2, a1*t3, a2*t3, a3*t3, t1*t3, t2*t3, t3^2, a1, a2, a3, t1, t2, t3, 1] and reads each unknown off the real eigenvectors as `v[x] / v[1]`.
+/// Fills a 228 x 248 elimination template, reduces it (LU with partial pivoting, back substitution of the 14 reducible rows only), builds the 20 x 20 action matrix of `t2` on the basis [t1*t3^2, t2*t3^2, t3^3, a3^2, a3*t2, t1*t2, t2^2, a1*t3, a2*t3, a3*t3, t1*t3, t2*t3, t3^2, a1, a2, a3, t1, t2, t3, 1] and reads each unknown off the real eigenvectors as `v[x] / v[1]`.
 ///
 /// Never panics: non-finite or degenerate data gives no solutions.
 #[must_use]
-#[allow(
-    clippy::similar_names,
-    clippy::many_single_char_names,
-    clippy::too_many_lines
-)]
 pub fn solve(data: &Data) -> Solutions {
+    solve_staged(data, &mut ())
+}
+/// [`solve`] with an observer called between the stages (benchmarks, diagnostics).
+#[doc(hidden)]
+#[must_use]
+#[inline]
+#[allow(clippy::similar_names, clippy::many_single_char_names, clippy::too_many_lines)]
+pub fn solve_staged<S: crate::runtime::Stages>(
+    data: &Data,
+    stages: &mut S,
+) -> Solutions {
     let mut out = Solutions::new();
     let d: [f64; 45] = [
         data.x1[0][0],
@@ -2866,7 +2875,13 @@ pub fn solve(data: &Data) -> Solutions {
     m[56530] = 1.0;
     m[56536] = 1.0;
     m[56543] = -1.0;
-    if !crate::runtime::gauss_jordan(&mut m, 228, 248, 228) {
+    if !stages.filled(&m) {
+        return out;
+    }
+    if !crate::runtime::lu_solve_template(&mut m, 228, 248, 228, 214) {
+        return out;
+    }
+    if !stages.eliminated(&m) {
         return out;
     }
     let mut a = nalgebra::SMatrix::<f64, 20, 20>::zeros();
@@ -2896,7 +2911,10 @@ pub fn solve(data: &Data) -> Solutions {
             a[(j, k)] = -x;
         }
     }
-    let pairs = crate::runtime::real_eigenpairs::<20>(&a);
+    if !stages.action(a.as_slice()) {
+        return out;
+    }
+    let pairs = crate::runtime::real_eigenpairs_sturm::<20>(&a);
     for (_, v) in pairs.iter() {
         let w = v[19];
         if !w.is_finite() || w.abs() <= 1e-12 {
@@ -2908,19 +2926,17 @@ pub fn solve(data: &Data) -> Solutions {
         let u3 = v[16] / w;
         let u4 = v[17] / w;
         let u5 = v[18] / w;
-        if !u0.is_finite()
-            || !u1.is_finite()
-            || !u2.is_finite()
-            || !u3.is_finite()
-            || !u4.is_finite()
-            || !u5.is_finite()
+        if !u0.is_finite() || !u1.is_finite() || !u2.is_finite() || !u3.is_finite()
+            || !u4.is_finite() || !u5.is_finite()
         {
             continue;
         }
-        if !out.push(Solution {
-            a: [u0, u1, u2],
-            t: [u3, u4, u5],
-        }) {
+        if !out
+            .push(Solution {
+                a: [u0, u1, u2],
+                t: [u3, u4, u5],
+            })
+        {
             break;
         }
     }

@@ -41,18 +41,27 @@ pub struct Solution {
 pub const MAX_SOLUTIONS: usize = 12;
 /// The real solutions of one instance.
 pub type Solutions = crate::runtime::SolutionSet<Solution, MAX_SOLUTIONS>;
+/// The elimination template's `[rows, cols, pivot columns, first reduced row]`.
+#[doc(hidden)]
+pub const TEMPLATE_SHAPE: [usize; 4] = [90, 102, 90, 84];
 /// Solves `grsrp_gravity`: all real solutions of the problem's equations for the given data.
 ///
-/// Fills a 90 x 102 elimination template, reduces it by Gauss-Jordan elimination, builds the 12 x 12 action matrix of `t3` on the basis [s*t2, c*t3, s*t3, t1*t3, t2*t3, t3^2, c, s, t1, t2, t3, 1] and reads each unknown off the real eigenvectors as `v[x] / v[1]`.
+/// Fills a 90 x 102 elimination template, reduces it (LU with partial pivoting, back substitution of the 6 reducible rows only), builds the 12 x 12 action matrix of `t3` on the basis [s*t2, c*t3, s*t3, t1*t3, t2*t3, t3^2, c, s, t1, t2, t3, 1] and reads each unknown off the real eigenvectors as `v[x] / v[1]`.
 ///
 /// Never panics: non-finite or degenerate data gives no solutions.
 #[must_use]
-#[allow(
-    clippy::similar_names,
-    clippy::many_single_char_names,
-    clippy::too_many_lines
-)]
 pub fn solve(data: &Data) -> Solutions {
+    solve_staged(data, &mut ())
+}
+/// [`solve`] with an observer called between the stages (benchmarks, diagnostics).
+#[doc(hidden)]
+#[must_use]
+#[inline]
+#[allow(clippy::similar_names, clippy::many_single_char_names, clippy::too_many_lines)]
+pub fn solve_staged<S: crate::runtime::Stages>(
+    data: &Data,
+    stages: &mut S,
+) -> Solutions {
     let mut out = Solutions::new();
     let d: [f64; 42] = [
         data.x1[0][0],
@@ -235,23 +244,32 @@ pub fn solve(data: &Data) -> Solutions {
     let c122 = d[13] * d[19];
     let c123 = d[13] * d[18];
     let c124 = c112 - (c94 * c122 - c103 * c123)
-        + (d[2] * (c94 - c103 * c121 + c112 * c122) + d[3] * (c103 + c94 * c121 - c112 * c123));
+        + (d[2] * (c94 - c103 * c121 + c112 * c122)
+            + d[3] * (c103 + c94 * c121 - c112 * c123));
     let c125 = c113 - (c95 * c122 - c104 * c123)
-        + (d[2] * (c95 - c104 * c121 + c113 * c122) + d[3] * (c104 + c95 * c121 - c113 * c123));
+        + (d[2] * (c95 - c104 * c121 + c113 * c122)
+            + d[3] * (c104 + c95 * c121 - c113 * c123));
     let c126 = c114 - (c96 * c122 - c105 * c123)
-        + (d[2] * (c96 - c105 * c121 + c114 * c122) + d[3] * (c105 + c96 * c121 - c114 * c123));
+        + (d[2] * (c96 - c105 * c121 + c114 * c122)
+            + d[3] * (c105 + c96 * c121 - c114 * c123));
     let c127 = c115 - (c97 * c122 - c106 * c123)
-        + (d[2] * (c97 - c106 * c121 + c115 * c122) + d[3] * (c106 + c97 * c121 - c115 * c123));
+        + (d[2] * (c97 - c106 * c121 + c115 * c122)
+            + d[3] * (c106 + c97 * c121 - c115 * c123));
     let c128 = c116 - (c98 * c122 - c107 * c123)
-        + (d[2] * (c98 - c107 * c121 + c116 * c122) + d[3] * (c107 + c98 * c121 - c116 * c123));
+        + (d[2] * (c98 - c107 * c121 + c116 * c122)
+            + d[3] * (c107 + c98 * c121 - c116 * c123));
     let c129 = c117 - (c99 * c122 - c108 * c123)
-        + (d[2] * (c99 - c108 * c121 + c117 * c122) + d[3] * (c108 + c99 * c121 - c117 * c123));
+        + (d[2] * (c99 - c108 * c121 + c117 * c122)
+            + d[3] * (c108 + c99 * c121 - c117 * c123));
     let c130 = c118 - (c100 * c122 - c109 * c123)
-        + (d[2] * (c100 - c109 * c121 + c118 * c122) + d[3] * (c109 + c100 * c121 - c118 * c123));
+        + (d[2] * (c100 - c109 * c121 + c118 * c122)
+            + d[3] * (c109 + c100 * c121 - c118 * c123));
     let c131 = c119 - (c101 * c122 - c110 * c123)
-        + (d[2] * (c101 - c110 * c121 + c119 * c122) + d[3] * (c110 + c101 * c121 - c119 * c123));
+        + (d[2] * (c101 - c110 * c121 + c119 * c122)
+            + d[3] * (c110 + c101 * c121 - c119 * c123));
     let c132 = c120 - (c102 * c122 - c111 * c123)
-        + (d[2] * (c102 - c111 * c121 + c120 * c122) + d[3] * (c111 + c102 * c121 - c120 * c123));
+        + (d[2] * (c102 - c111 * c121 + c120 * c122)
+            + d[3] * (c111 + c102 * c121 - c120 * c123));
     let c133 = d[17] * d[23];
     let c134 = d[17] * d[22];
     let c135 = d[17] * d[21];
@@ -297,23 +315,32 @@ pub fn solve(data: &Data) -> Solutions {
     let c175 = d[14] * d[19];
     let c176 = d[14] * d[18];
     let c177 = c165 - (c147 * c175 - c156 * c176)
-        + (d[4] * (c147 - c156 * c174 + c165 * c175) + d[5] * (c156 + c147 * c174 - c165 * c176));
+        + (d[4] * (c147 - c156 * c174 + c165 * c175)
+            + d[5] * (c156 + c147 * c174 - c165 * c176));
     let c178 = c166 - (c148 * c175 - c157 * c176)
-        + (d[4] * (c148 - c157 * c174 + c166 * c175) + d[5] * (c157 + c148 * c174 - c166 * c176));
+        + (d[4] * (c148 - c157 * c174 + c166 * c175)
+            + d[5] * (c157 + c148 * c174 - c166 * c176));
     let c179 = c167 - (c149 * c175 - c158 * c176)
-        + (d[4] * (c149 - c158 * c174 + c167 * c175) + d[5] * (c158 + c149 * c174 - c167 * c176));
+        + (d[4] * (c149 - c158 * c174 + c167 * c175)
+            + d[5] * (c158 + c149 * c174 - c167 * c176));
     let c180 = c168 - (c150 * c175 - c159 * c176)
-        + (d[4] * (c150 - c159 * c174 + c168 * c175) + d[5] * (c159 + c150 * c174 - c168 * c176));
+        + (d[4] * (c150 - c159 * c174 + c168 * c175)
+            + d[5] * (c159 + c150 * c174 - c168 * c176));
     let c181 = c169 - (c151 * c175 - c160 * c176)
-        + (d[4] * (c151 - c160 * c174 + c169 * c175) + d[5] * (c160 + c151 * c174 - c169 * c176));
+        + (d[4] * (c151 - c160 * c174 + c169 * c175)
+            + d[5] * (c160 + c151 * c174 - c169 * c176));
     let c182 = c170 - (c152 * c175 - c161 * c176)
-        + (d[4] * (c152 - c161 * c174 + c170 * c175) + d[5] * (c161 + c152 * c174 - c170 * c176));
+        + (d[4] * (c152 - c161 * c174 + c170 * c175)
+            + d[5] * (c161 + c152 * c174 - c170 * c176));
     let c183 = c171 - (c153 * c175 - c162 * c176)
-        + (d[4] * (c153 - c162 * c174 + c171 * c175) + d[5] * (c162 + c153 * c174 - c171 * c176));
+        + (d[4] * (c153 - c162 * c174 + c171 * c175)
+            + d[5] * (c162 + c153 * c174 - c171 * c176));
     let c184 = c172 - (c154 * c175 - c163 * c176)
-        + (d[4] * (c154 - c163 * c174 + c172 * c175) + d[5] * (c163 + c154 * c174 - c172 * c176));
+        + (d[4] * (c154 - c163 * c174 + c172 * c175)
+            + d[5] * (c163 + c154 * c174 - c172 * c176));
     let c185 = c173 - (c155 * c175 - c164 * c176)
-        + (d[4] * (c155 - c164 * c174 + c173 * c175) + d[5] * (c164 + c155 * c174 - c173 * c176));
+        + (d[4] * (c155 - c164 * c174 + c173 * c175)
+            + d[5] * (c164 + c155 * c174 - c173 * c176));
     let mut m = vec![0.0f64; 9180];
     m[0] = c79;
     m[1] = -c76;
@@ -990,7 +1017,13 @@ pub fn solve(data: &Data) -> Solutions {
     m[9161] = 1.0;
     m[9173] = 1.0;
     m[9179] = -1.0;
-    if !crate::runtime::gauss_jordan(&mut m, 90, 102, 90) {
+    if !stages.filled(&m) {
+        return out;
+    }
+    if !crate::runtime::lu_solve_template(&mut m, 90, 102, 90, 84) {
+        return out;
+    }
+    if !stages.eliminated(&m) {
         return out;
     }
     let mut a = nalgebra::SMatrix::<f64, 12, 12>::zeros();
@@ -1000,19 +1033,15 @@ pub fn solve(data: &Data) -> Solutions {
     a[(9, 4)] = 1.0;
     a[(10, 5)] = 1.0;
     a[(11, 10)] = 1.0;
-    for (j, s) in [
-        (0, 8658),
-        (1, 8760),
-        (2, 8862),
-        (3, 8964),
-        (4, 9066),
-        (5, 9168),
-    ] {
+    for (j, s) in [(0, 8658), (1, 8760), (2, 8862), (3, 8964), (4, 9066), (5, 9168)] {
         for (k, x) in m[s..s + 12].iter().enumerate() {
             a[(j, k)] = -x;
         }
     }
-    let pairs = crate::runtime::real_eigenpairs::<12>(&a);
+    if !stages.action(a.as_slice()) {
+        return out;
+    }
+    let pairs = crate::runtime::real_eigenpairs_sturm::<12>(&a);
     for (_, v) in pairs.iter() {
         let w = v[11];
         if !w.is_finite() || w.abs() <= 1e-12 {
@@ -1023,19 +1052,18 @@ pub fn solve(data: &Data) -> Solutions {
         let u2 = v[8] / w;
         let u3 = v[9] / w;
         let u4 = v[10] / w;
-        if !u0.is_finite()
-            || !u1.is_finite()
-            || !u2.is_finite()
-            || !u3.is_finite()
+        if !u0.is_finite() || !u1.is_finite() || !u2.is_finite() || !u3.is_finite()
             || !u4.is_finite()
         {
             continue;
         }
-        if !out.push(Solution {
-            c: u0,
-            s: u1,
-            t: [u2, u3, u4],
-        }) {
+        if !out
+            .push(Solution {
+                c: u0,
+                s: u1,
+                t: [u2, u3, u4],
+            })
+        {
             break;
         }
     }

@@ -16,8 +16,12 @@ mod eigen;
 mod elim;
 mod null;
 mod solution_set;
+mod stages;
+mod sturm;
 
 pub use eigen::{real_eigenpairs, NEAR_REAL_TOL};
 pub use elim::{gauss_jordan, lu_solve_template, PIVOT_TOL};
 pub use null::null_vector3;
 pub use solution_set::SolutionSet;
+pub use stages::Stages;
+pub use sturm::real_eigenpairs_sturm;

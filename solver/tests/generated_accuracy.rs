@@ -27,8 +27,14 @@ fn check(name: &str, errors: &[f64], median_target: f64, min_found: f64) {
         "{name:<14} n = {n:5}  found {:6.2} %  median log10 err {median:6.2}  95th pct {p95:6.2}",
         100.0 * rate
     );
-    assert!(rate >= min_found, "{name}: planted solution found in {found} of {n}");
-    assert!(median < median_target, "{name}: median log10 error {median}");
+    assert!(
+        rate >= min_found,
+        "{name}: planted solution found in {found} of {n}"
+    );
+    assert!(
+        median < median_target,
+        "{name}: median log10 error {median}"
+    );
 }
 
 #[test]

@@ -179,9 +179,7 @@ fn stage_timings() {
     let g5: Vec<gs5pt::Data> = (0..64)
         .map(|_| planted::gs5pt_instance(&mut rng).data)
         .collect();
-    let rs: Vec<planted::Grsrp> = (0..64)
-        .map(|_| planted::grsrp_instance(&mut rng))
-        .collect();
+    let rs: Vec<planted::Grsrp> = (0..64).map(|_| planted::grsrp_instance(&mut rng)).collect();
     let r10: Vec<grsrp10::Data> = rs.iter().map(|i| i.data10()).collect();
     let r20: Vec<grsrp::Data> = rs.iter().take(16).map(|i| i.data20()).collect();
     let gr: Vec<grsrp_gravity::Data> = (0..64)

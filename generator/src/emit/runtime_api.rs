@@ -10,13 +10,8 @@ pub(crate) fn solution_set() -> TokenStream {
     quote!(crate::runtime::SolutionSet)
 }
 
-/// `gauss_jordan(m: &mut [f64], rows, cols, pivot_cols) -> bool` (row-major, in place).
-pub(crate) fn gauss_jordan() -> TokenStream {
-    quote!(crate::runtime::gauss_jordan)
-}
-
 /// `lu_solve_template(m: &mut [f64], rows, cols, pivot_cols, first_row) -> bool`: like
-/// `gauss_jordan` for rows `first_row..pivot_cols` (row-major, in place).
+/// Gauss-Jordan elimination for rows `first_row..pivot_cols` (row-major, in place).
 pub(crate) fn lu_solve_template() -> TokenStream {
     quote!(crate::runtime::lu_solve_template)
 }

@@ -839,6 +839,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         #[doc(hidden)]
         #[must_use]
         #[inline]
+        #[rustfmt::skip]
         #[allow(
             clippy::similar_names,
             clippy::many_single_char_names,

@@ -53,6 +53,7 @@ pub fn solve(data: &Data) -> Solutions {
 #[doc(hidden)]
 #[must_use]
 #[inline]
+#[rustfmt::skip]
 #[allow(clippy::similar_names, clippy::many_single_char_names, clippy::too_many_lines)]
 pub fn solve_staged<S: crate::runtime::Stages>(
     data: &Data,

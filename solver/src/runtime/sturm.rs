@@ -90,7 +90,8 @@ where
         let Some((lam_mu, y)) = inverse_iteration(&h, mu) else {
             return real_eigenpairs(m);
         };
-        if !((lam_mu - mu).abs() <= AGREE_TOL) || lams[..k].iter().any(|&l| l == lam_mu) {
+        let agrees = (lam_mu - mu).abs() <= AGREE_TOL; // false for NaN
+        if !agrees || lams[..k].contains(&lam_mu) {
             return real_eigenpairs(m);
         }
         lams[k] = lam_mu;
@@ -404,7 +405,7 @@ impl<const N: usize> Sturm<N> {
             }
         }
         let bound = (2.0 * bound * (1.0 + 1e-12)).min(1.0) * 1.01;
-        if !(bound > 0.0) {
+        if bound.is_nan() || bound <= 0.0 {
             return 0;
         }
         let lo = -bound;
@@ -497,7 +498,7 @@ impl<const N: usize> Sturm<N> {
             // (stricter tests stall at the rounding level of p and cost every iteration).
             let done = (nx - x).abs() <= 1e-12 * x.abs() || b - a <= 1e-12 * x.abs();
             x = nx;
-            if done || !(a < b) {
+            if done || a >= b || a.is_nan() || b.is_nan() {
                 break;
             }
         }

@@ -18,9 +18,9 @@
 //!
 //! Back-end choice (the emitter's `STURM_MAX_BASIS = 20`), measured on the action
 //! matrices the shipped solvers actually build (`tests/solver_stages.rs`, medians of
-//! interleaved rounds, 2-core shared VM under load): 10x10 Schur ~13-14 µs vs Sturm
-//! ~13 µs before and markedly less after the Newton-termination / Hessenberg loop fixes;
-//! 12x12 Schur ~40 µs vs Sturm ~17 µs; 20x20 Schur ~132 µs vs Sturm ~56 µs. Sturm costs
+//! interleaved rounds, 2-core shared VM under load): 10x10 Schur 12.1 / 14.8 µs vs Sturm
+//! 9.0 / 11.8 µs (gs5pt / grsrp10 matrices, read-out included);
+//! 12x12 Schur ~41 µs vs Sturm ~15 µs; 20x20 Schur ~140 µs vs Sturm ~49 µs. Sturm costs
 //! (10x10, random): balancing 0.1 µs, Hessenberg 1.0 µs, characteristic polynomial 0.2 µs,
 //! Sturm sequence 0.35 µs, isolation + Newton ~0.5 µs per real root, inverse iteration
 //! ~0.6 µs per real root. Elimination: `lu_solve_template` is emitted (10x20: ~0.8 µs vs

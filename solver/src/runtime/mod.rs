@@ -15,6 +15,8 @@
 //!   its inverse-iteration eigenvalue disagree (1-4 % of 5-point action matrices) or the
 //!   Sturm sequence degenerates.
 //! - [`Stages`]: observer of an emitted solver's stages (`solve_staged`), for timings.
+//! - [`null_vector3`]: unit null vector of an n x 3 matrix (recovery of eliminated
+//!   unknowns such as a translation direction).
 //!
 //! Back-end choice (the emitter's `STURM_MAX_BASIS = 20`), measured on the action
 //! matrices the shipped solvers actually build (`tests/solver_stages.rs`, medians of
@@ -25,8 +27,6 @@
 //! Sturm sequence 0.35 µs, isolation + Newton ~0.5 µs per real root, inverse iteration
 //! ~0.6 µs per real root. Elimination: `lu_solve_template` is emitted (10x20: ~0.8 µs vs
 //! `gauss_jordan` ~1.0 µs; 90x102: 37 vs 68 µs; 228x248: 270 vs 604 µs).
-//! - [`null_vector3`]: unit null vector of an n x 3 matrix (recovery of eliminated
-//!   unknowns such as a translation direction).
 
 mod eigen;
 mod elim;

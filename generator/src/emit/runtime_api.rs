@@ -10,9 +10,22 @@ pub(crate) fn solution_set() -> TokenStream {
     quote!(crate::runtime::SolutionSet)
 }
 
-/// `gauss_jordan(m: &mut [f64], rows, cols, pivot_cols) -> bool` (row-major, in place).
-pub(crate) fn gauss_jordan() -> TokenStream {
-    quote!(crate::runtime::gauss_jordan)
+/// `lu_solve_template(m: &mut [f64], rows, cols, pivot_cols, first_row) -> bool`: like
+/// Gauss-Jordan elimination for rows `first_row..pivot_cols` (row-major, in place).
+pub(crate) fn lu_solve_template() -> TokenStream {
+    quote!(crate::runtime::lu_solve_template)
+}
+
+/// `real_eigenpairs_sturm::<N>`: same signature as `real_eigenpairs` (characteristic
+/// polynomial + Sturm sequences + inverse iteration; faster for small `N`).
+pub(crate) fn real_eigenpairs_sturm() -> TokenStream {
+    quote!(crate::runtime::real_eigenpairs_sturm)
+}
+
+/// The stage-observer trait `Stages` (`filled`, `eliminated`, `action`: `&[f64] -> bool`),
+/// implemented by `()`.
+pub(crate) fn stages() -> TokenStream {
+    quote!(crate::runtime::Stages)
 }
 
 /// `real_eigenpairs::<N>(&SMatrix<f64, N, N>) -> SolutionSet<(f64, SVector<f64, N>), N>`.

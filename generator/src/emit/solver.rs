@@ -19,6 +19,11 @@ pub const SMALL_TEMPLATE_ROWS: usize = 40;
 /// vectors) are solutions at infinity or numerical noise and are skipped.
 const MIN_UNIT_ENTRY_LITERAL: &str = "1e-12";
 
+/// Action matrices up to this size use the characteristic-polynomial / Sturm eigen back end
+/// (`real_eigenpairs_sturm`), larger ones the real Schur form (`real_eigenpairs`); chosen
+/// by measurement on the shipped solvers' action matrices (see `rspose::runtime`).
+const STURM_MAX_BASIS: usize = 20;
+
 fn lit(n: usize) -> Literal {
     Literal::usize_unsuffixed(n)
 }
@@ -920,8 +925,14 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         }
     }
 
-    let gj = rt::gauss_jordan();
-    let eig = rt::real_eigenpairs();
+    let lu = rt::lu_solve_template();
+    let first_row = lit(t.n_excess);
+    let eig = if nb <= STURM_MAX_BASIS {
+        rt::real_eigenpairs_sturm()
+    } else {
+        rt::real_eigenpairs()
+    };
+    let stages = rt::stages();
     let smat = rt::smatrix();
     let eps: Literal = MIN_UNIT_ENTRY_LITERAL.parse().expect("a float literal");
     let basis: Vec<String> = t.basis.iter().map(|b| plan.mono(b)).collect();
@@ -932,9 +943,11 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         ),
         String::new(),
         format!(
-            "Fills a {rows} x {cols} elimination template, reduces it by Gauss-Jordan \
-             elimination, builds the {nb} x {nb} action matrix of `{}` on the basis [{}] and \
-             reads each unknown off the real eigenvectors as `v[x] / v[1]`.",
+            "Fills a {rows} x {cols} elimination template, reduces it (LU with partial \
+             pivoting, back substitution of the {} reducible rows only), builds the {nb} x {nb} \
+             action matrix of `{}` on the basis [{}] and reads each unknown off the real \
+             eigenvectors as `v[x] / v[1]`.",
+            t.n_reducible,
             plan.mono(&t.action),
             basis.join(", ")
         ),
@@ -943,14 +956,27 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     ];
     let docs: Vec<TokenStream> = docs.iter().map(doc).collect();
     let solve = quote! {
+        /// The elimination template's `[rows, cols, pivot columns, first reduced row]`.
+        #[doc(hidden)]
+        pub const TEMPLATE_SHAPE: [usize; 4] = [#rows_l, #cols_l, #pivots_l, #first_row];
+
         #(#docs)*
         #[must_use]
+        pub fn solve(data: &Data) -> Solutions {
+            solve_staged(data, &mut ())
+        }
+
+        /// [`solve`] with an observer called between the stages (benchmarks, diagnostics).
+        #[doc(hidden)]
+        #[must_use]
+        #[inline]
+        #[rustfmt::skip]
         #[allow(
             clippy::similar_names,
             clippy::many_single_char_names,
             clippy::too_many_lines
         )]
-        pub fn solve(data: &Data) -> Solutions {
+        pub fn solve_staged<S: #stages>(data: &Data, stages: &mut S) -> Solutions {
             let mut out = Solutions::new();
             let d: [f64; #n_slots_l] = [#(#slot_expr),*];
             if d.iter().any(|x| !x.is_finite()) {
@@ -959,12 +985,21 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
             #(#coeff_stmts)*
             #alloc
             #(#fills)*
-            if !#gj(&mut m, #rows_l, #cols_l, #pivots_l) {
+            if !stages.filled(&m) {
+                return out;
+            }
+            if !#lu(&mut m, #rows_l, #cols_l, #pivots_l, #first_row) {
+                return out;
+            }
+            if !stages.eliminated(&m) {
                 return out;
             }
             let mut a = #smat::<f64, #nb_l, #nb_l>::zeros();
             #(#units)*
             #from_template_loop
+            if !stages.action(a.as_slice()) {
+                return out;
+            }
             let pairs = #eig::<#nb_l>(&a);
             for (_, v) in pairs.iter() {
                 let w = v[#one_l];

@@ -133,14 +133,28 @@ impl Solution {
 pub const MAX_SOLUTIONS: usize = 20;
 /// The real solutions of one instance.
 pub type Solutions = crate::runtime::SolutionSet<Solution, MAX_SOLUTIONS>;
+/// The elimination template's `[rows, cols, pivot columns, first reduced row]`.
+#[doc(hidden)]
+pub const TEMPLATE_SHAPE: [usize; 4] = [80, 100, 80, 63];
 /// Solves `grsrp`: all real solutions of the problem's equations for the given data.
 ///
-/// Fills a 80 x 100 elimination template, reduces it by Gauss-Jordan elimination, builds the 20 x 20 action matrix of `t1` on the basis [a3^2*t1, a3^2*t2, a3^2*t3, a1^2, a1*a2, a2^2, a1*a3, a2*a3, a3^2, a3*t1, a3*t2, a2*t3, a3*t3, a1, a2, a3, t1, t2, t3, 1] and reads each unknown off the real eigenvectors as `v[x] / v[1]`.
+/// Fills a 80 x 100 elimination template, reduces it (LU with partial pivoting, back substitution of the 17 reducible rows only), builds the 20 x 20 action matrix of `t1` on the basis [a3^2*t1, a3^2*t2, a3^2*t3, a1^2, a1*a2, a2^2, a1*a3, a2*a3, a3^2, a3*t1, a3*t2, a2*t3, a3*t3, a1, a2, a3, t1, t2, t3, 1] and reads each unknown off the real eigenvectors as `v[x] / v[1]`.
 ///
 /// Never panics: non-finite or degenerate data gives no solutions.
 #[must_use]
-#[allow(clippy::similar_names, clippy::many_single_char_names, clippy::too_many_lines)]
 pub fn solve(data: &Data) -> Solutions {
+    solve_staged(data, &mut ())
+}
+/// [`solve`] with an observer called between the stages (benchmarks, diagnostics).
+#[doc(hidden)]
+#[must_use]
+#[inline]
+#[rustfmt::skip]
+#[allow(clippy::similar_names, clippy::many_single_char_names, clippy::too_many_lines)]
+pub fn solve_staged<S: crate::runtime::Stages>(
+    data: &Data,
+    stages: &mut S,
+) -> Solutions {
     let mut out = Solutions::new();
     let d: [f64; 45] = [
         data.x1[0][0],
@@ -1398,7 +1412,13 @@ pub fn solve(data: &Data) -> Solutions {
     m[7962] = 1.0;
     m[7977] = 1.0;
     m[7999] = -1.0;
-    if !crate::runtime::gauss_jordan(&mut m, 80, 100, 80) {
+    if !stages.filled(&m) {
+        return out;
+    }
+    if !crate::runtime::lu_solve_template(&mut m, 80, 100, 80, 63) {
+        return out;
+    }
+    if !stages.eliminated(&m) {
         return out;
     }
     let mut a = nalgebra::SMatrix::<f64, 20, 20>::zeros();
@@ -1428,7 +1448,10 @@ pub fn solve(data: &Data) -> Solutions {
             a[(j, k)] = -x;
         }
     }
-    let pairs = crate::runtime::real_eigenpairs::<20>(&a);
+    if !stages.action(a.as_slice()) {
+        return out;
+    }
+    let pairs = crate::runtime::real_eigenpairs_sturm::<20>(&a);
     for (_, v) in pairs.iter() {
         let w = v[19];
         if !w.is_finite() || w.abs() <= 1e-12 {

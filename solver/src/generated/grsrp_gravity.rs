@@ -127,14 +127,28 @@ impl Solution {
 pub const MAX_SOLUTIONS: usize = 12;
 /// The real solutions of one instance.
 pub type Solutions = crate::runtime::SolutionSet<Solution, MAX_SOLUTIONS>;
+/// The elimination template's `[rows, cols, pivot columns, first reduced row]`.
+#[doc(hidden)]
+pub const TEMPLATE_SHAPE: [usize; 4] = [90, 102, 90, 84];
 /// Solves `grsrp_gravity`: all real solutions of the problem's equations for the given data.
 ///
-/// Fills a 90 x 102 elimination template, reduces it by Gauss-Jordan elimination, builds the 12 x 12 action matrix of `t3` on the basis [s*t2, c*t3, s*t3, t1*t3, t2*t3, t3^2, c, s, t1, t2, t3, 1] and reads each unknown off the real eigenvectors as `v[x] / v[1]`.
+/// Fills a 90 x 102 elimination template, reduces it (LU with partial pivoting, back substitution of the 6 reducible rows only), builds the 12 x 12 action matrix of `t3` on the basis [s*t2, c*t3, s*t3, t1*t3, t2*t3, t3^2, c, s, t1, t2, t3, 1] and reads each unknown off the real eigenvectors as `v[x] / v[1]`.
 ///
 /// Never panics: non-finite or degenerate data gives no solutions.
 #[must_use]
-#[allow(clippy::similar_names, clippy::many_single_char_names, clippy::too_many_lines)]
 pub fn solve(data: &Data) -> Solutions {
+    solve_staged(data, &mut ())
+}
+/// [`solve`] with an observer called between the stages (benchmarks, diagnostics).
+#[doc(hidden)]
+#[must_use]
+#[inline]
+#[rustfmt::skip]
+#[allow(clippy::similar_names, clippy::many_single_char_names, clippy::too_many_lines)]
+pub fn solve_staged<S: crate::runtime::Stages>(
+    data: &Data,
+    stages: &mut S,
+) -> Solutions {
     let mut out = Solutions::new();
     let d: [f64; 42] = [
         data.x1[0][0],
@@ -1090,7 +1104,13 @@ pub fn solve(data: &Data) -> Solutions {
     m[9161] = 1.0;
     m[9173] = 1.0;
     m[9179] = -1.0;
-    if !crate::runtime::gauss_jordan(&mut m, 90, 102, 90) {
+    if !stages.filled(&m) {
+        return out;
+    }
+    if !crate::runtime::lu_solve_template(&mut m, 90, 102, 90, 84) {
+        return out;
+    }
+    if !stages.eliminated(&m) {
         return out;
     }
     let mut a = nalgebra::SMatrix::<f64, 12, 12>::zeros();
@@ -1105,7 +1125,10 @@ pub fn solve(data: &Data) -> Solutions {
             a[(j, k)] = -x;
         }
     }
-    let pairs = crate::runtime::real_eigenpairs::<12>(&a);
+    if !stages.action(a.as_slice()) {
+        return out;
+    }
+    let pairs = crate::runtime::real_eigenpairs_sturm::<12>(&a);
     for (_, v) in pairs.iter() {
         let w = v[11];
         if !w.is_finite() || w.abs() <= 1e-12 {

@@ -117,14 +117,28 @@ impl Solution {
 pub const MAX_SOLUTIONS: usize = 10;
 /// The real solutions of one instance.
 pub type Solutions = crate::runtime::SolutionSet<Solution, MAX_SOLUTIONS>;
+/// The elimination template's `[rows, cols, pivot columns, first reduced row]`.
+#[doc(hidden)]
+pub const TEMPLATE_SHAPE: [usize; 4] = [10, 20, 10, 4];
 /// Solves `gs5pt`: all real solutions of the problem's equations for the given data.
 ///
-/// Fills a 10 x 20 elimination template, reduces it by Gauss-Jordan elimination, builds the 10 x 10 action matrix of `x` on the basis [x^2, x*y, y^2, x*z, y*z, z^2, x, y, z, 1] and reads each unknown off the real eigenvectors as `v[x] / v[1]`.
+/// Fills a 10 x 20 elimination template, reduces it (LU with partial pivoting, back substitution of the 6 reducible rows only), builds the 10 x 10 action matrix of `x` on the basis [x^2, x*y, y^2, x*z, y*z, z^2, x, y, z, 1] and reads each unknown off the real eigenvectors as `v[x] / v[1]`.
 ///
 /// Never panics: non-finite or degenerate data gives no solutions.
 #[must_use]
-#[allow(clippy::similar_names, clippy::many_single_char_names, clippy::too_many_lines)]
 pub fn solve(data: &Data) -> Solutions {
+    solve_staged(data, &mut ())
+}
+/// [`solve`] with an observer called between the stages (benchmarks, diagnostics).
+#[doc(hidden)]
+#[must_use]
+#[inline]
+#[rustfmt::skip]
+#[allow(clippy::similar_names, clippy::many_single_char_names, clippy::too_many_lines)]
+pub fn solve_staged<S: crate::runtime::Stages>(
+    data: &Data,
+    stages: &mut S,
+) -> Solutions {
     let mut out = Solutions::new();
     let d: [f64; 36] = [
         data.e1[0][0],
@@ -1010,7 +1024,13 @@ pub fn solve(data: &Data) -> Solutions {
     m[197] = c358;
     m[198] = c356;
     m[199] = d[29] * c130 + d[32] * c140 + d[35] * c150 - d[35] * c250;
-    if !crate::runtime::gauss_jordan(&mut m, 10, 20, 10) {
+    if !stages.filled(&m) {
+        return out;
+    }
+    if !crate::runtime::lu_solve_template(&mut m, 10, 20, 10, 4) {
+        return out;
+    }
+    if !stages.eliminated(&m) {
         return out;
     }
     let mut a = nalgebra::SMatrix::<f64, 10, 10>::zeros();
@@ -1023,7 +1043,10 @@ pub fn solve(data: &Data) -> Solutions {
             a[(j, k)] = -x;
         }
     }
-    let pairs = crate::runtime::real_eigenpairs::<10>(&a);
+    if !stages.action(a.as_slice()) {
+        return out;
+    }
+    let pairs = crate::runtime::real_eigenpairs_sturm::<10>(&a);
     for (_, v) in pairs.iter() {
         let w = v[9];
         if !w.is_finite() || w.abs() <= 1e-12 {

@@ -81,11 +81,11 @@ impl Sweep {
                         gyro_noise: 0.1,
                     },
                     Sweep::GyroNoise => Level {
-                        value: 0.1 * i,
+                        value: i / 10.0,
                         angular: 2.5,
                         linear: 20.0,
                         pixel_noise: 1.0,
-                        gyro_noise: 0.1 * i,
+                        gyro_noise: i / 10.0,
                     },
                     Sweep::PixelNoise => Level {
                         value: i,

@@ -16,6 +16,12 @@ pub(crate) fn lu_solve_template() -> TokenStream {
     quote!(crate::runtime::lu_solve_template)
 }
 
+/// `real_eigenpairs_hqr::<N>`: same signature as `real_eigenpairs` (Hessenberg + Francis
+/// double-shift QR with exceptional shifts + inverse iteration).
+pub(crate) fn real_eigenpairs_hqr() -> TokenStream {
+    quote!(crate::runtime::real_eigenpairs_hqr)
+}
+
 /// `real_eigenpairs_sturm::<N>`: same signature as `real_eigenpairs` (characteristic
 /// polynomial + Sturm sequences + inverse iteration; faster for small `N`).
 pub(crate) fn real_eigenpairs_sturm() -> TokenStream {
@@ -26,11 +32,6 @@ pub(crate) fn real_eigenpairs_sturm() -> TokenStream {
 /// implemented by `()`.
 pub(crate) fn stages() -> TokenStream {
     quote!(crate::runtime::Stages)
-}
-
-/// `real_eigenpairs::<N>(&SMatrix<f64, N, N>) -> SolutionSet<(f64, SVector<f64, N>), N>`.
-pub(crate) fn real_eigenpairs() -> TokenStream {
-    quote!(crate::runtime::real_eigenpairs)
 }
 
 /// `null_vector3(rows: &[[f64; 3]]) -> Option<[f64; 3]>` (unit null vector).

@@ -30,6 +30,7 @@
 
 mod eigen;
 mod elim;
+mod hqr;
 mod null;
 mod solution_set;
 mod stages;
@@ -37,6 +38,7 @@ mod sturm;
 
 pub use eigen::{real_eigenpairs, NEAR_REAL_TOL};
 pub use elim::{gauss_jordan, lu_solve_template, PIVOT_TOL};
+pub use hqr::real_eigenpairs_hqr;
 pub use null::null_vector3;
 pub use solution_set::SolutionSet;
 pub use stages::Stages;

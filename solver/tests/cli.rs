@@ -216,3 +216,66 @@ fn simulate_then_estimate_json_has_the_contract_keys() {
         assert!(v.get(key).is_some(), "missing {key} in {v}");
     }
 }
+
+/// The CSV without the timing column (wall time varies from run to run).
+fn csv_without_timing(path: &Path) -> Vec<String> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .map(|l| {
+            let mut cells: Vec<&str> = l.split(',').collect();
+            cells.remove(8); // seconds_median
+            cells.join(",")
+        })
+        .collect()
+}
+
+#[test]
+fn experiment_writes_csv_and_svg_for_every_method_and_level_independent_of_threads() {
+    let d = scratch("experiment");
+    let (one, two) = (d.join("one"), d.join("two"));
+    for (out, threads) in [(&one, "1"), (&two, "2")] {
+        let o = rspose(&[
+            "experiment",
+            "angular",
+            "--trials",
+            "3",
+            "--threads",
+            threads,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(out.join("angular.svg").exists());
+    }
+    let rows = csv_without_timing(&one.join("angular.csv"));
+    assert_eq!(rows.len(), 1 + 5 * 5, "header + 5 levels x 5 methods");
+    for m in ["gsrp", "nrsrp", "grsrp", "grsrp+", "rectified"] {
+        assert_eq!(
+            rows.iter()
+                .filter(|r| r.split(',').nth(1) == Some(m))
+                .count(),
+            5,
+            "{m}"
+        );
+    }
+    assert_eq!(
+        rows,
+        csv_without_timing(&two.join("angular.csv")),
+        "results depend on the thread count"
+    );
+}
+
+#[test]
+fn demo_prints_every_method() {
+    let o = rspose(&["demo"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    for m in ["gsrp", "nrsrp", "grsrp", "grsrp+", "rectified"] {
+        assert!(
+            out.lines().any(|l| l.starts_with(m)),
+            "{m} missing in {out}"
+        );
+    }
+    assert!(!out.contains("failed"), "{out}");
+}

@@ -7,7 +7,7 @@ use mingen::generate::{plan_file, problem_files, workspace_root, GenerateError};
 use mingen::template::TemplateOptions;
 use mingen::{Problem, ProblemError};
 use serde_json::{json, Map, Value};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -285,7 +285,7 @@ fn print_plan(out: &mut String, plan: &mingen::pipeline::SolverPlan) {
     );
 }
 
-fn audit(file: &PathBuf, instances: usize, seed: u64, as_json: bool) -> Result<(), CliError> {
+fn audit(file: &Path, instances: usize, seed: u64, as_json: bool) -> Result<(), CliError> {
     if instances == 0 {
         return Err(CliError {
             message: "--instances must be at least 1".into(),

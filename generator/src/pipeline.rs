@@ -75,12 +75,12 @@ impl InstanceSource for ProblemSource<'_> {
     }
 }
 
-/// The template's equations for data `data` over any ring, and the elimination (with the
+/// The template's equations for one data instance, and the elimination (with the
 /// coefficient matrix that recovers the eliminated unknowns) if the problem has one.
-fn system<C: Ring>(
-    problem: &Problem,
-    data: &[C],
-) -> Result<(Vec<Poly<C>>, Option<Eliminated<C>>), EliminateError> {
+pub type System<C> = (Vec<Poly<C>>, Option<Eliminated<C>>);
+
+/// The template's equations for data `data` over any ring (see [`System`]).
+fn system<C: Ring>(problem: &Problem, data: &[C]) -> Result<System<C>, EliminateError> {
     let equations = problem.evaluate(data);
     if problem.layout.eliminate.is_empty() {
         return Ok((equations, None));
@@ -150,11 +150,8 @@ pub fn plan(
 impl SolverPlan {
     /// The template's equations (in [`SolverPlan::variable_names`] order) for one data
     /// instance over any ring, plus the elimination data if the problem eliminates unknowns.
-    pub fn equations<C: Ring>(&self, data: &[C]) -> (Vec<Poly<C>>, Option<Eliminated<C>>) {
-        match system(&self.problem, data) {
-            Ok(s) => s,
-            Err(_) => (Vec::new(), None),
-        }
+    pub fn equations<C: Ring>(&self, data: &[C]) -> System<C> {
+        system(&self.problem, data).unwrap_or_default()
     }
 
     /// Names of the template's variables (the unknowns that were not eliminated).

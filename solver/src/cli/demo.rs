@@ -38,25 +38,19 @@ pub fn run(a: Args) -> Result<(), CliError> {
         a.preset
     );
     println!(
-        "{:<10} {:>14} {:>17} {:>10}",
-        "method", "rotation (deg)", "translation (deg)", "time (ms)"
+        "{:<10} {:>14} {:>17} {:>9} {:>10}",
+        "method", "rotation (deg)", "translation (deg)", "inliers", "time (ms)"
     );
     let preset = a.preset;
     for o in scene_trial(&level, a.seed, &ALL_METHODS, |m| preset.options(m, a.seed)) {
-        match (o.rotation_error_deg, o.translation_error_deg) {
-            (Some(r), Some(t)) => println!(
-                "{:<10} {:>14.4} {:>17.4} {:>10.3}",
-                o.method,
-                r,
-                t,
-                o.seconds * 1e3
-            ),
+        let ms = o.seconds * 1e3;
+        match (o.rotation_error_deg, o.translation_error_deg, o.inliers) {
+            (Some(r), Some(t), Some(n)) => {
+                println!("{:<10} {r:>14.4} {t:>17.4} {n:>9} {ms:>10.3}", o.method)
+            }
             _ => println!(
-                "{:<10} {:>14} {:>17} {:>10.3}",
-                o.method,
-                "failed",
-                "failed",
-                o.seconds * 1e3
+                "{:<10} {:>14} {:>17} {:>9} {ms:>10.3}",
+                o.method, "failed", "failed", "-"
             ),
         }
     }

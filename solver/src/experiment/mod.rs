@@ -33,6 +33,8 @@ pub struct MethodOutcome {
     pub translation_error_deg: Option<f64>,
     /// Wall time of the estimate in seconds.
     pub seconds: f64,
+    /// Inliers of the estimate (`None` if the method failed).
+    pub inliers: Option<usize>,
 }
 
 /// One row of a sweep's CSV: the statistics of one method at one level.
@@ -109,6 +111,7 @@ pub fn scene_trial(
                 rotation_error_deg: None,
                 translation_error_deg: None,
                 seconds: 0.0,
+                inliers: None,
             };
             let Ok(pair) = &pair else { return failed };
             let Some(gt) = &pair.ground_truth else {
@@ -126,6 +129,7 @@ pub fn scene_trial(
                         rotation_error_deg: Some(err.rotation_error_deg),
                         translation_error_deg: Some(err.translation_error_deg),
                         seconds,
+                        inliers: Some(e.num_inliers()),
                     }
                 }
                 Err(_) => MethodOutcome { seconds, ..failed },
@@ -299,12 +303,14 @@ mod tests {
                 rotation_error_deg: Some(e),
                 translation_error_deg: Some(2.0 * e),
                 seconds: 0.0,
+                inliers: Some(100),
             },
             MethodOutcome {
                 method: "b".into(),
                 rotation_error_deg: if seed % 7 == 0 { None } else { Some(e + 1.0) },
                 translation_error_deg: Some(e),
                 seconds: 0.0,
+                inliers: None,
             },
         ]
     }

@@ -8,6 +8,7 @@
 //! - `solver`: [`emit_solver`] — data/solution structs and `solve` (template fill,
 //!   Gauss-Jordan, action matrix, real eigenvectors, read-out, null-vector recovery of
 //!   eliminated unknowns), built with `quote!` and formatted with `prettyplease`.
+//! - `structs`: the emitted `Data` / `Solution` structs and their slot conversions.
 //! - `files`: header line, output path, atomic write, freshness check.
 //!
 //! All calls into `rspose::runtime` are spelled in `runtime_api` only.
@@ -20,6 +21,7 @@ pub mod coefficients;
 mod files;
 mod runtime_api;
 mod solver;
+mod structs;
 pub mod traced;
 
 pub use coefficients::Program;

@@ -1,0 +1,342 @@
+//! The emitted `Data` and `Solution` structs: one field per problem symbol, the slot
+//! order shared with `solve` and `mingen::instance`, and the slot/unknown conversions.
+
+use super::solver::{doc, lit};
+use super::EmitError;
+use crate::problem::{DataKind, DataSymbol, ProblemLayout};
+use proc_macro2::{Ident, TokenStream};
+use quote::quote;
+use std::collections::BTreeSet;
+
+/// Lowercased symbol name as a Rust field identifier.
+pub(super) fn field_ident(name: &str, what: &str) -> Result<Ident, EmitError> {
+    let lower = name.to_lowercase();
+    syn::parse_str::<Ident>(&lower).map_err(|_| {
+        EmitError::Unsupported(format!(
+            "{what} `{name}` does not give a Rust field name (`{lower}` is not an identifier or is a keyword)"
+        ))
+    })
+}
+
+pub(super) fn check_unique(idents: &[Ident], what: &str) -> Result<(), EmitError> {
+    let mut seen = BTreeSet::new();
+    for i in idents {
+        if !seen.insert(i.to_string()) {
+            return Err(EmitError::Unsupported(format!(
+                "two {what} symbols map to the field name `{i}` (names are lowercased)"
+            )));
+        }
+    }
+    Ok(())
+}
+
+pub(super) fn element_type(kind: DataKind) -> TokenStream {
+    match kind {
+        DataKind::Scalar => quote!(f64),
+        DataKind::Vec3 => quote!([f64; 3]),
+        DataKind::Point => quote!([f64; 2]),
+        DataKind::Mat3 | DataKind::Rotation => quote!([[f64; 3]; 3]),
+    }
+}
+
+pub(super) fn element_zero(kind: DataKind) -> TokenStream {
+    match kind {
+        DataKind::Scalar => quote!(0.0),
+        DataKind::Vec3 => quote!([0.0; 3]),
+        DataKind::Point => quote!([0.0; 2]),
+        DataKind::Mat3 | DataKind::Rotation => quote!([[0.0; 3]; 3]),
+    }
+}
+
+pub(super) fn kind_doc(kind: DataKind) -> &'static str {
+    match kind {
+        DataKind::Scalar => "a real number",
+        DataKind::Vec3 => "a 3-vector",
+        DataKind::Point => {
+            "an image point in normalised coordinates `[x, y]`; the third coordinate is 1"
+        }
+        DataKind::Mat3 => "a 3x3 matrix, row-major (`[row][column]`)",
+        DataKind::Rotation => "a 3x3 rotation matrix, row-major (`[row][column]`)",
+    }
+}
+
+/// Access tokens for slot `k` of element `e` of a data symbol.
+pub(super) fn slot_access(field: &Ident, ds: &DataSymbol, e: usize, k: usize) -> TokenStream {
+    let elem = match ds.len {
+        Some(_) => {
+            let e = lit(e);
+            quote!(data.#field[#e])
+        }
+        None => quote!(data.#field),
+    };
+    match ds.kind {
+        DataKind::Scalar => elem,
+        DataKind::Vec3 | DataKind::Point => {
+            let k = lit(k);
+            quote!(#elem[#k])
+        }
+        DataKind::Mat3 | DataKind::Rotation => {
+            let (r, c) = (lit(k / 3), lit(k % 3));
+            quote!(#elem[#r][#c])
+        }
+    }
+}
+
+pub(super) fn emit_data(layout: &ProblemLayout) -> Result<TokenStream, EmitError> {
+    let idents = layout
+        .data
+        .iter()
+        .map(|d| field_ident(&d.name, "data"))
+        .collect::<Result<Vec<_>, _>>()?;
+    check_unique(&idents, "data")?;
+    let mut fields = Vec::new();
+    let mut zeros = Vec::new();
+    let mut big = false;
+    for (d, id) in layout.data.iter().zip(&idents) {
+        let el = element_type(d.kind);
+        let z = element_zero(d.kind);
+        let (ty, zero, what) = match d.len {
+            Some(n) => {
+                big |= n > 32;
+                let nl = lit(n);
+                (
+                    quote!([#el; #nl]),
+                    quote!([#z; #nl]),
+                    format!(
+                        "`{}[{}]: {}` — {} elements, each {}.",
+                        d.name,
+                        n,
+                        d.kind.keyword(),
+                        n,
+                        kind_doc(d.kind)
+                    ),
+                )
+            }
+            None => (
+                el,
+                z,
+                format!("`{}: {}` — {}.", d.name, d.kind.keyword(), kind_doc(d.kind)),
+            ),
+        };
+        let dc = doc(what);
+        fields.push(quote!(#dc pub #id: #ty,));
+        zeros.push(quote!(#id: #zero,));
+    }
+    let (derive, default_impl) = if big {
+        (
+            quote!(#[derive(Clone, Copy, Debug, PartialEq)]),
+            quote! {
+                impl Default for Data {
+                    fn default() -> Self {
+                        Data { #(#zeros)* }
+                    }
+                }
+            },
+        )
+    } else {
+        (
+            quote!(#[derive(Clone, Copy, Debug, PartialEq, Default)]),
+            quote!(),
+        )
+    };
+    let d = doc(format!(
+        "Input data of `{}`: one field per data symbol of the problem file (lowercased).",
+        layout.name
+    ));
+    let slot_impl = emit_data_slots(layout, &idents)?;
+    Ok(quote! {
+        #d
+        #derive
+        pub struct Data { #(#fields)* }
+        #default_impl
+        #slot_impl
+    })
+}
+
+/// `impl Data { SLOTS, from_slots, to_slots }`: the data as a flat array in slot order
+/// (the order `solve` flattens it in and `mingen::instance::random_data_f64` draws it in).
+fn emit_data_slots(layout: &ProblemLayout, idents: &[Ident]) -> Result<TokenStream, EmitError> {
+    let n_slots = layout.data_slot_count();
+    let mut reads: Vec<Option<TokenStream>> = vec![None; n_slots];
+    let mut inits = Vec::new();
+    for (ds, field) in layout.data.iter().zip(idents) {
+        let per = ds.kind.slots();
+        let mut elements = Vec::new();
+        for e in 0..ds.len.unwrap_or(1) {
+            let mut slot = |k: usize| -> Result<TokenStream, EmitError> {
+                let s = ds.first_slot + e * per + k;
+                match reads.get_mut(s) {
+                    Some(x @ None) => *x = Some(slot_access(field, ds, e, k)),
+                    _ => {
+                        return Err(EmitError::Invalid(format!(
+                            "data slot {s} of `{}` is out of range or used twice",
+                            ds.name
+                        )))
+                    }
+                }
+                let s = lit(s);
+                Ok(quote!(slots[#s]))
+            };
+            elements.push(match ds.kind {
+                DataKind::Scalar => slot(0)?,
+                DataKind::Vec3 | DataKind::Point => {
+                    let xs = (0..per).map(&mut slot).collect::<Result<Vec<_>, _>>()?;
+                    quote!([#(#xs),*])
+                }
+                DataKind::Mat3 | DataKind::Rotation => {
+                    let mut rows = Vec::new();
+                    for r in 0..3 {
+                        let xs = (3 * r..3 * r + 3)
+                            .map(&mut slot)
+                            .collect::<Result<Vec<_>, _>>()?;
+                        rows.push(quote!([#(#xs),*]));
+                    }
+                    quote!([#(#rows),*])
+                }
+            });
+        }
+        let value = match ds.len {
+            Some(_) => quote!([#(#elements),*]),
+            None => elements.pop().expect("one element"),
+        };
+        inits.push(quote!(#field: #value,));
+    }
+    let reads = reads
+        .into_iter()
+        .enumerate()
+        .map(|(s, x)| {
+            x.ok_or_else(|| EmitError::Invalid(format!("data slot {s} belongs to no symbol")))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let n = lit(n_slots);
+    let names = layout.data_slot_names();
+    let order = if names.len() <= 12 {
+        names.join(", ")
+    } else {
+        format!(
+            "{}, ..., {}",
+            names[..6].join(", "),
+            names[names.len() - 3..].join(", ")
+        )
+    };
+    let d_slots = doc(
+        "Number of scalar data slots: the length of the flat form of \
+         [`from_slots`](Self::from_slots) / [`to_slots`](Self::to_slots).",
+    );
+    let d_from = [
+        doc("The data from its flat form, in the problem's slot order: symbols in declaration order, arrays element by element, a point as `x, y`, a matrix row-major."),
+        doc(""),
+        doc(format!("Slot order: {order}.")),
+    ];
+    let d_to = doc("The flat form of the data (inverse of [`from_slots`](Self::from_slots)).");
+    Ok(quote! {
+        impl Data {
+            #d_slots
+            pub const SLOTS: usize = #n;
+            #(#d_from)*
+            #[must_use]
+            pub fn from_slots(slots: &[f64; #n]) -> Data {
+                Data { #(#inits)* }
+            }
+            #d_to
+            #[must_use]
+            pub fn to_slots(&self) -> [f64; #n] {
+                let data = self;
+                [#(#reads),*]
+            }
+        }
+    })
+}
+
+pub(super) fn emit_solution(layout: &ProblemLayout) -> Result<TokenStream, EmitError> {
+    let idents = layout
+        .unknowns
+        .iter()
+        .map(|u| field_ident(&u.name, "unknown"))
+        .collect::<Result<Vec<_>, _>>()?;
+    check_unique(&idents, "unknown")?;
+    let mut fields = Vec::new();
+    let mut zeros = Vec::new();
+    let mut big = false;
+    for (u, id) in layout.unknowns.iter().zip(&idents) {
+        let (ty, zero, what) = match u.len {
+            Some(n) => {
+                big |= n > 32;
+                let nl = lit(n);
+                (
+                    quote!([f64; #nl]),
+                    quote!([0.0; #nl]),
+                    format!(
+                        "Unknown `{}[{}]` (`{}1` .. `{}{}`).",
+                        u.name, n, u.name, u.name, n
+                    ),
+                )
+            }
+            None => (quote!(f64), quote!(0.0), format!("Unknown `{}`.", u.name)),
+        };
+        let dc = doc(what);
+        fields.push(quote!(#dc pub #id: #ty,));
+        zeros.push(quote!(#id: #zero,));
+    }
+    let (derive, default_impl) = if big {
+        (
+            quote!(#[derive(Clone, Copy, Debug, PartialEq)]),
+            quote! {
+                impl Default for Solution {
+                    fn default() -> Self {
+                        Solution { #(#zeros)* }
+                    }
+                }
+            },
+        )
+    } else {
+        (
+            quote!(#[derive(Clone, Copy, Debug, PartialEq, Default)]),
+            quote!(),
+        )
+    };
+    let d = doc(format!(
+        "One real solution of `{}`: one field per unknown symbol (lowercased).",
+        layout.name
+    ));
+    let unknowns_impl = emit_solution_unknowns(layout, &idents);
+    Ok(quote! {
+        #d
+        #derive
+        pub struct Solution { #(#fields)* }
+        #default_impl
+        #unknowns_impl
+    })
+}
+
+/// `impl Solution { UNKNOWNS, to_unknowns }`: the solution as a flat array in the problem's
+/// unknown order (`ProblemLayout::unknown_names`, eliminated unknowns included).
+fn emit_solution_unknowns(layout: &ProblemLayout, idents: &[Ident]) -> TokenStream {
+    let mut values = Vec::new();
+    for (u, id) in layout.unknowns.iter().zip(idents) {
+        match u.len {
+            None => values.push(quote!(self.#id)),
+            Some(n) => values.extend((0..n).map(|e| {
+                let e = lit(e);
+                quote!(self.#id[#e])
+            })),
+        }
+    }
+    let n = lit(values.len());
+    let d_n = doc("Number of scalar unknowns (eliminated ones included).");
+    let d_to = doc(format!(
+        "The solution as a flat array in the problem's unknown order: {}.",
+        layout.unknown_names().join(", ")
+    ));
+    quote! {
+        impl Solution {
+            #d_n
+            pub const UNKNOWNS: usize = #n;
+            #d_to
+            #[must_use]
+            pub fn to_unknowns(&self) -> [f64; #n] {
+                [#(#values),*]
+            }
+        }
+    }
+}

@@ -6,9 +6,10 @@
 //!    `[-1, 1]`) by the Hessenberg determinant recurrence (O(N^3 / 6)).
 //! 3. Its real roots: Sturm sequence (stored as linear quotients, O(N) per evaluation),
 //!    bisection on sign-change counts until each interval holds one root, then
-//!    Newton steps safeguarded by the bracket.
-//! 4. For every real root, two steps of inverse iteration on `H - lambda I` (Hessenberg LU
-//!    with partial pivoting, O(N^2)), which make the eigenvector accurate to working
+//!    Laguerre (or Newton) steps safeguarded by the bracket.
+//! 4. For every real root, inverse iteration on `H - lambda I` (Hessenberg LU with partial
+//!    pivoting, O(N^2)): the first solve, then up to two more steps until the residual of
+//!    the pair is at the rounding level, which make the eigenvector accurate to working
 //!    precision even though the root of the polynomial is less accurate than an eigenvalue
 //!    from the Schur form; the eigenvalue is refined from the last step; `v = Q y`.
 //!
@@ -26,6 +27,9 @@ const MAX_BISECT: u32 = 60;
 const AGREE_TOL: f64 = 1e-7;
 /// Maximum safeguarded Newton iterations per root.
 const MAX_NEWTON: u32 = 40;
+/// Inverse iteration stops after one step once the residual of the pair (scaled matrix of
+/// norm 1) is below this.
+const RESID_TOL: f64 = 5e-16;
 
 /// Same contract as [`real_eigenpairs`]: the real eigenvalues and unit eigenvectors of `m`
 /// (at most `N`, in increasing order of eigenvalue here), an empty set for non-finite or
@@ -297,6 +301,21 @@ fn eval_monic<const N: usize>(c: &[f64; N], x: f64) -> (f64, f64) {
     (p, dp)
 }
 
+/// Horner evaluation of the monic polynomial with lower coefficients `c`, its derivative
+/// and half its second derivative.
+#[inline]
+fn eval_monic2<const N: usize>(c: &[f64; N], x: f64) -> (f64, f64, f64) {
+    let mut p = 1.0;
+    let mut dp = 0.0;
+    let mut ddp = 0.0;
+    for &ck in c.iter().rev() {
+        ddp = ddp * x + dp;
+        dp = dp * x + p;
+        p = p * x + ck;
+    }
+    (p, dp, 2.0 * ddp)
+}
+
 /// Sturm sequence `S_0 = p`, `S_1 = p' / N`, `S_{k+1} = -rem(S_{k-1}, S_k) / c_k` (`c_k > 0`
 /// makes the leading coefficient +-1), stored as `S_{k-1} = (alpha_k x + beta_k) S_k -
 /// c_k S_{k+1}` so that evaluating the whole sequence costs O(N).
@@ -478,9 +497,13 @@ impl<const N: usize> Sturm<N> {
             return 0.5 * (a + b);
         }
         let neg_at_a = pa < 0.0;
+        // Laguerre steps (cubic convergence, global for real-rooted polynomials), Newton when
+        // the Laguerre discriminant is negative (complex roots nearby), bisection whenever a
+        // step leaves the bracket.
+        let n = N as f64;
         let mut x = 0.5 * (a + b);
         for _ in 0..MAX_NEWTON {
-            let (px, dpx) = eval_monic(p, x);
+            let (px, dpx, ddpx) = eval_monic2(p, x);
             if px == 0.0 {
                 return x;
             }
@@ -489,14 +512,25 @@ impl<const N: usize> Sturm<N> {
             } else {
                 b = x;
             }
-            let step = px / dpx;
+            let g = dpx / px;
+            let hh = g * g - ddpx / px;
+            let disc = (n - 1.0) * (n * hh - g * g);
+            let step = if disc >= 0.0 {
+                let sq = disc.sqrt();
+                let den = if g >= 0.0 { g + sq } else { g - sq };
+                n / den
+            } else {
+                px / dpx
+            };
             let mut nx = x - step;
             if !(nx > a && nx < b) {
                 nx = 0.5 * (a + b);
             }
             // Inverse iteration refines the eigenpair afterwards: 1e-12 relative suffices
-            // (stricter tests stall at the rounding level of p and cost every iteration).
-            let done = (nx - x).abs() <= 1e-12 * x.abs() || b - a <= 1e-12 * x.abs();
+            // (stricter tests stall at the rounding level of p and cost every iteration);
+            // the absolute floor (|H| = 1) ends roots at 0.
+            let tol = 1e-12 * x.abs() + 1e-15;
+            let done = (nx - x).abs() <= tol || b - a <= tol;
             x = nx;
             if done || a >= b || a.is_nan() || b.is_nan() {
                 break;
@@ -506,7 +540,7 @@ impl<const N: usize> Sturm<N> {
     }
 }
 
-/// Two steps of inverse iteration for the eigenvalue near `mu` of the upper Hessenberg
+/// Inverse iteration (at most two steps after the first solve) for the eigenvalue near `mu` of the upper Hessenberg
 /// `h`: the eigenvector (unnormalised) and the refined eigenvalue, or `None`.
 #[allow(clippy::needless_range_loop)]
 fn inverse_iteration<const N: usize>(h: &[[f64; N]; N], mu: f64) -> Option<(f64, [f64; N])> {
@@ -569,9 +603,28 @@ fn inverse_iteration<const N: usize>(h: &[[f64; N]; N], mu: f64) -> Option<(f64,
     // Step 1: U y = e (LAPACK hein's first step).
     let mut y = [1.0f64; N];
     back(&mut y);
-    normalise(&mut y)?;
+    let n = normalise(&mut y)?;
+    // (H - mu I) y n = r0 = P_0 L_0 ... P_{N-2} L_{N-2} e (O(N)): Rayleigh quotient and
+    // residual of this first step; it is usually accurate enough.
+    let mut r0 = [1.0f64; N];
+    for k in (0..N - 1).rev() {
+        r0[k + 1] += l[k] * r0[k];
+        if swap[k] {
+            r0.swap(k, k + 1);
+        }
+    }
+    let q: f64 = r0.iter().zip(&y).map(|(a, b)| a * b).sum::<f64>() / n;
+    let lam1 = mu + q;
+    let r2: f64 = r0
+        .iter()
+        .zip(&y)
+        .map(|(a, b)| (a / n - q * b) * (a / n - q * b))
+        .sum();
+    if lam1.is_finite() && r2 <= RESID_TOL * RESID_TOL {
+        return Some((lam1, y));
+    }
     let mut lam = mu;
-    for _ in 0..2 {
+    for step in 0..2 {
         let y0 = y;
         for k in 0..N - 1 {
             if swap[k] {
@@ -582,9 +635,22 @@ fn inverse_iteration<const N: usize>(h: &[[f64; N]; N], mu: f64) -> Option<(f64,
         back(&mut y);
         // (H - mu I) y = y0 and y0 ~ eigenvector: y ~ y0 / (lambda - mu).
         let d: f64 = y.iter().zip(&y0).map(|(a, b)| a * b).sum();
-        normalise(&mut y)?;
+        let n = normalise(&mut y)?;
         if d != 0.0 && d.is_finite() {
             lam = mu + 1.0 / d;
+            // Residual of the normalised pair: (H - lam I) y = (y0 - n y / d) / n. Small
+            // enough (backward error at the rounding level of |H| = 1): done.
+            if step == 0 {
+                let g = n / d;
+                let r2: f64 = y0
+                    .iter()
+                    .zip(&y)
+                    .map(|(a, b)| (a - g * b) * (a - g * b))
+                    .sum();
+                if r2 <= RESID_TOL * RESID_TOL * n * n {
+                    break;
+                }
+            }
         }
     }
     Some((lam, y))

@@ -10,16 +10,12 @@
 //!   `Solution { a: [f64; 3], t: [f64; 3] }` and `R = R_0 exp([a]×)`.
 //!
 //! Also provides the linear 8-point essential solver (non-minimal, needs ≥ 8 points), usable
-//! as a stand-in for the 5-point solver ([`EssentialSolver::EightPoint`]).
+//! as a non-minimal alternative to the 5-point solver ([`EssentialSolver::EightPoint`]).
 
 use crate::geometry::{epipolar_nullspace, exp_so3};
 use nalgebra::{Matrix3, SMatrix, Vector3};
 
 use crate::generated;
-
-/// Whether the generated minimal solvers are linked in (they always are; kept so callers
-/// written against a build without them still compile).
-pub const GENERATED_AVAILABLE: bool = true;
 
 /// Which essential-matrix solver the `gsrp`, `rectified` (and `R_0` of `grsrp`) use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -37,14 +33,6 @@ impl EssentialSolver {
         match self {
             EssentialSolver::FivePoint => 5,
             EssentialSolver::EightPoint => 8,
-        }
-    }
-
-    /// Whether the solver can run in this build.
-    pub fn available(&self) -> bool {
-        match self {
-            EssentialSolver::FivePoint => GENERATED_AVAILABLE,
-            EssentialSolver::EightPoint => true,
         }
     }
 
@@ -160,11 +148,6 @@ pub struct GrsrpSample {
 }
 
 impl GrsrpSolver {
-    /// Whether the solver can run in this build.
-    pub fn available(&self) -> bool {
-        GENERATED_AVAILABLE
-    }
-
     /// Solve one sample; appends `(R = R_0 exp([a]×), t / |t|)` for each finite solution.
     pub fn solve(&self, s: &GrsrpSample, out: &mut Vec<(Matrix3<f64>, Vector3<f64>)>) {
         // grsrp10 and grsrp are emitted from problem files with the same data

@@ -324,9 +324,6 @@ pub enum EstimateError {
     /// No model was found (degenerate geometry or every sample failed).
     #[error("no solution found")]
     NoSolution,
-    /// A generated minimal solver is not available in this build.
-    #[error("minimal solver `{0}` is not available in this build")]
-    SolverUnavailable(&'static str),
     /// Invalid option value.
     #[error("invalid option `{option}`: {reason}")]
     InvalidOption {
@@ -436,17 +433,6 @@ pub(crate) fn validate_input(
             needed,
         });
     }
-    if !options.essential_solver.available() {
-        return Err(EstimateError::SolverUnavailable("gs5pt"));
-    }
-    if matches!(method, Method::Grsrp | Method::GrsrpPlus) && !options.grsrp_solver.available() {
-        return Err(EstimateError::SolverUnavailable(
-            match options.grsrp_solver {
-                GrsrpSolver::Ten => "grsrp10",
-                GrsrpSolver::Twenty => "grsrp",
-            },
-        ));
-    }
     Ok(())
 }
 
@@ -454,7 +440,7 @@ pub(crate) fn validate_input(
 /// `[[u1, v1], [u2, v2]]` with `options.method` (see the module documentation).
 ///
 /// Errors: invalid camera/gyro, non-finite pixels, too few (distinct) matches, invalid
-/// options, unavailable solver, or no solution (degenerate geometry). Never panics and never
+/// options, or no solution (degenerate geometry). Never panics and never
 /// returns non-finite poses.
 pub fn estimate_relative_pose(
     view1: &View,

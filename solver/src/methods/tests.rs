@@ -1,7 +1,6 @@
 use super::*;
 use crate::camera::Camera;
 use crate::evaluate::pose_errors;
-use crate::minimal::GENERATED_AVAILABLE;
 use crate::pair_file::PairFile;
 use crate::simulate::{simulate, SimulationOptions};
 use rand::{Rng, SeedableRng};
@@ -82,12 +81,6 @@ fn input_errors_are_typed() {
         estimate_relative_pose(&v1, &v2, &p.matches, &o2),
         Err(EstimateError::InvalidOption { .. })
     ));
-    if !GENERATED_AVAILABLE {
-        assert_eq!(
-            estimate_relative_pose(&v1, &v2, &p.matches, &o),
-            Err(EstimateError::SolverUnavailable("gs5pt"))
-        );
-    }
 }
 
 #[test]
@@ -175,15 +168,12 @@ fn degenerate_geometry_gives_no_nan() {
                 .iter()
                 .chain(e.translation.iter())
                 .all(|x| x.is_finite())),
-            Err(e) => assert!(matches!(
-                e,
-                EstimateError::NoSolution | EstimateError::SolverUnavailable(_)
-            )),
+            Err(e) => assert!(matches!(e, EstimateError::NoSolution)),
         }
     }
 }
 
-// ---- methods with the 8-point stand-in (run without the generated solvers) ----
+// ---- methods with the non-minimal 8-point essential solver ----
 
 #[test]
 fn rectified_noise_free_with_eight_point_is_exact() {
@@ -256,18 +246,8 @@ fn nrsrp_runs_and_reports_velocities() {
 
 // ---- method-level tests that need the generated minimal solvers ----
 
-fn require_generated() -> bool {
-    if !GENERATED_AVAILABLE {
-        eprintln!("generated solvers not available: skipping");
-    }
-    GENERATED_AVAILABLE
-}
-
 #[test]
 fn rectified_noise_free_is_exact() {
-    if !require_generated() {
-        return;
-    }
     let p = pair(SimulationOptions {
         pixel_noise: 0.0,
         gyro_noise: 0.0,
@@ -286,9 +266,6 @@ fn rectified_noise_free_is_exact() {
 
 #[test]
 fn paper_accuracy_at_2_5_rad_s() {
-    if !require_generated() {
-        return;
-    }
     let methods = [
         Method::Gsrp,
         Method::Grsrp,
@@ -333,9 +310,6 @@ fn paper_accuracy_at_2_5_rad_s() {
 
 #[test]
 fn grsrp_variants_and_r0_sources_agree() {
-    if !require_generated() {
-        return;
-    }
     let p = pair(SimulationOptions {
         seed: 3,
         ..Default::default()

@@ -29,6 +29,7 @@ pub mod ransac;
 pub mod refine;
 
 // Data, simulation, evaluation and the paper's experiments.
+pub mod atomic_file;
 pub mod evaluate;
 pub mod experiment;
 pub mod pair_file;

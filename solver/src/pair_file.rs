@@ -25,7 +25,6 @@
 use crate::camera::{Camera, CameraError, View};
 use nalgebra::{Matrix3, Vector3};
 use serde::{Deserialize, Serialize};
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
@@ -217,20 +216,9 @@ impl PairFile {
             path: path.to_path_buf(),
             source,
         };
-        let mut tmp_name = path.as_os_str().to_owned();
-        tmp_name.push(format!(".tmp-{}", std::process::id()));
-        let tmp = PathBuf::from(tmp_name);
-        let result = (|| {
-            let mut f = std::fs::File::create(&tmp)?;
-            f.write_all(self.to_json_string().as_bytes())?;
-            f.write_all(b"\n")?;
-            f.sync_all()?;
-            std::fs::rename(&tmp, path)
-        })();
-        if result.is_err() {
-            let _ = std::fs::remove_file(&tmp);
-        }
-        result.map_err(io)
+        let mut text = self.to_json_string();
+        text.push('\n');
+        crate::atomic_file::write_atomic(path, text.as_bytes()).map_err(io)
     }
 }
 

@@ -1,8 +1,8 @@
 //! `rspose demo`: one simulated scene at 2.5 rad/s with the paper's noise, every method.
 
 use super::{CliError, Preset, ALL_METHODS};
-use rspose::experiment::{scene_trial, Level};
-use rspose::simulate::{simulate, SimulationOptions};
+use rspose::experiment::{level_simulation, run_methods, Sweep};
+use rspose::simulate::simulate;
 
 /// Options of `rspose demo`.
 #[derive(Debug, clap::Args)]
@@ -16,17 +16,9 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
-    let level = Level {
-        value: 2.5,
-        angular: 2.5,
-        linear: 0.0,
-        pixel_noise: 1.0,
-        gyro_noise: 0.1,
-    };
-    let sim = SimulationOptions {
-        seed: a.seed,
-        ..SimulationOptions::default()
-    };
+    // The hardest level of the paper's angular sweep: 2.5 rad/s, 1 px, 0.1 rad/s.
+    let level = Sweep::Angular.levels()[4];
+    let sim = level_simulation(&level, a.seed);
     let pair = simulate(&sim).map_err(|e| CliError::failed(e.to_string()))?;
     println!(
         "scene: {} matches, angular velocity {} rad/s, pixel noise {} px, gyro noise {} rad/s, seed {} ({:?} preset)",
@@ -42,7 +34,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         "method", "rotation (deg)", "translation (deg)", "inliers", "time (ms)"
     );
     let preset = a.preset;
-    for o in scene_trial(&level, a.seed, &ALL_METHODS, |m| preset.options(m, a.seed)) {
+    for o in run_methods(&pair, &ALL_METHODS, |m| preset.options(m, a.seed)) {
         let ms = o.seconds * 1e3;
         match (o.rotation_error_deg, o.translation_error_deg, o.inliers) {
             (Some(r), Some(t), Some(n)) => {

@@ -13,11 +13,13 @@ pub use plot::{render_svg, write_svg};
 pub use stats::{median, summarize};
 pub use sweep::{Level, Sweep, UnknownSweep};
 
+/// Output files are written whole or not at all (see [`crate::atomic_file`]).
+pub use crate::atomic_file::write_atomic;
+
 use crate::evaluate::pose_errors;
+use crate::pair_file::PairFile;
 use crate::simulate::{simulate, SimulationOptions};
 use crate::{estimate_relative_pose, EstimateOptions, Method};
-use std::io::Write;
-use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::Instant;
@@ -85,35 +87,57 @@ impl Default for ExperimentOptions {
     }
 }
 
-/// Simulates one scene at `level` from `seed` and runs each of `methods` on it with the
-/// options `options_for(method)`, timing each estimate and measuring its errors against the
-/// simulated ground truth. A method that returns an error is recorded as a failure.
-pub fn scene_trial(
-    level: &Level,
-    seed: u64,
-    methods: &[Method],
-    options_for: impl Fn(Method) -> EstimateOptions,
-) -> Vec<MethodOutcome> {
-    let sim = SimulationOptions {
+/// The simulator settings of one scene at `level` (paper protocol otherwise).
+pub fn level_simulation(level: &Level, seed: u64) -> SimulationOptions {
+    SimulationOptions {
         angular_velocity: level.angular,
         linear_velocity: level.linear,
         pixel_noise: level.pixel_noise,
         gyro_noise: level.gyro_noise,
         seed,
         ..SimulationOptions::default()
-    };
-    let pair = simulate(&sim);
+    }
+}
+
+/// Simulates one scene at `level` from `seed` and runs each of `methods` on it (see
+/// [`run_methods`]); a scene that cannot be simulated counts as a failure of every method.
+pub fn scene_trial(
+    level: &Level,
+    seed: u64,
+    methods: &[Method],
+    options_for: impl Fn(Method) -> EstimateOptions,
+) -> Vec<MethodOutcome> {
+    match simulate(&level_simulation(level, seed)) {
+        Ok(pair) => run_methods(&pair, methods, options_for),
+        Err(_) => methods.iter().map(|&m| MethodOutcome::failed(m)).collect(),
+    }
+}
+
+impl MethodOutcome {
+    /// The outcome of `method` when it returned no pose.
+    pub fn failed(method: Method) -> Self {
+        MethodOutcome {
+            method: method.name().to_string(),
+            rotation_error_deg: None,
+            translation_error_deg: None,
+            seconds: 0.0,
+            inliers: None,
+        }
+    }
+}
+
+/// Runs each of `methods` on a simulated pair with the options `options_for(method)`, timing
+/// each estimate and measuring its errors against the pair's ground truth. A method that
+/// returns an error (or a pair without ground truth) is recorded as a failure.
+pub fn run_methods(
+    pair: &PairFile,
+    methods: &[Method],
+    options_for: impl Fn(Method) -> EstimateOptions,
+) -> Vec<MethodOutcome> {
     methods
         .iter()
         .map(|&m| {
-            let failed = MethodOutcome {
-                method: m.name().to_string(),
-                rotation_error_deg: None,
-                translation_error_deg: None,
-                seconds: 0.0,
-                inliers: None,
-            };
-            let Ok(pair) = &pair else { return failed };
+            let failed = MethodOutcome::failed(m);
             let Some(gt) = &pair.ground_truth else {
                 return failed;
             };
@@ -266,30 +290,6 @@ pub fn to_csv(rows: &[SummaryRow]) -> String {
     s
 }
 
-/// Writes `contents` to `path` atomically: a temporary file in the same directory, then a
-/// rename, so a reader never sees a partial file.
-pub fn write_atomic(path: &Path, contents: &[u8]) -> std::io::Result<()> {
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "out".into());
-    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(contents)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -333,18 +333,5 @@ mod tests {
         assert_eq!(csv.lines().count(), 11);
         assert!(csv.starts_with(CSV_HEADER));
         assert!(one.iter().any(|r| r.failures > 0));
-    }
-
-    #[test]
-    fn atomic_write_replaces_whole_file() {
-        let dir = std::env::temp_dir().join(format!("rspose-atomic-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let p = dir.join("x.csv");
-        write_atomic(&p, b"one").unwrap();
-        write_atomic(&p, b"two").unwrap();
-        assert_eq!(std::fs::read_to_string(&p).unwrap(), "two");
-        assert!(write_atomic(&dir.join("missing/x.csv"), b"z").is_err());
-        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -5,7 +5,10 @@
 use nalgebra::SMatrix;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rspose::runtime::{gauss_jordan, lu_solve_template, real_eigenpairs};
+use rspose::runtime::{
+    gauss_jordan, lu_solve_template, lu_solve_template_fixed, real_eigenpairs,
+    real_eigenpairs_sturm,
+};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -52,6 +55,14 @@ fn runtime_timings() {
                 let mut m = black_box(a);
                 black_box(lu_solve_template(&mut m, 10, 20, 10, 4));
                 black_box(m);
+            }),
+            ("lu_solve_template_fixed 10x20 (4)", 50, &mut || {
+                let mut m = black_box(a);
+                black_box(lu_solve_template_fixed::<10, 20, 10, 4>(&mut m));
+                black_box(m);
+            }),
+            ("real_eigenpairs_sturm 10x10", 5, &mut || {
+                black_box(real_eigenpairs_sturm(black_box(&m10)));
             }),
             ("Schur::try_new 10x10", 5, &mut || {
                 black_box(nalgebra::Schur::try_new(black_box(m10), f64::EPSILON, 310));

@@ -10,10 +10,11 @@ pub(crate) fn solution_set() -> TokenStream {
     quote!(crate::runtime::SolutionSet)
 }
 
-/// `lu_solve_template(m: &mut [f64], rows, cols, pivot_cols, first_row) -> bool`: like
-/// Gauss-Jordan elimination for rows `first_row..pivot_cols` (row-major, in place).
+/// `lu_solve_template_fixed::<ROWS, COLS, PIVOTS, FIRST>(m: &mut [f64]) -> bool`: like
+/// Gauss-Jordan elimination for rows `FIRST..PIVOTS` (row-major, in place), the shape as
+/// constants.
 pub(crate) fn lu_solve_template() -> TokenStream {
-    quote!(crate::runtime::lu_solve_template)
+    quote!(crate::runtime::lu_solve_template_fixed)
 }
 
 /// `real_eigenpairs_hqr::<N>`: same signature as `real_eigenpairs` (Hessenberg + Francis

@@ -660,7 +660,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
             if !stages.filled(&m) {
                 return out;
             }
-            if !#lu(&mut m, #rows_l, #cols_l, #pivots_l, #first_row) {
+            if !#lu::<#rows_l, #cols_l, #pivots_l, #first_row>(&mut m) {
                 return out;
             }
             if !stages.eliminated(&m) {

@@ -1415,7 +1415,7 @@ pub fn solve_staged<S: crate::runtime::Stages>(
     if !stages.filled(&m) {
         return out;
     }
-    if !crate::runtime::lu_solve_template(&mut m, 80, 100, 80, 63) {
+    if !crate::runtime::lu_solve_template_fixed::<80, 100, 80, 63>(&mut m) {
         return out;
     }
     if !stages.eliminated(&m) {

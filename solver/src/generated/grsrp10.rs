@@ -1156,7 +1156,7 @@ pub fn solve_staged<S: crate::runtime::Stages>(
     if !stages.filled(&m) {
         return out;
     }
-    if !crate::runtime::lu_solve_template(&mut m, 10, 20, 10, 4) {
+    if !crate::runtime::lu_solve_template_fixed::<10, 20, 10, 4>(&mut m) {
         return out;
     }
     if !stages.eliminated(&m) {

@@ -1107,7 +1107,7 @@ pub fn solve_staged<S: crate::runtime::Stages>(
     if !stages.filled(&m) {
         return out;
     }
-    if !crate::runtime::lu_solve_template(&mut m, 90, 102, 90, 84) {
+    if !crate::runtime::lu_solve_template_fixed::<90, 102, 90, 84>(&mut m) {
         return out;
     }
     if !stages.eliminated(&m) {

@@ -157,6 +157,26 @@ pub fn lu_solve_template(
     pivot_cols: usize,
     first_row: usize,
 ) -> bool {
+    lu_core(m, rows, cols, pivot_cols, first_row)
+}
+
+/// [`lu_solve_template`] with the shape as constants (`ROWS x COLS`, `PIVOTS` pivot
+/// columns, back substitution from row `FIRST`), which the emitted solvers use: with every
+/// loop bound known the compiler drops the bounds checks and unrolls the short rows.
+#[inline]
+pub fn lu_solve_template_fixed<
+    const ROWS: usize,
+    const COLS: usize,
+    const PIVOTS: usize,
+    const FIRST: usize,
+>(
+    m: &mut [f64],
+) -> bool {
+    lu_core(m, ROWS, COLS, PIVOTS, FIRST)
+}
+
+#[inline(always)]
+fn lu_core(m: &mut [f64], rows: usize, cols: usize, pivot_cols: usize, first_row: usize) -> bool {
     if first_row > pivot_cols {
         return false;
     }

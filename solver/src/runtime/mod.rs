@@ -37,7 +37,7 @@ mod stages;
 mod sturm;
 
 pub use eigen::{real_eigenpairs, NEAR_REAL_TOL};
-pub use elim::{gauss_jordan, lu_solve_template, PIVOT_TOL};
+pub use elim::{gauss_jordan, lu_solve_template, lu_solve_template_fixed, PIVOT_TOL};
 pub use hqr::real_eigenpairs_hqr;
 pub use null::null_vector3;
 pub use solution_set::SolutionSet;

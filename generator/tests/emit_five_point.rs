@@ -373,7 +373,7 @@ fn five_point_emission_is_deterministic_parses_and_has_the_header() {
         "pub const MAX_SOLUTIONS: usize = 10;",
         "pub type Solutions = crate::runtime::SolutionSet<Solution, MAX_SOLUTIONS>;",
         "pub fn solve(data: &Data) -> Solutions",
-        "crate::runtime::lu_solve_template(&mut m, 10, 20, 10, 4)",
+        "crate::runtime::lu_solve_template_fixed::<10, 20, 10, 4>(&mut m)",
         "crate::runtime::real_eigenpairs_sturm::<10>(&a)",
         "let mut m = [0.0f64; 200];",
     ] {
@@ -514,6 +514,6 @@ fn large_templates_use_the_heap() {
     syn::parse_file(&a).expect("emitted code parses");
     assert!(a.starts_with(&generated_header("fivept_big")));
     assert!(a.contains("let mut m = vec![0.0f64; 900];"));
-    assert!(a.contains("crate::runtime::lu_solve_template(&mut m, 45, 20, 10, 4)"));
+    assert!(a.contains("crate::runtime::lu_solve_template_fixed::<45, 20, 10, 4>(&mut m)"));
     std::fs::write(out_dir().join("fivept_big.rs"), &a).unwrap();
 }

@@ -15,7 +15,8 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rspose::generated::{grsrp, grsrp10, grsrp_gravity, gs5pt};
 use rspose::runtime::{
-    gauss_jordan, lu_solve_template, real_eigenpairs, real_eigenpairs_sturm, Stages,
+    gauss_jordan, lu_solve_template, real_eigenpairs, real_eigenpairs_hqr, real_eigenpairs_sturm,
+    Stages,
 };
 use std::hint::black_box;
 use std::time::Instant;
@@ -155,10 +156,15 @@ macro_rules! stages_of {
                         black_box(real_eigenpairs_sturm(black_box(a)));
                     }
                 }),
+                ("real_eigenpairs_hqr", &mut || {
+                    for a in &actions {
+                        black_box(real_eigenpairs_hqr(black_box(a)));
+                    }
+                }),
             ],
         );
         println!(
-            "{:<14} on captured data ({}x{}, {}x{}): gauss_jordan {:8.2} µs, lu_solve_template {:8.2} µs, Schur eigen {:6.2} µs, Sturm eigen {:6.2} µs",
+            "{:<14} on captured data ({}x{}, {}x{}): gauss_jordan {:8.2} µs, lu_solve_template {:8.2} µs, Schur eigen {:6.2} µs, Sturm eigen {:6.2} µs, HQR eigen {:6.2} µs",
             "",
             rows,
             cols,
@@ -167,7 +173,8 @@ macro_rules! stages_of {
             r[0] / 1e3 / nt as f64,
             r[1] / 1e3 / nt as f64,
             r[2] / 1e3 / na as f64,
-            r[3] / 1e3 / na as f64
+            r[3] / 1e3 / na as f64,
+            r[4] / 1e3 / na as f64
         );
     }};
 }

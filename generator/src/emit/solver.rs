@@ -21,13 +21,14 @@ const MIN_UNIT_ENTRY_LITERAL: &str = "1e-12";
 
 /// Action matrices up to this size use the characteristic-polynomial / Sturm eigen back end
 /// (`real_eigenpairs_sturm`), larger ones Francis QR with exceptional shifts
-/// (`real_eigenpairs_hqr`): nalgebra's Schur form, which has no exceptional shifts, did not
-/// converge on 20-30 % of the grsrp and grsrp_gravity action matrices at any cap. Sturm is
-/// faster at every shipped size, but at 12 and 20 (grsrp_gravity, grsrp: spectra symmetric
-/// under ±, from the sign of t) the computed characteristic polynomial has spurious real
-/// roots: 18-26 % of instances got extra, wrong real solutions in the agreement test
-/// (`tests/tests/agreement.rs`), against 0.1-0.5 % with Schur.
-const STURM_MAX_BASIS: usize = 10;
+/// (`real_eigenpairs_hqr`; nalgebra's Schur form, which has no exceptional shifts, did not
+/// converge on 20-30 % of the grsrp and grsrp_gravity action matrices at any cap). Sturm is
+/// about twice as fast at every shipped size (10, 12, 20). At 12 and 20 (spectra symmetric
+/// under ±, from the sign of t) the computed characteristic polynomial can have spurious
+/// real roots (complex pairs near the real axis): the Sturm back end rejects them by the
+/// residual of inverse iteration and hands the matrix to QR, so the agreement test
+/// (`tests/tests/agreement.rs`) sees no extra solutions.
+const STURM_MAX_BASIS: usize = 20;
 
 pub(super) fn lit(n: usize) -> Literal {
     Literal::usize_unsuffixed(n)

@@ -1451,7 +1451,7 @@ pub fn solve_staged<S: crate::runtime::Stages>(
     if !stages.action(a.as_slice()) {
         return out;
     }
-    let pairs = crate::runtime::real_eigenpairs_hqr::<20>(&a);
+    let pairs = crate::runtime::real_eigenpairs_sturm::<20>(&a);
     for (_, v) in pairs.iter() {
         let w = v[19];
         if !w.is_finite() || w.abs() <= 1e-12 {

@@ -1128,7 +1128,7 @@ pub fn solve_staged<S: crate::runtime::Stages>(
     if !stages.action(a.as_slice()) {
         return out;
     }
-    let pairs = crate::runtime::real_eigenpairs_hqr::<12>(&a);
+    let pairs = crate::runtime::real_eigenpairs_sturm::<12>(&a);
     for (_, v) in pairs.iter() {
         let w = v[11];
         if !w.is_finite() || w.abs() <= 1e-12 {

@@ -1,49 +1,13 @@
 //! Fast real eigenpairs of small fixed-size matrices: eigenvalues of the Hessenberg form by
 //! the Francis double-shift QR iteration (no Schur vectors accumulated), eigenvectors by
-//! inverse iteration on the original matrix.
+//! inverse iteration on the Hessenberg form (O(N^2) per eigenvalue).
 
+use super::hessenberg::{hessenberg, inverse_iteration};
 use super::{SolutionSet, NEAR_REAL_TOL};
 use nalgebra::{SMatrix, SVector};
 
 /// Maximum Francis iterations per eigenvalue (as in EISPACK `hqr`).
 const MAX_ITS: usize = 30;
-
-/// Reduces `a` (row-major, `a[i][j]`) to upper Hessenberg form by stabilised elementary
-/// similarity transformations (Gaussian elimination with pivoting); zeroes the rest.
-fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) {
-    for m in 1..N.saturating_sub(1) {
-        let mut x = 0.0f64;
-        let mut i = m;
-        for (j, row) in a.iter().enumerate().skip(m) {
-            if row[m - 1].abs() > x.abs() {
-                x = row[m - 1];
-                i = j;
-            }
-        }
-        if i != m {
-            a.swap(i, m);
-            for row in a.iter_mut() {
-                row.swap(i, m);
-            }
-        }
-        if x != 0.0 {
-            for i in m + 1..N {
-                let mut y = a[i][m - 1];
-                if y != 0.0 {
-                    y /= x;
-                    a[i][m - 1] = 0.0;
-                    let (top, bottom) = a.split_at_mut(i);
-                    for (dst, &src) in bottom[0][m..].iter_mut().zip(&top[m][m..]) {
-                        *dst -= y * src;
-                    }
-                    for row in a.iter_mut() {
-                        row[m] += y * row[i];
-                    }
-                }
-            }
-        }
-    }
-}
 
 /// `H a H` with the Householder reflection `H = I - 2 u u^T / u^T u` for a fixed generic
 /// `u` (two choices, by `which`): a similarity, so the spectrum is that of `a`.
@@ -257,110 +221,62 @@ fn hqr<const N: usize>(
     Some(total)
 }
 
-/// Unit eigenvector for the (approximate) real eigenvalue `lam` of `a` by two steps of
-/// inverse iteration: LU with partial pivoting of `a - lam I` (tiny pivots replaced by
-/// `eps * scale`), solves from the all-ones vector.
-fn inverse_iteration<const N: usize>(a: &[[f64; N]; N], lam: f64, scale: f64) -> Option<[f64; N]> {
-    let mut lu = *a;
-    for (i, row) in lu.iter_mut().enumerate() {
-        row[i] -= lam;
-    }
-    let tiny = (f64::EPSILON * scale).max(f64::MIN_POSITIVE);
-    let mut perm = [0usize; N];
-    for j in 0..N {
-        let mut p = j;
-        for i in j + 1..N {
-            if lu[i][j].abs() > lu[p][j].abs() {
-                p = i;
-            }
-        }
-        lu.swap(j, p);
-        perm[j] = p;
-        if lu[j][j].abs() < tiny {
-            lu[j][j] = if lu[j][j] < 0.0 { -tiny } else { tiny };
-        }
-        let inv = 1.0 / lu[j][j];
-        let (top, bottom) = lu.split_at_mut(j + 1);
-        let prow = &top[j];
-        for row in bottom.iter_mut() {
-            let f = row[j] * inv;
-            if f != 0.0 {
-                row[j] = f;
-                for (d, &s) in row[j + 1..].iter_mut().zip(&prow[j + 1..]) {
-                    *d -= f * s;
-                }
-            }
-        }
-    }
-    let mut x = [1.0; N];
-    for _ in 0..2 {
-        for (j, &p) in perm.iter().enumerate() {
-            x.swap(j, p);
-        }
-        for i in 0..N {
-            let mut s = x[i];
-            for k in 0..i {
-                s -= lu[i][k] * x[k];
-            }
-            x[i] = s;
-        }
-        for i in (0..N).rev() {
-            let mut s = x[i];
-            for k in i + 1..N {
-                s -= lu[i][k] * x[k];
-            }
-            x[i] = s / lu[i][i];
-        }
-        let n = x.iter().map(|v| v * v).sum::<f64>().sqrt();
-        if !(n > 0.0 && n.is_finite()) {
-            return None;
-        }
-        for v in x.iter_mut() {
-            *v /= n;
-        }
-    }
-    Some(x)
-}
-
 /// Same contract as [`super::real_eigenpairs`] (real eigenvalues with unit eigenvectors,
 /// at most `N`, empty on non-finite/zero input or non-convergence, near-real pairs per
 /// [`NEAR_REAL_TOL`] taken as one real eigenvalue), by a different, faster algorithm:
 /// reduction to Hessenberg form by stabilised elementary similarities, eigenvalues by the
 /// Francis double-shift QR iteration without accumulating Schur vectors (EISPACK/NR
 /// `elmhes` + `hqr`, at most 30 iterations per eigenvalue), then each real eigenvalue's
-/// eigenvector by two steps of inverse iteration on `m - lambda I`. Order: as the
+/// eigenvector by inverse iteration on the Hessenberg form `H - lambda I` (O(N^2) per
+/// eigenvalue; one to three steps, until the residual is at rounding level), transformed
+/// back by the similarity of the reduction. Order: as the
 /// iteration deflates them. No heap, no panic, no trait bounds beyond `N`.
 pub fn real_eigenpairs_hqr<const N: usize>(
     m: &SMatrix<f64, N, N>,
 ) -> SolutionSet<(f64, SVector<f64, N>), N> {
     let mut out = SolutionSet::filled_with((0.0, SVector::zeros()));
     let mut a = [[0.0; N]; N];
-    let mut scale = 0.0f64;
+    let mut finite = true;
     for (i, row) in a.iter_mut().enumerate() {
         for (j, v) in row.iter_mut().enumerate() {
             *v = m[(i, j)];
-            if !v.is_finite() {
-                return out;
-            }
-            scale = scale.max(v.abs());
+            finite &= v.is_finite();
         }
     }
-    if N == 0 || scale == 0.0 {
+    if !finite || N == 0 {
         return out;
     }
+    // Work on a / |a|_inf (norm 1: the tolerances of the inverse iteration are absolute).
+    let scale = a
+        .iter()
+        .map(|row| row.iter().map(|x| x.abs()).sum::<f64>())
+        .fold(0.0, f64::max);
+    if !(scale > 0.0 && scale.is_finite()) {
+        return out;
+    }
+    let inv = 1.0 / scale;
+    for row in a.iter_mut() {
+        for x in row.iter_mut() {
+            *x *= inv;
+        }
+    }
+    let mut h0 = a;
+    let sim = hessenberg(&mut h0);
     let (mut wr, mut wi) = ([0.0; N], [0.0; N]);
-    // The eigenvalues may come from a similar matrix (eigenvectors are computed on `a`
-    // itself): if QR stalls on `a`, retry on `H a H` for a fixed generic Householder
-    // reflection `H`, which breaks the exact structure of action matrices (unit rows, ±λ
-    // spectra of sign-symmetric problems) that slow convergence comes from.
+    // The eigenvalues may come from a similar matrix (eigenvectors are computed on `h0`,
+    // the Hessenberg form of `a` itself): if QR stalls, retry on `H a H` for a fixed
+    // generic Householder reflection `H`, which breaks the exact structure of action
+    // matrices (unit rows, ±λ spectra of sign-symmetric problems) that slow convergence
+    // comes from.
     let mut converged = false;
     for attempt in 0..3 {
         let mut h = if attempt == 0 {
-            a
+            h0
         } else {
-            reflect(&a, attempt)
+            let mut r = reflect(&a, attempt);
+            let _ = hessenberg(&mut r);
+            r
         };
-        hessenberg(&mut h);
         if hqr(&mut h, &mut wr, &mut wi).is_some() {
             converged = true;
             break;
@@ -374,10 +290,15 @@ pub fn real_eigenpairs_hqr<const N: usize>(
         let lam = wr[k];
         let real = wi[k] == 0.0;
         // Relative to the eigenvalue (see `NEAR_REAL_TOL`), floored at rounding level.
-        let near = !real && wi[k].abs() <= (NEAR_REAL_TOL * lam.abs()).max(f64::EPSILON * scale);
+        let near = !real && wi[k].abs() <= (NEAR_REAL_TOL * lam.abs()).max(f64::EPSILON);
         if real || near {
-            if let Some(v) = inverse_iteration(&a, lam, scale) {
-                out.push((lam, SVector::from(v)));
+            if let Some(pair) = inverse_iteration(&h0, lam) {
+                let v = sim.apply(pair.vector);
+                let n = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+                if n > 0.0 && n.is_finite() {
+                    let r = 1.0 / n;
+                    out.push((lam * scale, SVector::from_fn(|i, _| v[i] * r)));
+                }
             }
         }
         // A complex (or near-real) pair occupies two consecutive slots.

@@ -30,6 +30,7 @@
 
 mod eigen;
 mod elim;
+mod hessenberg;
 mod hqr;
 mod null;
 mod solution_set;

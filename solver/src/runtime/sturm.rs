@@ -1,58 +1,59 @@
 //! Real eigenpairs of small dense matrices through the characteristic polynomial: a faster
-//! alternative to the Schur back end ([`super::real_eigenpairs`]) for action matrices.
+//! alternative to the QR back end ([`super::real_eigenpairs_hqr`]) for action matrices.
 //!
-//! 1. Reduction to upper Hessenberg form `H = S^-1 A S` by stabilised elementary
-//!    similarities (Gaussian elimination with partial pivoting; `S` kept).
-//! 2. Characteristic polynomial of `H / s` (`s = |A|_inf`, so every root lies in
-//!    `[-1, 1]`) by the Hessenberg determinant recurrence (O(N^3 / 6)).
+//! 1. Balancing (powers of 2), scaling to infinity norm 1, and reduction to upper
+//!    Hessenberg form `H = S^-1 A S` by stabilised elementary similarities (Gaussian
+//!    elimination with partial pivoting; `S` kept), see [`super::hessenberg`].
+//! 2. Characteristic polynomial of `H` by the Hessenberg determinant recurrence
+//!    (O(N^3 / 6)); every root lies in `[-1, 1]`.
 //! 3. Its real roots: Sturm sequence (stored as linear quotients, O(N) per evaluation),
-//!    bisection on sign-change counts until each interval holds one root, then
-//!    Laguerre (or Newton) steps safeguarded by the bracket.
+//!    quadrisection on sign-change counts (three points evaluated together) until each
+//!    interval holds one root, two octasection rounds on the sign of `p`, then Newton
+//!    steps safeguarded by the bracket.
 //! 4. For every real root, inverse iteration on `H - lambda I` (Hessenberg LU with partial
 //!    pivoting, O(N^2)): the first solve, then up to two more steps until the residual of
 //!    the pair is at the rounding level, which make the eigenvector accurate to working
 //!    precision even though the root of the polynomial is less accurate than an eigenvalue
-//!    from the Schur form; the eigenvalue is refined from the last step; `v = Q y`.
+//!    from a QR iteration; the eigenvalue is refined from the last step; `v = S y`.
 //!
-//! Every loop is bounded. If the Sturm sequence degenerates (a remainder vanishes exactly:
-//! multiple roots or special structure) the Schur back end is used instead.
+//! Every loop is bounded. The QR back end takes over when the Sturm sequence degenerates
+//! (a remainder vanishes exactly: multiple roots or special structure), when a root is not
+//! confirmed by inverse iteration (moved by more than [`AGREE_TOL`], or a residual above
+//! [`ACCEPT_RESIDUAL`]: a spurious real root from a complex pair near the real axis), or
+//! when two roots converge to one eigenvalue.
 
-use super::{real_eigenpairs, SolutionSet};
-use nalgebra::allocator::Allocator;
-use nalgebra::{Const, DefaultAllocator, DimDiff, DimSub, SMatrix, SVector, U1};
+use super::hessenberg::{hessenberg, inverse_iteration};
+use super::{real_eigenpairs_hqr, SolutionSet};
+use nalgebra::{SMatrix, SVector};
 
 /// Maximum bisection levels (the bracket shrinks by 2^-60 relative to `[-1, 1]`).
 const MAX_BISECT: u32 = 60;
 /// A root of the characteristic polynomial of the scaled matrix (norm 1) is accepted if
-/// inverse iteration moves it by at most this; otherwise the Schur back end is used.
+/// inverse iteration moves it by at most this; otherwise the QR back end is used.
 const AGREE_TOL: f64 = 1e-7;
+/// An eigenpair of the scaled matrix (norm 1) whose residual after inverse iteration is
+/// above this is not trusted: the QR back end decides.
+const ACCEPT_RESIDUAL: f64 = 1e-11;
 /// Maximum safeguarded Newton iterations per root.
 const MAX_NEWTON: u32 = 40;
 /// Octasection rounds before Newton's iteration (see `Sturm::polish`).
 const OCTASECTIONS: usize = 2;
-/// Inverse iteration stops after one step once the residual of the pair (scaled matrix of
-/// norm 1) is below this.
-const RESID_TOL: f64 = 5e-16;
 
-/// Same contract as [`real_eigenpairs`]: the real eigenvalues and unit eigenvectors of `m`
-/// (at most `N`, in increasing order of eigenvalue here), an empty set for non-finite or
-/// zero input; never panics, no heap allocation. A real double root may be reported once;
-/// complex pairs very close to the real axis are not reported (the Schur back end reports
-/// them as one real eigenvalue).
+/// Same contract as [`super::real_eigenpairs`]: the real eigenvalues and unit eigenvectors
+/// of `m` (at most `N`; in increasing order of eigenvalue unless the QR back end took
+/// over), an empty set for non-finite or zero input; never panics, no heap allocation. A
+/// real double root may be reported once; complex pairs very close to the real axis are
+/// reported as one real eigenvalue only when the QR back end takes over.
 pub fn real_eigenpairs_sturm<const N: usize>(
     m: &SMatrix<f64, N, N>,
-) -> SolutionSet<(f64, SVector<f64, N>), N>
-where
-    Const<N>: DimSub<U1>,
-    DefaultAllocator: Allocator<Const<N>, DimDiff<Const<N>, U1>> + Allocator<DimDiff<Const<N>, U1>>,
-{
+) -> SolutionSet<(f64, SVector<f64, N>), N> {
     match sturm_eigenpairs(m) {
         Some(out) => out,
-        None => real_eigenpairs(m),
+        None => real_eigenpairs_hqr(m),
     }
 }
 
-/// The Sturm path of [`real_eigenpairs_sturm`]; `None` when the Schur back end must be used
+/// The Sturm path of [`real_eigenpairs_sturm`]; `None` when the QR back end must be used
 /// instead (`N = 1`, zero matrix, degenerate Sturm sequence, a root that inverse iteration
 /// does not confirm, or two roots converging to one eigenvalue).
 fn sturm_eigenpairs<const N: usize>(
@@ -104,8 +105,12 @@ fn sturm_eigenpairs<const N: usize>(
     for (k, &mu) in roots[..nroots].iter().enumerate() {
         // The root must agree with the eigenvalue refined by inverse iteration on H (an
         // inaccurate characteristic polynomial shows here), and roots must stay distinct.
-        let (lam_mu, y) = inverse_iteration(&h, mu)?;
-        let agrees = (lam_mu - mu).abs() <= AGREE_TOL; // false for NaN
+        // A spurious real root (a complex pair near the real axis, perturbed onto it in the
+        // computed polynomial: common for the ±λ spectra of sign-symmetric problems) leaves
+        // a large residual.
+        let pair = inverse_iteration(&h, mu)?;
+        let (lam_mu, y) = (pair.lambda, pair.vector);
+        let agrees = (lam_mu - mu).abs() <= AGREE_TOL && pair.residual <= ACCEPT_RESIDUAL; // false for NaN
         if !agrees || lams[..k].contains(&lam_mu) {
             return None;
         }
@@ -178,87 +183,6 @@ fn balance<const N: usize>(a: &mut [[f64; N]; N]) -> [f64; N] {
         }
     }
     d
-}
-
-/// The similarity `S = P_0 L_0 P_1 L_1 ... P_{N-3} L_{N-3}` of the Hessenberg reduction
-/// `H = S^-1 A S`: `P_k` swaps indices `k + 1` and `perm[k]`, `L_k = I + sum_{i >= k+2}
-/// mult[k][i] e_i e_{k+1}^T`.
-struct Similarity<const N: usize> {
-    perm: [usize; N],
-    mult: [[f64; N]; N],
-}
-
-impl<const N: usize> Similarity<N> {
-    /// `S y`: an eigenvector of `H` becomes one of `A`.
-    fn apply(&self, mut y: [f64; N]) -> [f64; N] {
-        for k in (0..N.saturating_sub(2)).rev() {
-            let yk1 = y[k + 1];
-            if yk1 != 0.0 {
-                for i in k + 2..N {
-                    y[i] += self.mult[k][i] * yk1;
-                }
-            }
-            y.swap(k + 1, self.perm[k]);
-        }
-        y
-    }
-}
-
-/// Reduces the row-major `a` to upper Hessenberg form in place by stabilised elementary
-/// similarities (Gaussian elimination with partial pivoting, EISPACK `elmhes`): half the
-/// work of Householder reflections, multipliers bounded by 1. Entries below the
-/// subdiagonal are set to zero; returns the similarity for the eigenvectors.
-#[allow(clippy::needless_range_loop)]
-fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) -> Similarity<N> {
-    let mut s = Similarity {
-        perm: [0; N],
-        mult: [[0.0; N]; N],
-    };
-    for k in 0..N.saturating_sub(2) {
-        let mut p = k + 1;
-        let mut best = a[k + 1][k].abs();
-        for i in k + 2..N {
-            let x = a[i][k].abs();
-            if x > best {
-                best = x;
-                p = i;
-            }
-        }
-        s.perm[k] = p;
-        if p != k + 1 {
-            a.swap(p, k + 1);
-            for row in a.iter_mut() {
-                row.swap(p, k + 1);
-            }
-        }
-        if best == 0.0 {
-            continue; // column already reduced
-        }
-        let inv = 1.0 / a[k + 1][k];
-        let (top, rest) = a.split_at_mut(k + 2);
-        let pivot_row = &top[k + 1];
-        for (r, row) in rest.iter_mut().enumerate() {
-            let i = k + 2 + r;
-            let m = row[k] * inv;
-            s.mult[k][i] = m;
-            row[k] = 0.0;
-            if m != 0.0 {
-                for j in k + 1..N {
-                    row[j] -= m * pivot_row[j];
-                }
-            }
-        }
-        // Columns: col_{k+1} += sum_i m_i col_i.
-        let mk = &s.mult[k];
-        for row in a.iter_mut() {
-            let mut acc = 0.0;
-            for i in k + 2..N {
-                acc += mk[i] * row[i];
-            }
-            row[k + 1] += acc;
-        }
-    }
-    s
 }
 
 /// Lower coefficients `c[0..N]` of the monic characteristic polynomial
@@ -558,7 +482,8 @@ impl<const N: usize> Sturm<N> {
                 return if nx >= a && nx <= b { nx } else { x };
             }
             x = if nx > a && nx < b { nx } else { 0.5 * (a + b) };
-            if !(b - a > tol) {
+            // NaN-safe: a NaN bracket ends the iteration too.
+            if (b - a).partial_cmp(&tol) != Some(std::cmp::Ordering::Greater) {
                 break;
             }
         }
@@ -602,7 +527,9 @@ fn root_bound<const N: usize>(p: &[f64; N]) -> f64 {
         for (k, &ck) in p.iter().rev().enumerate() {
             bk *= b;
             let a = if k == N - 1 { 0.5 * ck.abs() } else { ck.abs() };
-            if !(a <= bk) {
+            if a.partial_cmp(&bk)
+                .map_or(true, |o| o == std::cmp::Ordering::Greater)
+            {
                 return false;
             }
         }
@@ -618,136 +545,10 @@ fn root_bound<const N: usize>(p: &[f64; N]) -> f64 {
     (2.0 * b).min(1.0) * 1.01
 }
 
-/// Inverse iteration (at most two steps after the first solve) for the eigenvalue near `mu`
-/// of the upper Hessenberg `h`: the eigenvector (unit norm) and the refined eigenvalue, or
-/// `None`.
-#[allow(clippy::needless_range_loop)]
-fn inverse_iteration<const N: usize>(h: &[[f64; N]; N], mu: f64) -> Option<(f64, [f64; N])> {
-    // LU with partial pivoting of the Hessenberg H - mu I: P_k swaps rows k, k+1, then
-    // row k+1 -= l_k row k. Row k+1 has zeros left of column k, so only the tails move.
-    let mut u = *h;
-    for (i, row) in u.iter_mut().enumerate() {
-        row[i] -= mu;
-    }
-    let mut swap = [false; N];
-    let mut l = [0.0f64; N];
-    let tiny = f64::EPSILON * 1e-3; // |H| ~ 1 after scaling
-    let guard = |x: f64| {
-        if x.abs() < tiny {
-            if x < 0.0 {
-                -tiny
-            } else {
-                tiny
-            }
-        } else {
-            x
-        }
-    };
-    for k in 0..N - 1 {
-        let (top, bottom) = u.split_at_mut(k + 1);
-        let (rk, rk1) = (&mut top[k], &mut bottom[0]);
-        if rk1[k].abs() > rk[k].abs() {
-            for j in k..N {
-                std::mem::swap(&mut rk[j], &mut rk1[j]);
-            }
-            swap[k] = true;
-        }
-        rk[k] = guard(rk[k]);
-        let f = rk1[k] / rk[k];
-        l[k] = f;
-        for j in k + 1..N {
-            rk1[j] -= f * rk[j];
-        }
-        rk1[k] = 0.0;
-    }
-    u[N - 1][N - 1] = guard(u[N - 1][N - 1]);
-    let mut rdiag = [0.0f64; N];
-    for (i, r) in rdiag.iter_mut().enumerate() {
-        *r = 1.0 / u[i][i];
-    }
-    // Column-oriented back substitution: the updates of the remaining right-hand side are
-    // independent, so the dependency chain is one multiply-add per row.
-    let back = |y: &mut [f64; N]| {
-        for i in (0..N).rev() {
-            let yi = y[i] * rdiag[i];
-            y[i] = yi;
-            for j in 0..i {
-                y[j] -= u[j][i] * yi;
-            }
-        }
-    };
-    let normalise = |y: &mut [f64; N]| -> Option<f64> {
-        let n = y.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if !(n > 0.0 && n.is_finite()) {
-            return None;
-        }
-        let r = 1.0 / n;
-        for x in y.iter_mut() {
-            *x *= r;
-        }
-        Some(n)
-    };
-    // Step 1: U y = e (LAPACK hein's first step).
-    let mut y = [1.0f64; N];
-    back(&mut y);
-    let n = normalise(&mut y)?;
-    // (H - mu I) y n = r0 = P_0 L_0 ... P_{N-2} L_{N-2} e (O(N)): Rayleigh quotient and
-    // residual of this first step; it is usually accurate enough.
-    let mut r0 = [1.0f64; N];
-    for k in (0..N - 1).rev() {
-        r0[k + 1] += l[k] * r0[k];
-        if swap[k] {
-            r0.swap(k, k + 1);
-        }
-    }
-    let inv_n = 1.0 / n;
-    let q: f64 = r0.iter().zip(&y).map(|(a, b)| a * b).sum::<f64>() * inv_n;
-    let lam1 = mu + q;
-    let r2: f64 = r0
-        .iter()
-        .zip(&y)
-        .map(|(a, b)| (a * inv_n - q * b) * (a * inv_n - q * b))
-        .sum();
-    if lam1.is_finite() && r2 <= RESID_TOL * RESID_TOL {
-        return Some((lam1, y));
-    }
-    let mut lam = mu;
-    for step in 0..2 {
-        let y0 = y;
-        for k in 0..N - 1 {
-            if swap[k] {
-                y.swap(k, k + 1);
-            }
-            y[k + 1] -= l[k] * y[k];
-        }
-        back(&mut y);
-        // (H - mu I) y = y0 and y0 ~ eigenvector: y ~ y0 / (lambda - mu).
-        let d: f64 = y.iter().zip(&y0).map(|(a, b)| a * b).sum();
-        let n = normalise(&mut y)?;
-        if d != 0.0 && d.is_finite() {
-            lam = mu + 1.0 / d;
-            // Residual of the normalised pair: (H - lam I) y = (y0 - n y / d) / n. Small
-            // enough (backward error at the rounding level of |H| = 1): done.
-            if step == 0 {
-                let g = n / d;
-                let r2: f64 = y0
-                    .iter()
-                    .zip(&y)
-                    .map(|(a, b)| (a - g * b) * (a - g * b))
-                    .sum();
-                if r2 <= RESID_TOL * RESID_TOL * n * n {
-                    break;
-                }
-            }
-        }
-    }
-    Some((lam, y))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nalgebra::SMatrix;
+    use crate::runtime::real_eigenpairs;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
@@ -977,7 +778,7 @@ mod piece_timing {
                 black_box(Sturm::new(black_box(p)));
             }
             let ts = ns(t, n);
-            let sturms: Vec<_> = ps.iter().map(|p| Sturm::new(p)).collect();
+            let sturms: Vec<_> = ps.iter().map(Sturm::new).collect();
             let t = Instant::now();
             nr = 0;
             let mut all_roots = Vec::new();
@@ -1014,7 +815,7 @@ mod piece_timing {
                 sturm_eigenpairs(&SMatrix::<f64, 10, 10>::from_fn(|i, j| a[i][j])).is_none()
             })
             .count();
-        println!("Schur fallbacks: {fallbacks} of {n}");
+        println!("QR fallbacks: {fallbacks} of {n}");
         println!(
             "gs5pt action matrices ({:.2} real roots), min of 15 rounds: balance {tb:.0} ns, hessenberg {th:.0}, charpoly {tc:.0}, sturm new {ts:.0}, roots {tr:.0} per root, inverse iteration {ti:.0} per root; whole {tw:.0}",
             nr as f64 / n as f64

@@ -1,0 +1,238 @@
+//! Upper Hessenberg form of small dense matrices and inverse iteration on it: the shared
+//! core of the eigen back ends ([`super::real_eigenpairs_sturm`],
+//! [`super::real_eigenpairs_hqr`]).
+//!
+//! Convention: matrices are row-major `[[f64; N]; N]` (`a[i][j]`), scaled by the caller so
+//! that their norm is about 1 (the tolerances below are absolute).
+
+/// Inverse iteration stops after one step once the residual of the pair (matrix of norm
+/// about 1) is below this.
+const RESID_TOL: f64 = 5e-16;
+
+/// The similarity `S = P_0 L_0 P_1 L_1 ... P_{N-3} L_{N-3}` of the Hessenberg reduction
+/// `H = S^-1 A S`: `P_k` swaps indices `k + 1` and `perm[k]`, `L_k = I + sum_{i >= k+2}
+/// mult[k][i] e_i e_{k+1}^T`.
+pub(super) struct Similarity<const N: usize> {
+    perm: [usize; N],
+    mult: [[f64; N]; N],
+}
+
+impl<const N: usize> Similarity<N> {
+    /// `S y`: an eigenvector of `H` becomes one of `A`.
+    pub(super) fn apply(&self, mut y: [f64; N]) -> [f64; N] {
+        for k in (0..N.saturating_sub(2)).rev() {
+            let yk1 = y[k + 1];
+            if yk1 != 0.0 {
+                for (yi, m) in y.iter_mut().zip(&self.mult[k]).skip(k + 2) {
+                    *yi += m * yk1;
+                }
+            }
+            y.swap(k + 1, self.perm[k]);
+        }
+        y
+    }
+}
+
+/// Reduces the row-major `a` to upper Hessenberg form in place by stabilised elementary
+/// similarities (Gaussian elimination with partial pivoting, EISPACK `elmhes`): half the
+/// work of Householder reflections, multipliers bounded by 1. Entries below the
+/// subdiagonal are set to zero; returns the similarity for the eigenvectors.
+#[allow(clippy::needless_range_loop)]
+pub(super) fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) -> Similarity<N> {
+    let mut s = Similarity {
+        perm: [0; N],
+        mult: [[0.0; N]; N],
+    };
+    for k in 0..N.saturating_sub(2) {
+        let mut p = k + 1;
+        let mut best = a[k + 1][k].abs();
+        for i in k + 2..N {
+            let x = a[i][k].abs();
+            if x > best {
+                best = x;
+                p = i;
+            }
+        }
+        s.perm[k] = p;
+        if p != k + 1 {
+            a.swap(p, k + 1);
+            for row in a.iter_mut() {
+                row.swap(p, k + 1);
+            }
+        }
+        if best == 0.0 {
+            continue; // column already reduced
+        }
+        let inv = 1.0 / a[k + 1][k];
+        let (top, rest) = a.split_at_mut(k + 2);
+        let pivot_row = &top[k + 1];
+        for (r, row) in rest.iter_mut().enumerate() {
+            let i = k + 2 + r;
+            let m = row[k] * inv;
+            s.mult[k][i] = m;
+            row[k] = 0.0;
+            if m != 0.0 {
+                for j in k + 1..N {
+                    row[j] -= m * pivot_row[j];
+                }
+            }
+        }
+        // Columns: col_{k+1} += sum_i m_i col_i.
+        let mk = &s.mult[k];
+        for row in a.iter_mut() {
+            let mut acc = 0.0;
+            for i in k + 2..N {
+                acc += mk[i] * row[i];
+            }
+            row[k + 1] += acc;
+        }
+    }
+    s
+}
+
+/// An approximate eigenpair of a matrix of norm about 1 from [`inverse_iteration`].
+pub(super) struct Eigenpair<const N: usize> {
+    /// The eigenvalue, refined from the shift.
+    pub lambda: f64,
+    /// The eigenvector, unit 2-norm.
+    pub vector: [f64; N],
+    /// `|H v - lambda v|` (2-norm): the backward error of the pair. A real shift near a
+    /// complex eigenvalue cannot make it small.
+    pub residual: f64,
+}
+
+/// Inverse iteration (at most two steps after the first solve) for the eigenvalue near `mu`
+/// of the upper Hessenberg `h`, or `None` (non-finite iterates).
+#[allow(clippy::needless_range_loop)]
+pub(super) fn inverse_iteration<const N: usize>(
+    h: &[[f64; N]; N],
+    mu: f64,
+) -> Option<Eigenpair<N>> {
+    // LU with partial pivoting of the Hessenberg H - mu I: P_k swaps rows k, k+1, then
+    // row k+1 -= l_k row k. Row k+1 has zeros left of column k, so only the tails move.
+    let mut u = *h;
+    for (i, row) in u.iter_mut().enumerate() {
+        row[i] -= mu;
+    }
+    let mut swap = [false; N];
+    let mut l = [0.0f64; N];
+    let tiny = f64::EPSILON * 1e-3; // |H| ~ 1 after scaling
+    let guard = |x: f64| {
+        if x.abs() < tiny {
+            if x < 0.0 {
+                -tiny
+            } else {
+                tiny
+            }
+        } else {
+            x
+        }
+    };
+    for k in 0..N - 1 {
+        let (top, bottom) = u.split_at_mut(k + 1);
+        let (rk, rk1) = (&mut top[k], &mut bottom[0]);
+        if rk1[k].abs() > rk[k].abs() {
+            for j in k..N {
+                std::mem::swap(&mut rk[j], &mut rk1[j]);
+            }
+            swap[k] = true;
+        }
+        rk[k] = guard(rk[k]);
+        let f = rk1[k] / rk[k];
+        l[k] = f;
+        for j in k + 1..N {
+            rk1[j] -= f * rk[j];
+        }
+        rk1[k] = 0.0;
+    }
+    u[N - 1][N - 1] = guard(u[N - 1][N - 1]);
+    let mut rdiag = [0.0f64; N];
+    for (i, r) in rdiag.iter_mut().enumerate() {
+        *r = 1.0 / u[i][i];
+    }
+    // Column-oriented back substitution: the updates of the remaining right-hand side are
+    // independent, so the dependency chain is one multiply-add per row.
+    let back = |y: &mut [f64; N]| {
+        for i in (0..N).rev() {
+            let yi = y[i] * rdiag[i];
+            y[i] = yi;
+            for j in 0..i {
+                y[j] -= u[j][i] * yi;
+            }
+        }
+    };
+    let normalise = |y: &mut [f64; N]| -> Option<f64> {
+        let n = y.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if !(n > 0.0 && n.is_finite()) {
+            return None;
+        }
+        let r = 1.0 / n;
+        for x in y.iter_mut() {
+            *x *= r;
+        }
+        Some(n)
+    };
+    // Step 1: U y = e (LAPACK hein's first step).
+    let mut y = [1.0f64; N];
+    back(&mut y);
+    let n = normalise(&mut y)?;
+    // (H - mu I) y n = r0 = P_0 L_0 ... P_{N-2} L_{N-2} e (O(N)): Rayleigh quotient and
+    // residual of this first step; it is usually accurate enough.
+    let mut r0 = [1.0f64; N];
+    for k in (0..N - 1).rev() {
+        r0[k + 1] += l[k] * r0[k];
+        if swap[k] {
+            r0.swap(k, k + 1);
+        }
+    }
+    let inv_n = 1.0 / n;
+    let q: f64 = r0.iter().zip(&y).map(|(a, b)| a * b).sum::<f64>() * inv_n;
+    let lam1 = mu + q;
+    let r2: f64 = r0
+        .iter()
+        .zip(&y)
+        .map(|(a, b)| (a * inv_n - q * b) * (a * inv_n - q * b))
+        .sum();
+    if lam1.is_finite() && r2 <= RESID_TOL * RESID_TOL {
+        return Some(Eigenpair {
+            lambda: lam1,
+            vector: y,
+            residual: r2.sqrt(),
+        });
+    }
+    let mut lam = mu;
+    let mut residual = f64::INFINITY;
+    for step in 0..2 {
+        let y0 = y;
+        for k in 0..N - 1 {
+            if swap[k] {
+                y.swap(k, k + 1);
+            }
+            y[k + 1] -= l[k] * y[k];
+        }
+        back(&mut y);
+        // (H - mu I) y = y0 and y0 ~ eigenvector: y ~ y0 / (lambda - mu).
+        let d: f64 = y.iter().zip(&y0).map(|(a, b)| a * b).sum();
+        let n = normalise(&mut y)?;
+        if d != 0.0 && d.is_finite() {
+            lam = mu + 1.0 / d;
+            // Residual of the normalised pair: (H - lam I) y = (y0 - n y / d) / n. Small
+            // enough (backward error at the rounding level of |H| = 1): done.
+            let g = n / d;
+            let r2: f64 = y0
+                .iter()
+                .zip(&y)
+                .map(|(a, b)| (a - g * b) * (a - g * b))
+                .sum();
+            residual = r2.sqrt() / n;
+            if residual <= RESID_TOL {
+                break;
+            }
+        }
+    }
+    Some(Eigenpair {
+        lambda: lam,
+        vector: y,
+        residual,
+    })
+}

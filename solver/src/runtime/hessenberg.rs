@@ -202,7 +202,7 @@ pub(super) fn inverse_iteration<const N: usize>(
     }
     let mut lam = mu;
     let mut residual = f64::INFINITY;
-    for step in 0..2 {
+    for _ in 0..2 {
         let y0 = y;
         for k in 0..N - 1 {
             if swap[k] {

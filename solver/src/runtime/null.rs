@@ -23,6 +23,10 @@ fn scaled(r: [f64; 3], s: f64) -> [f64; 3] {
 /// must have a norm above this, otherwise the matrix has rank < 2.
 const RANK_TOL: f64 = 1e-12;
 
+/// The cross-product candidate is returned at once if `|A v|` (rows scaled to
+/// max |a_ij| = 1) is at most this.
+const CONSISTENT_RESID: f64 = 1e-13;
+
 /// Unit null vector (sign arbitrary) of the `n x 3` matrix with the given rows, `n >= 2`:
 /// in the least-squares sense, the unit `v` minimising `|A v|`.
 ///
@@ -31,7 +35,8 @@ const RANK_TOL: f64 = 1e-12;
 /// rank 2 — and, for `n > 2`, the eigenvector of the smallest eigenvalue of `A^T A`
 /// (closed-form 3x3 symmetric eigenvalue, then the best cross product of the rows of
 /// `A^T A - lambda I`); the candidate with the smaller `|A v|` wins (evaluated on the rows,
-/// not on `A^T A`, so noise-free inputs keep their full accuracy).
+/// not on `A^T A`, so noise-free inputs keep their full accuracy). The second candidate is
+/// skipped when the first already has `|A v| <= 1e-13` (scaled rows).
 ///
 /// `None` if `n < 2`, an entry is not finite, or the rank is below 2.
 /// Never panics, never allocates.
@@ -99,6 +104,12 @@ pub fn null_vector3(rows: &[[f64; 3]]) -> Option<[f64; 3]> {
             })
             .sum()
     };
+    // Consistent rows (the usual case: exact or nearly exact solutions) leave the cross
+    // product with a residual at rounding level, which the least-squares refinement below
+    // cannot improve on: skip it.
+    if resid(v) <= CONSISTENT_RESID * CONSISTENT_RESID {
+        return Some(v);
+    }
     // Gram matrix of the scaled rows.
     let mut g = [[0.0; 3]; 3];
     for i in 0..n {

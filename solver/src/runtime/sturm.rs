@@ -337,7 +337,7 @@ impl<const N: usize> Sturm<N> {
     /// `[-1, 1]`) into `roots` in increasing order; returns their number.
     ///
     /// Isolation by quadrisection on Sturm counts (three interior points per interval,
-    /// evaluated together), then [`Self::polish`] on every interval holding one root.
+    /// evaluated together), then [`Self::polish_all`] on the intervals holding one root.
     fn real_roots(&self, p: &[f64; N], roots: &mut [f64; N]) -> usize {
         let bound = root_bound(p);
         let ([vlo, vhi], [plo, phi]) = self.changes([-bound, bound]);
@@ -359,6 +359,9 @@ impl<const N: usize> Sturm<N> {
             depth: 0,
         };
         let mut nroots = 0usize;
+        // Isolated roots (output slot, interval), polished together at the end.
+        let mut pending = [(0usize, Interval::default()); N];
+        let mut npending = 0usize;
         while top > 0 {
             top -= 1;
             let iv = stack[top];
@@ -371,11 +374,12 @@ impl<const N: usize> Sturm<N> {
             let split = count > 1 && iv.depth < MAX_BISECT / 2 && iv.a < xs[0] && xs[2] < iv.b;
             if !split {
                 if nroots < N {
-                    roots[nroots] = if count == 1 {
-                        self.polish(p, &iv)
+                    if count == 1 {
+                        pending[npending] = (nroots, iv);
+                        npending += 1;
                     } else {
-                        xs[1] // an unresolvable cluster: one representative
-                    };
+                        roots[nroots] = xs[1]; // an unresolvable cluster: one representative
+                    }
                     nroots += 1;
                 }
                 continue;
@@ -405,89 +409,149 @@ impl<const N: usize> Sturm<N> {
                 }
             }
         }
+        self.polish_all(p, &pending[..npending], roots);
         nroots
     }
 
-    /// The single root of `p` in `(a, b]`: safeguarded Newton from the regula-falsi point
-    /// (bisection whenever a step leaves the bracket), to about 1e-12 relative (inverse
-    /// iteration refines the eigenvalue afterwards).
-    fn polish(&self, p: &[f64; N], iv: &Interval) -> f64 {
-        let (mut a, mut b) = (iv.a, iv.b);
-        let (pa, pb) = (iv.pa, iv.pb);
-        if pa == 0.0 {
-            return a;
-        }
-        if pb == 0.0 {
-            return b;
-        }
-        if (pa > 0.0) == (pb > 0.0) {
-            // Even multiplicity in floating point: bisect on the Sturm counts.
-            for _ in 0..MAX_BISECT {
-                let mid = 0.5 * (a + b);
-                if !(a < mid && mid < b) {
-                    break;
-                }
-                if self.changes([mid]).0[0] < iv.va {
-                    b = mid;
-                } else {
-                    a = mid;
-                }
+    /// Polishes every isolated root (`(slot, interval)`, the interval holding exactly one
+    /// root) into `roots[slot]`. The roots are iterated in lockstep, one step of each per
+    /// round: their evaluations are independent, so a pipelined core overlaps them (one
+    /// root at a time is bound by the latency of Horner's recurrence).
+    ///
+    /// Per root: two octasection rounds on the sign of `p` (seven points evaluated
+    /// together cost about one Newton step; they shrink the bracket 64x and put Newton in
+    /// its quadratic regime), then Newton from the regula-falsi point, safeguarded by the
+    /// bracket (bisection whenever a step leaves it), to about 1e-12 relative (inverse
+    /// iteration refines the eigenvalue afterwards). An interval whose ends have equal
+    /// signs (even multiplicity in floating point) is bisected on the Sturm counts instead.
+    fn polish_all(&self, p: &[f64; N], pending: &[(usize, Interval)], roots: &mut [f64; N]) {
+        let n = pending.len();
+        let mut a = [0.0f64; N];
+        let mut b = [0.0f64; N];
+        let mut pa = [0.0f64; N];
+        let mut pb = [0.0f64; N];
+        let mut neg_at_a = [false; N];
+        // `bracketed`: a sign change, the root ends in x; `active`: still iterating.
+        let mut bracketed = [false; N];
+        let mut active = [false; N];
+        let mut x = [0.0f64; N];
+        for (r, (slot, iv)) in pending.iter().enumerate() {
+            (a[r], b[r], pa[r], pb[r]) = (iv.a, iv.b, iv.pa, iv.pb);
+            if iv.pa == 0.0 {
+                roots[*slot] = iv.a;
+            } else if iv.pb == 0.0 {
+                roots[*slot] = iv.b;
+            } else if (iv.pa > 0.0) == (iv.pb > 0.0) {
+                roots[*slot] = self.bisect_counts(iv);
+            } else {
+                neg_at_a[r] = iv.pa < 0.0;
+                bracketed[r] = true;
+                active[r] = true;
             }
-            return 0.5 * (a + b);
         }
-        let neg_at_a = pa < 0.0;
-        // Octasection rounds on the sign of p (seven points evaluated together cost about
-        // one Newton step) put Newton in its quadratic regime from a bracket 64x smaller.
-        let (mut pa, mut pb) = (pa, pb);
         for _ in 0..OCTASECTIONS {
-            let w = (b - a) * 0.125;
-            let xs: [f64; 7] = std::array::from_fn(|q| a + (q + 1) as f64 * w);
-            let ps = eval_monic_at(p, xs);
-            let mut q = 0;
-            while q < 7 && (ps[q] < 0.0) == neg_at_a && ps[q] != 0.0 {
-                q += 1;
-            }
-            if q < 7 && ps[q] == 0.0 {
-                return xs[q];
-            }
-            if q > 0 {
-                a = xs[q - 1];
-                pa = ps[q - 1];
-            }
-            if q < 7 {
-                b = xs[q];
-                pb = ps[q];
+            for r in 0..n {
+                if !active[r] {
+                    continue;
+                }
+                let w = (b[r] - a[r]) * 0.125;
+                let xs: [f64; 7] = std::array::from_fn(|q| a[r] + (q + 1) as f64 * w);
+                let ps = eval_monic_at(p, xs);
+                let mut q = 0;
+                while q < 7 && (ps[q] < 0.0) == neg_at_a[r] && ps[q] != 0.0 {
+                    q += 1;
+                }
+                if q < 7 && ps[q] == 0.0 {
+                    x[r] = xs[q];
+                    active[r] = false;
+                    continue;
+                }
+                if q > 0 {
+                    a[r] = xs[q - 1];
+                    pa[r] = ps[q - 1];
+                }
+                if q < 7 {
+                    b[r] = xs[q];
+                    pb[r] = ps[q];
+                }
             }
         }
-        let mut x = a - pa * (b - a) / (pb - pa);
-        if !(x > a && x < b) {
-            x = 0.5 * (a + b);
+        for r in 0..n {
+            if !active[r] {
+                continue;
+            }
+            x[r] = a[r] - pa[r] * (b[r] - a[r]) / (pb[r] - pa[r]);
+            if !(x[r] > a[r] && x[r] < b[r]) {
+                x[r] = 0.5 * (a[r] + b[r]);
+            }
         }
         for _ in 0..MAX_NEWTON {
-            let (px, dpx) = eval_monic(p, x);
-            if px == 0.0 {
-                return x;
+            let mut any = false;
+            for r in 0..n {
+                if !active[r] {
+                    continue;
+                }
+                let (px, dpx) = eval_monic(p, x[r]);
+                if px == 0.0 {
+                    active[r] = false;
+                    continue;
+                }
+                if (px < 0.0) == neg_at_a[r] {
+                    a[r] = x[r];
+                } else {
+                    b[r] = x[r];
+                }
+                let step = px / dpx;
+                // 1e-12 relative suffices (stricter tests stall at the rounding level of
+                // p); the absolute floor (|H| = 1) ends roots at 0.
+                let tol = 1e-12 * x[r].abs() + 1e-15;
+                let nx = x[r] - step;
+                if step.abs() <= tol {
+                    if nx >= a[r] && nx <= b[r] {
+                        x[r] = nx;
+                    }
+                    active[r] = false;
+                    continue;
+                }
+                x[r] = if nx > a[r] && nx < b[r] {
+                    nx
+                } else {
+                    0.5 * (a[r] + b[r])
+                };
+                // NaN-safe: a NaN bracket ends the iteration too.
+                if (b[r] - a[r]).partial_cmp(&tol) != Some(std::cmp::Ordering::Greater) {
+                    active[r] = false;
+                    continue;
+                }
+                any = true;
             }
-            if (px < 0.0) == neg_at_a {
-                a = x;
-            } else {
-                b = x;
-            }
-            let step = px / dpx;
-            // 1e-12 relative suffices (stricter tests stall at the rounding level of p);
-            // the absolute floor (|H| = 1) ends roots at 0.
-            let tol = 1e-12 * x.abs() + 1e-15;
-            let nx = x - step;
-            if step.abs() <= tol {
-                return if nx >= a && nx <= b { nx } else { x };
-            }
-            x = if nx > a && nx < b { nx } else { 0.5 * (a + b) };
-            // NaN-safe: a NaN bracket ends the iteration too.
-            if (b - a).partial_cmp(&tol) != Some(std::cmp::Ordering::Greater) {
+            if !any {
                 break;
             }
         }
-        x
+        for (r, (slot, _)) in pending.iter().enumerate() {
+            if bracketed[r] {
+                roots[*slot] = x[r];
+            }
+        }
+    }
+
+    /// The root in `iv` by bisection on the Sturm counts (an interval whose ends have equal
+    /// signs of `p`: even multiplicity in floating point).
+    fn bisect_counts(&self, iv: &Interval) -> f64 {
+        let (mut a, mut b) = (iv.a, iv.b);
+        for _ in 0..MAX_BISECT {
+            let mid = 0.5 * (a + b);
+            if !(a < mid && mid < b) {
+                break;
+            }
+            if self.changes([mid]).0[0] < iv.va {
+                b = mid;
+            } else {
+                a = mid;
+            }
+        }
+        0.5 * (a + b)
     }
 }
 

@@ -101,90 +101,153 @@ pub(super) struct Eigenpair<const N: usize> {
     pub residual: f64,
 }
 
-/// Inverse iteration (at most two steps after the first solve) for the eigenvalue near `mu`
-/// of the upper Hessenberg `h`, or `None` (non-finite iterates).
-#[allow(clippy::needless_range_loop)]
-pub(super) fn inverse_iteration<const N: usize>(
-    h: &[[f64; N]; N],
-    mu: f64,
-) -> Option<Eigenpair<N>> {
-    // LU with partial pivoting of the Hessenberg H - mu I: P_k swaps rows k, k+1, then
-    // row k+1 -= l_k row k. Row k+1 has zeros left of column k, so only the tails move.
-    let mut u = *h;
-    for (i, row) in u.iter_mut().enumerate() {
-        row[i] -= mu;
-    }
-    let mut swap = [false; N];
-    let mut l = [0.0f64; N];
-    let tiny = f64::EPSILON * 1e-3; // |H| ~ 1 after scaling
-    let guard = |x: f64| {
-        if x.abs() < tiny {
-            if x < 0.0 {
-                -tiny
-            } else {
-                tiny
-            }
+/// LU factors with partial pivoting of `H - mu I` for an upper Hessenberg `H`:
+/// `P_k` swaps rows `k, k + 1` (if `swap[k]`), then row `k + 1 -= l[k] * row k`; `u` is
+/// the upper triangular factor, `rdiag` the reciprocals of its diagonal. Tiny pivots are
+/// replaced by `+-TINY` (the shift is meant to be an eigenvalue).
+struct HessenbergLu<const N: usize> {
+    u: [[f64; N]; N],
+    swap: [bool; N],
+    l: [f64; N],
+    rdiag: [f64; N],
+}
+
+/// Pivot floor of [`HessenbergLu`] (|H| about 1).
+const TINY: f64 = f64::EPSILON * 1e-3;
+
+#[inline(always)]
+fn guard(x: f64) -> f64 {
+    if x.abs() < TINY {
+        if x < 0.0 {
+            -TINY
         } else {
-            x
+            TINY
         }
-    };
-    for k in 0..N - 1 {
-        let (top, bottom) = u.split_at_mut(k + 1);
+    } else {
+        x
+    }
+}
+
+impl<const N: usize> HessenbergLu<N> {
+    #[inline(always)]
+    fn start(h: &[[f64; N]; N], mu: f64) -> Self {
+        let mut u = *h;
+        for (i, row) in u.iter_mut().enumerate() {
+            row[i] -= mu;
+        }
+        HessenbergLu {
+            u,
+            swap: [false; N],
+            l: [0.0; N],
+            rdiag: [0.0; N],
+        }
+    }
+
+    /// Elimination step `k` (`k < N - 1`).
+    #[inline(always)]
+    fn step(&mut self, k: usize) {
+        let (top, bottom) = self.u.split_at_mut(k + 1);
         let (rk, rk1) = (&mut top[k], &mut bottom[0]);
-        if rk1[k].abs() > rk[k].abs() {
-            for j in k..N {
-                std::mem::swap(&mut rk[j], &mut rk1[j]);
-            }
-            swap[k] = true;
+        // Branch-free swap (selects): the pivot choice is unpredictable.
+        let s = rk1[k].abs() > rk[k].abs();
+        for j in k..N {
+            let (x, y) = (rk[j], rk1[j]);
+            rk[j] = if s { y } else { x };
+            rk1[j] = if s { x } else { y };
         }
+        self.swap[k] = s;
         rk[k] = guard(rk[k]);
         let f = rk1[k] / rk[k];
-        l[k] = f;
+        self.l[k] = f;
         for j in k + 1..N {
             rk1[j] -= f * rk[j];
         }
         rk1[k] = 0.0;
     }
-    u[N - 1][N - 1] = guard(u[N - 1][N - 1]);
-    let mut rdiag = [0.0f64; N];
-    for (i, r) in rdiag.iter_mut().enumerate() {
-        *r = 1.0 / u[i][i];
+
+    #[inline(always)]
+    fn finish(&mut self) {
+        self.u[N - 1][N - 1] = guard(self.u[N - 1][N - 1]);
+        for (i, r) in self.rdiag.iter_mut().enumerate() {
+            *r = 1.0 / self.u[i][i];
+        }
     }
-    // Column-oriented back substitution: the updates of the remaining right-hand side are
-    // independent, so the dependency chain is one multiply-add per row.
-    let back = |y: &mut [f64; N]| {
+
+    /// `y := U^-1 y`, column-oriented: the updates of the remaining right-hand side are
+    /// independent, so the dependency chain is one multiply-add per row.
+    #[inline(always)]
+    fn back(&self, y: &mut [f64; N]) {
         for i in (0..N).rev() {
-            let yi = y[i] * rdiag[i];
+            let yi = y[i] * self.rdiag[i];
             y[i] = yi;
-            for j in 0..i {
-                y[j] -= u[j][i] * yi;
+            for (yj, row) in y.iter_mut().zip(&self.u).take(i) {
+                *yj -= row[i] * yi;
             }
         }
-    };
-    let normalise = |y: &mut [f64; N]| -> Option<f64> {
-        let n = y.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if !(n > 0.0 && n.is_finite()) {
-            return None;
-        }
-        let r = 1.0 / n;
-        for x in y.iter_mut() {
-            *x *= r;
-        }
-        Some(n)
-    };
-    // Step 1: U y = e (LAPACK hein's first step).
-    let mut y = [1.0f64; N];
-    back(&mut y);
-    let n = normalise(&mut y)?;
-    // (H - mu I) y n = r0 = P_0 L_0 ... P_{N-2} L_{N-2} e (O(N)): Rayleigh quotient and
-    // residual of this first step; it is usually accurate enough.
-    let mut r0 = [1.0f64; N];
-    for k in (0..N - 1).rev() {
-        r0[k + 1] += l[k] * r0[k];
-        if swap[k] {
-            r0.swap(k, k + 1);
+    }
+
+    /// `y := (P L)^-1 y` (the forward part of a solve).
+    #[inline(always)]
+    fn forward(&self, y: &mut [f64; N]) {
+        for k in 0..N - 1 {
+            if self.swap[k] {
+                y.swap(k, k + 1);
+            }
+            y[k + 1] -= self.l[k] * y[k];
         }
     }
+
+    /// `P_0 L_0 ... P_{N-2} L_{N-2} e`: `(H - mu I) U^-1 e` (O(N)).
+    #[inline(always)]
+    fn residual_of_first_step(&self) -> [f64; N] {
+        let mut r0 = [1.0f64; N];
+        for k in (0..N - 1).rev() {
+            r0[k + 1] += self.l[k] * r0[k];
+            if self.swap[k] {
+                r0.swap(k, k + 1);
+            }
+        }
+        r0
+    }
+}
+
+/// Scales `y` to unit norm; its former norm, or `None` if zero or not finite.
+#[inline(always)]
+fn normalise<const N: usize>(y: &mut [f64; N]) -> Option<f64> {
+    let n = y.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if !(n > 0.0 && n.is_finite()) {
+        return None;
+    }
+    let r = 1.0 / n;
+    for x in y.iter_mut() {
+        *x *= r;
+    }
+    Some(n)
+}
+
+/// Inverse iteration (at most two steps after the first solve) for the eigenvalue near `mu`
+/// of the upper Hessenberg `h`, or `None` (non-finite iterates).
+pub(super) fn inverse_iteration<const N: usize>(
+    h: &[[f64; N]; N],
+    mu: f64,
+) -> Option<Eigenpair<N>> {
+    let mut lu = HessenbergLu::start(h, mu);
+    for k in 0..N.saturating_sub(1) {
+        lu.step(k);
+    }
+    lu.finish();
+    // Step 1: U y = e (LAPACK hein's first step).
+    let mut y = [1.0f64; N];
+    lu.back(&mut y);
+    refine(&lu, mu, y)
+}
+
+/// The rest of [`inverse_iteration`] after the first solve `y = U^-1 e`.
+fn refine<const N: usize>(lu: &HessenbergLu<N>, mu: f64, mut y: [f64; N]) -> Option<Eigenpair<N>> {
+    let n = normalise(&mut y)?;
+    // (H - mu I) y n = r0: Rayleigh quotient and residual of this first step; it is
+    // usually accurate enough.
+    let r0 = lu.residual_of_first_step();
     let inv_n = 1.0 / n;
     let q: f64 = r0.iter().zip(&y).map(|(a, b)| a * b).sum::<f64>() * inv_n;
     let lam1 = mu + q;
@@ -204,13 +267,8 @@ pub(super) fn inverse_iteration<const N: usize>(
     let mut residual = f64::INFINITY;
     for _ in 0..2 {
         let y0 = y;
-        for k in 0..N - 1 {
-            if swap[k] {
-                y.swap(k, k + 1);
-            }
-            y[k + 1] -= l[k] * y[k];
-        }
-        back(&mut y);
+        lu.forward(&mut y);
+        lu.back(&mut y);
         // (H - mu I) y = y0 and y0 ~ eigenvector: y ~ y0 / (lambda - mu).
         let d: f64 = y.iter().zip(&y0).map(|(a, b)| a * b).sum();
         let n = normalise(&mut y)?;

@@ -36,7 +36,7 @@ const AGREE_TOL: f64 = 1e-7;
 const ACCEPT_RESIDUAL: f64 = 1e-11;
 /// Maximum safeguarded Newton iterations per root.
 const MAX_NEWTON: u32 = 40;
-/// Octasection rounds before Newton's iteration (see `Sturm::polish`).
+/// Octasection rounds before Newton's iteration (see `Sturm::polish_all`).
 const OCTASECTIONS: usize = 2;
 
 /// Same contract as [`super::real_eigenpairs`]: the real eigenvalues and unit eigenvectors
@@ -783,6 +783,21 @@ mod piece_timing {
 
     fn ns(t: Instant, n: usize) -> f64 {
         (cpu_ns() - t.0) as f64 / n as f64
+    }
+
+    /// Only the whole back end, many times: for `perf stat -e cycles:u` comparisons.
+    #[test]
+    #[ignore]
+    fn whole_only() {
+        let mats: Vec<_> = gs5pt_actions(500)
+            .iter()
+            .map(|a| SMatrix::<f64, 10, 10>::from_fn(|i, j| a[i][j]))
+            .collect();
+        for _ in 0..200 {
+            for m in &mats {
+                black_box(real_eigenpairs_sturm(black_box(m)));
+            }
+        }
     }
 
     #[test]

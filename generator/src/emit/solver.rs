@@ -57,7 +57,9 @@ struct Plan<'a> {
     source: Vec<Result<usize, usize>>,
     column_of: HashMap<Monomial, usize>,
     basis_one: usize,
-    basis_var: Vec<usize>,
+    /// Read-out pairs `(j, k)`, `basis[k] = x_i * basis[j]`, of each template variable
+    /// (`interpret::readout_pairs`).
+    readout: Vec<Vec<(usize, usize)>>,
 }
 
 fn validate_template(
@@ -236,23 +238,20 @@ impl<'a> Plan<'a> {
         let basis_one = basis_pos(&Monomial::one(t.nvars)).ok_or_else(|| {
             EmitError::Unsupported("the basis does not contain the monomial 1".into())
         })?;
-        let basis_var = (0..t.nvars)
-            .map(|k| {
-                basis_pos(&Monomial::var(t.nvars, k)).ok_or_else(|| {
-                    EmitError::Unsupported(format!(
-                        "the basis does not contain the unknown {}; it cannot be read off the eigenvectors",
-                        var_names[k]
-                    ))
-                })
-            })
-            .collect::<Result<Vec<_>, _>>()?;
+        if let Some(k) = (0..t.nvars).find(|&k| basis_pos(&Monomial::var(t.nvars, k)).is_none()) {
+            return Err(EmitError::Unsupported(format!(
+                "the basis does not contain the unknown {}; it cannot be read off the eigenvectors",
+                var_names[k]
+            )));
+        }
         Ok(Plan {
             spec,
             var_names,
             source,
             column_of,
             basis_one,
-            basis_var,
+            readout: crate::interpret::readout_pairs(t)
+                .map_err(|e| EmitError::Unsupported(e.to_string()))?,
         })
     }
 
@@ -409,6 +408,29 @@ fn entry_tokens(terms: &[(Monomial, Expr)]) -> TokenStream {
     out
 }
 
+/// `let u = ...;` reading one unknown off the eigenvector `v` through its read-out pairs,
+/// as `mingen::interpret::read_unknown` does: `v[k] / v[j]` for a single pair (`w` is
+/// `v[one]`), otherwise `sum v[j] v[k] / sum v[j]^2` over the pairs, in their order.
+fn readout_tokens(u: &Ident, pairs: &[(usize, usize)], one: usize) -> TokenStream {
+    if let [(j, k)] = pairs {
+        let kl = lit(*k);
+        if *j == one {
+            return quote!(let #u = v[#kl] / w;);
+        }
+        let jl = lit(*j);
+        return quote!(let #u = v[#kl] / v[#jl];);
+    }
+    let num = pairs.iter().map(|&(j, k)| {
+        let (jl, kl) = (lit(j), lit(k));
+        quote!(v[#jl] * v[#kl])
+    });
+    let den = pairs.iter().map(|&(j, _)| {
+        let jl = lit(j);
+        quote!(v[#jl] * v[#jl])
+    });
+    quote!(let #u = (#(#num)+*) / (#(#den)+*);)
+}
+
 fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let spec = plan.spec;
     let t = &spec.template;
@@ -542,10 +564,9 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let one_l = lit(plan.basis_one);
     let mut reads = Vec::new();
     let mut finite = Vec::new();
-    for (k, &bi) in plan.basis_var.iter().enumerate() {
+    for (k, pairs) in plan.readout.iter().enumerate() {
         let u = format_ident!("u{}", k);
-        let bl = lit(bi);
-        reads.push(quote!(let #u = v[#bl] / w;));
+        reads.push(readout_tokens(&u, pairs, plan.basis_one));
         finite.push(quote!(!#u.is_finite()));
     }
     let elim_block = if let Some(el) = &spec.elimination {
@@ -618,8 +639,10 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         format!(
             "Fills a {rows} x {cols} elimination template, reduces it (LU with partial \
              pivoting, back substitution of the {} reducible rows only), builds the {nb} x {nb} \
-             action matrix of `{}` on the basis [{}] and reads each unknown off the real \
-             eigenvectors as `v[x] / v[1]`.",
+             action matrix of `{}` on the basis [{}] and reads each unknown `x` off the real \
+             eigenvectors `v` as the least-squares ratio of the entries `v[x b]` and `v[b]` \
+             over the basis monomials `b` with `x b` in the basis (`v[x] / v[1]` if that is the \
+             only one).",
             t.n_reducible,
             plan.mono(&t.action),
             basis.join(", ")

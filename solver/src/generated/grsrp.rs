@@ -138,7 +138,7 @@ pub type Solutions = crate::runtime::SolutionSet<Solution, MAX_SOLUTIONS>;
 pub const TEMPLATE_SHAPE: [usize; 4] = [80, 100, 80, 63];
 /// Solves `grsrp`: all real solutions of the problem's equations for the given data.
 ///
-/// Fills a 80 x 100 elimination template, reduces it (LU with partial pivoting, back substitution of the 17 reducible rows only), builds the 20 x 20 action matrix of `t1` on the basis [a3^2*t1, a3^2*t2, a3^2*t3, a1^2, a1*a2, a2^2, a1*a3, a2*a3, a3^2, a3*t1, a3*t2, a2*t3, a3*t3, a1, a2, a3, t1, t2, t3, 1] and reads each unknown off the real eigenvectors as `v[x] / v[1]`.
+/// Fills a 80 x 100 elimination template, reduces it (LU with partial pivoting, back substitution of the 17 reducible rows only), builds the 20 x 20 action matrix of `t1` on the basis [a3^2*t1, a3^2*t2, a3^2*t3, a1^2, a1*a2, a2^2, a1*a3, a2*a3, a3^2, a3*t1, a3*t2, a2*t3, a3*t3, a1, a2, a3, t1, t2, t3, 1] and reads each unknown `x` off the real eigenvectors `v` as the least-squares ratio of the entries `v[x b]` and `v[b]` over the basis monomials `b` with `x b` in the basis (`v[x] / v[1]` if that is the only one).
 ///
 /// Never panics: non-finite or degenerate data gives no solutions.
 #[must_use]
@@ -1457,12 +1457,24 @@ pub fn solve_staged<S: crate::runtime::Stages>(
         if !w.is_finite() || w.abs() <= 1e-12 {
             continue;
         }
-        let u0 = v[13] / w;
-        let u1 = v[14] / w;
-        let u2 = v[15] / w;
-        let u3 = v[16] / w;
-        let u4 = v[17] / w;
-        let u5 = v[18] / w;
+        let u0 = (v[19] * v[13] + v[13] * v[3] + v[14] * v[4] + v[15] * v[6])
+            / (v[19] * v[19] + v[13] * v[13] + v[14] * v[14] + v[15] * v[15]);
+        let u1 = (v[19] * v[14] + v[13] * v[4] + v[14] * v[5] + v[15] * v[7]
+            + v[18] * v[11])
+            / (v[19] * v[19] + v[13] * v[13] + v[14] * v[14] + v[15] * v[15]
+                + v[18] * v[18]);
+        let u2 = (v[19] * v[15] + v[9] * v[0] + v[10] * v[1] + v[12] * v[2]
+            + v[13] * v[6] + v[14] * v[7] + v[15] * v[8] + v[16] * v[9] + v[17] * v[10]
+            + v[18] * v[12])
+            / (v[19] * v[19] + v[9] * v[9] + v[10] * v[10] + v[12] * v[12]
+                + v[13] * v[13] + v[14] * v[14] + v[15] * v[15] + v[16] * v[16]
+                + v[17] * v[17] + v[18] * v[18]);
+        let u3 = (v[19] * v[16] + v[8] * v[0] + v[15] * v[9])
+            / (v[19] * v[19] + v[8] * v[8] + v[15] * v[15]);
+        let u4 = (v[19] * v[17] + v[8] * v[1] + v[15] * v[10])
+            / (v[19] * v[19] + v[8] * v[8] + v[15] * v[15]);
+        let u5 = (v[19] * v[18] + v[8] * v[2] + v[14] * v[11] + v[15] * v[12])
+            / (v[19] * v[19] + v[8] * v[8] + v[14] * v[14] + v[15] * v[15]);
         if !u0.is_finite() || !u1.is_finite() || !u2.is_finite() || !u3.is_finite()
             || !u4.is_finite() || !u5.is_finite()
         {

@@ -132,7 +132,7 @@ pub type Solutions = crate::runtime::SolutionSet<Solution, MAX_SOLUTIONS>;
 pub const TEMPLATE_SHAPE: [usize; 4] = [90, 102, 90, 84];
 /// Solves `grsrp_gravity`: all real solutions of the problem's equations for the given data.
 ///
-/// Fills a 90 x 102 elimination template, reduces it (LU with partial pivoting, back substitution of the 6 reducible rows only), builds the 12 x 12 action matrix of `t3` on the basis [s*t2, c*t3, s*t3, t1*t3, t2*t3, t3^2, c, s, t1, t2, t3, 1] and reads each unknown off the real eigenvectors as `v[x] / v[1]`.
+/// Fills a 90 x 102 elimination template, reduces it (LU with partial pivoting, back substitution of the 6 reducible rows only), builds the 12 x 12 action matrix of `t3` on the basis [s*t2, c*t3, s*t3, t1*t3, t2*t3, t3^2, c, s, t1, t2, t3, 1] and reads each unknown `x` off the real eigenvectors `v` as the least-squares ratio of the entries `v[x b]` and `v[b]` over the basis monomials `b` with `x b` in the basis (`v[x] / v[1]` if that is the only one).
 ///
 /// Never panics: non-finite or degenerate data gives no solutions.
 #[must_use]
@@ -1134,11 +1134,16 @@ pub fn solve_staged<S: crate::runtime::Stages>(
         if !w.is_finite() || w.abs() <= 1e-12 {
             continue;
         }
-        let u0 = v[6] / w;
-        let u1 = v[7] / w;
-        let u2 = v[8] / w;
-        let u3 = v[9] / w;
-        let u4 = v[10] / w;
+        let u0 = (v[11] * v[6] + v[10] * v[1]) / (v[11] * v[11] + v[10] * v[10]);
+        let u1 = (v[11] * v[7] + v[9] * v[0] + v[10] * v[2])
+            / (v[11] * v[11] + v[9] * v[9] + v[10] * v[10]);
+        let u2 = (v[11] * v[8] + v[10] * v[3]) / (v[11] * v[11] + v[10] * v[10]);
+        let u3 = (v[11] * v[9] + v[7] * v[0] + v[10] * v[4])
+            / (v[11] * v[11] + v[7] * v[7] + v[10] * v[10]);
+        let u4 = (v[11] * v[10] + v[6] * v[1] + v[7] * v[2] + v[8] * v[3] + v[9] * v[4]
+            + v[10] * v[5])
+            / (v[11] * v[11] + v[6] * v[6] + v[7] * v[7] + v[8] * v[8] + v[9] * v[9]
+                + v[10] * v[10]);
         if !u0.is_finite() || !u1.is_finite() || !u2.is_finite() || !u3.is_finite()
             || !u4.is_finite()
         {

@@ -122,7 +122,7 @@ pub type Solutions = crate::runtime::SolutionSet<Solution, MAX_SOLUTIONS>;
 pub const TEMPLATE_SHAPE: [usize; 4] = [10, 20, 10, 4];
 /// Solves `gs5pt`: all real solutions of the problem's equations for the given data.
 ///
-/// Fills a 10 x 20 elimination template, reduces it (LU with partial pivoting, back substitution of the 6 reducible rows only), builds the 10 x 10 action matrix of `x` on the basis [x^2, x*y, y^2, x*z, y*z, z^2, x, y, z, 1] and reads each unknown off the real eigenvectors as `v[x] / v[1]`.
+/// Fills a 10 x 20 elimination template, reduces it (LU with partial pivoting, back substitution of the 6 reducible rows only), builds the 10 x 10 action matrix of `x` on the basis [x^2, x*y, y^2, x*z, y*z, z^2, x, y, z, 1] and reads each unknown `x` off the real eigenvectors `v` as the least-squares ratio of the entries `v[x b]` and `v[b]` over the basis monomials `b` with `x b` in the basis (`v[x] / v[1]` if that is the only one).
 ///
 /// Never panics: non-finite or degenerate data gives no solutions.
 #[must_use]
@@ -1052,9 +1052,12 @@ pub fn solve_staged<S: crate::runtime::Stages>(
         if !w.is_finite() || w.abs() <= 1e-12 {
             continue;
         }
-        let u0 = v[6] / w;
-        let u1 = v[7] / w;
-        let u2 = v[8] / w;
+        let u0 = (v[9] * v[6] + v[6] * v[0] + v[7] * v[1] + v[8] * v[3])
+            / (v[9] * v[9] + v[6] * v[6] + v[7] * v[7] + v[8] * v[8]);
+        let u1 = (v[9] * v[7] + v[6] * v[1] + v[7] * v[2] + v[8] * v[4])
+            / (v[9] * v[9] + v[6] * v[6] + v[7] * v[7] + v[8] * v[8]);
+        let u2 = (v[9] * v[8] + v[6] * v[3] + v[7] * v[4] + v[8] * v[5])
+            / (v[9] * v[9] + v[6] * v[6] + v[7] * v[7] + v[8] * v[8]);
         if !u0.is_finite() || !u1.is_finite() || !u2.is_finite() {
             continue;
         }

@@ -129,48 +129,43 @@ fn guard(x: f64) -> f64 {
 }
 
 impl<const N: usize> HessenbergLu<N> {
+    /// Factors `h - mu I`. The row being eliminated is carried in a local array and the
+    /// pivot row written to `u` once: no rows are swapped in memory (swapping rows that
+    /// were just updated stalls on store forwarding).
     #[inline(always)]
-    fn start(h: &[[f64; N]; N], mu: f64) -> Self {
-        let mut u = *h;
-        for (i, row) in u.iter_mut().enumerate() {
-            row[i] -= mu;
-        }
-        HessenbergLu {
-            u,
+    fn factor(h: &[[f64; N]; N], mu: f64) -> Self {
+        let mut lu = HessenbergLu {
+            u: [[0.0; N]; N],
             swap: [false; N],
             l: [0.0; N],
             rdiag: [0.0; N],
+        };
+        let mut cur = h[0];
+        cur[0] -= mu;
+        for k in 0..N.saturating_sub(1) {
+            let mut next = h[k + 1];
+            next[k + 1] -= mu;
+            let s = next[k].abs() > cur[k].abs();
+            let (mut piv, oth) = if s { (next, cur) } else { (cur, next) };
+            lu.swap[k] = s;
+            piv[k] = guard(piv[k]);
+            let f = oth[k] / piv[k];
+            lu.l[k] = f;
+            cur = oth;
+            cur[k] = 0.0;
+            for j in k + 1..N {
+                cur[j] -= f * piv[j];
+            }
+            lu.u[k] = piv;
         }
-    }
-
-    /// Elimination step `k` (`k < N - 1`).
-    #[inline(always)]
-    fn step(&mut self, k: usize) {
-        let (top, bottom) = self.u.split_at_mut(k + 1);
-        let (rk, rk1) = (&mut top[k], &mut bottom[0]);
-        // Branch-free swap (selects): the pivot choice is unpredictable.
-        let s = rk1[k].abs() > rk[k].abs();
-        for j in k..N {
-            let (x, y) = (rk[j], rk1[j]);
-            rk[j] = if s { y } else { x };
-            rk1[j] = if s { x } else { y };
+        if N > 0 {
+            cur[N - 1] = guard(cur[N - 1]);
+            lu.u[N - 1] = cur;
         }
-        self.swap[k] = s;
-        rk[k] = guard(rk[k]);
-        let f = rk1[k] / rk[k];
-        self.l[k] = f;
-        for j in k + 1..N {
-            rk1[j] -= f * rk[j];
+        for (i, r) in lu.rdiag.iter_mut().enumerate() {
+            *r = 1.0 / lu.u[i][i];
         }
-        rk1[k] = 0.0;
-    }
-
-    #[inline(always)]
-    fn finish(&mut self) {
-        self.u[N - 1][N - 1] = guard(self.u[N - 1][N - 1]);
-        for (i, r) in self.rdiag.iter_mut().enumerate() {
-            *r = 1.0 / self.u[i][i];
-        }
+        lu
     }
 
     /// `y := U^-1 y`, column-oriented: the updates of the remaining right-hand side are
@@ -231,11 +226,7 @@ pub(super) fn inverse_iteration<const N: usize>(
     h: &[[f64; N]; N],
     mu: f64,
 ) -> Option<Eigenpair<N>> {
-    let mut lu = HessenbergLu::start(h, mu);
-    for k in 0..N.saturating_sub(1) {
-        lu.step(k);
-    }
-    lu.finish();
+    let lu = HessenbergLu::factor(h, mu);
     // Step 1: U y = e (LAPACK hein's first step).
     let mut y = [1.0f64; N];
     lu.back(&mut y);

@@ -35,8 +35,9 @@ const CONSISTENT_RESID: f64 = 1e-13;
 /// rank 2 — and, for `n > 2`, the eigenvector of the smallest eigenvalue of `A^T A`
 /// (closed-form 3x3 symmetric eigenvalue, then the best cross product of the rows of
 /// `A^T A - lambda I`); the candidate with the smaller `|A v|` wins (evaluated on the rows,
-/// not on `A^T A`, so noise-free inputs keep their full accuracy). The second candidate is
-/// skipped when the first already has `|A v| <= 1e-13` (scaled rows).
+/// not on `A^T A`, so noise-free inputs keep their full accuracy). Shortcuts: the cross
+/// product of the two longest rows (when they are far from parallel), then the best pair,
+/// are returned as soon as `|A v| <= 1e-13` (scaled rows).
 ///
 /// `None` if `n < 2`, an entry is not finite, or the rank is below 2.
 /// Never panics, never allocates.
@@ -60,6 +61,38 @@ pub fn null_vector3(rows: &[[f64; 3]]) -> Option<[f64; 3]> {
     }
     let inv = 1.0 / s;
     let row = |i: usize| scaled(rows[i], inv);
+    let resid = |v: [f64; 3]| -> f64 {
+        (0..n)
+            .map(|i| {
+                let d = dot(row(i), v);
+                d * d
+            })
+            .sum()
+    };
+
+    // Fast path: the two longest rows, if they are far from parallel, give the null vector
+    // of a consistent (rank-2) matrix directly.
+    if n > 2 {
+        let (mut i1, mut i2, mut n1, mut n2) = (0, 0, -1.0f64, -1.0f64);
+        for i in 0..n {
+            let ri = row(i);
+            let q = dot(ri, ri);
+            if q > n1 {
+                (i2, n2) = (i1, n1);
+                (i1, n1) = (i, q);
+            } else if q > n2 {
+                (i2, n2) = (i, q);
+            }
+        }
+        let c = cross(row(i1), row(i2));
+        let cn = dot(c, c);
+        if cn >= 1e-2 * n1 * n2 && cn > 0.0 {
+            let v = scaled(c, 1.0 / cn.sqrt());
+            if resid(v) <= CONSISTENT_RESID * CONSISTENT_RESID {
+                return Some(v);
+            }
+        }
+    }
 
     let mut best = [0.0; 3];
     let mut bn = 0.0;
@@ -96,14 +129,6 @@ pub fn null_vector3(rows: &[[f64; 3]]) -> Option<[f64; 3]> {
         return Some(v);
     }
 
-    let resid = |v: [f64; 3]| -> f64 {
-        (0..n)
-            .map(|i| {
-                let d = dot(row(i), v);
-                d * d
-            })
-            .sum()
-    };
     // Consistent rows (the usual case: exact or nearly exact solutions) leave the cross
     // product with a residual at rounding level, which the least-squares refinement below
     // cannot improve on: skip it.

@@ -210,13 +210,20 @@ fn emit_data_slots(layout: &ProblemLayout, idents: &[Ident]) -> Result<TokenStre
         .collect::<Result<Vec<_>, _>>()?;
     let n = lit(n_slots);
     let names = layout.data_slot_names();
+    // In code spans: `x1[0]` would otherwise be read as an intra-doc link.
+    let quoted = |ns: &[String]| {
+        ns.iter()
+            .map(|n| format!("`{n}`"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
     let order = if names.len() <= 12 {
-        names.join(", ")
+        quoted(&names)
     } else {
         format!(
             "{}, ..., {}",
-            names[..6].join(", "),
-            names[names.len() - 3..].join(", ")
+            quoted(&names[..6]),
+            quoted(&names[names.len() - 3..])
         )
     };
     let d_slots = doc(

@@ -30,7 +30,7 @@ impl Data {
     pub const SLOTS: usize = 45;
     /// The data from its flat form, in the problem's slot order: symbols in declaration order, arrays element by element, a point as `x, y`, a matrix row-major.
     ///
-    /// Slot order: x1[0].x, x1[0].y, x1[1].x, x1[1].y, x1[2].x, x1[2].y, ..., R0[2][0], R0[2][1], R0[2][2].
+    /// Slot order: `x1[0].x`, `x1[0].y`, `x1[1].x`, `x1[1].y`, `x1[2].x`, `x1[2].y`, ..., `R0[2][0]`, `R0[2][1]`, `R0[2][2]`.
     #[must_use]
     pub fn from_slots(slots: &[f64; 45]) -> Data {
         Data {

@@ -24,7 +24,7 @@ impl Data {
     pub const SLOTS: usize = 36;
     /// The data from its flat form, in the problem's slot order: symbols in declaration order, arrays element by element, a point as `x, y`, a matrix row-major.
     ///
-    /// Slot order: E1[0][0], E1[0][1], E1[0][2], E1[1][0], E1[1][1], E1[1][2], ..., E4[2][0], E4[2][1], E4[2][2].
+    /// Slot order: `E1[0][0]`, `E1[0][1]`, `E1[0][2]`, `E1[1][0]`, `E1[1][1]`, `E1[1][2]`, ..., `E4[2][0]`, `E4[2][1]`, `E4[2][2]`.
     #[must_use]
     pub fn from_slots(slots: &[f64; 36]) -> Data {
         Data {

@@ -8,25 +8,26 @@
 //!   [`lu_solve_template`]: the same result for the rows that matter, by forward elimination
 //!   plus a partial back substitution (faster; see its documentation for measurements).
 //! - [`real_eigenpairs`]: real eigenvalues and eigenvectors of a small dense matrix (the
-//!   action matrix), by a real Schur decomposition with an iteration cap.
+//!   action matrix), by nalgebra's real Schur decomposition with an iteration cap (the
+//!   reference; not used by emitted solvers: it stalls on ±λ spectra).
+//! - [`real_eigenpairs_hqr`]: the same contract by Hessenberg reduction, Francis
+//!   double-shift QR with exceptional shifts, and inverse iteration on the Hessenberg form.
 //! - [`real_eigenpairs_sturm`]: the same contract through balancing, Hessenberg form,
-//!   characteristic polynomial, Sturm-sequence root isolation + Newton, and inverse
-//!   iteration per real root; falls back to [`real_eigenpairs`] when a polynomial root and
-//!   its inverse-iteration eigenvalue disagree (1-4 % of 5-point action matrices) or the
-//!   Sturm sequence degenerates.
+//!   characteristic polynomial, Sturm-sequence root isolation + Newton, and per real root
+//!   the Hessenberg backward recurrence (inverse iteration when its residual is not at
+//!   rounding level); hands the matrix to [`real_eigenpairs_hqr`] when a root is not
+//!   confirmed (residual or eigenvalue disagreement: spurious real roots of ±λ spectra) or
+//!   the Sturm sequence degenerates. The emitted solvers use it at every shipped size.
 //! - [`Stages`]: observer of an emitted solver's stages (`solve_staged`), for timings.
 //! - [`null_vector3`]: unit null vector of an n x 3 matrix (recovery of eliminated
 //!   unknowns such as a translation direction).
 //!
-//! Back-end choice (the emitter's `STURM_MAX_BASIS = 20`), measured on the action
-//! matrices the shipped solvers actually build (`tests/solver_stages.rs`, medians of
-//! interleaved rounds, 2-core shared VM under load): 10x10 Schur 12.1 / 14.8 µs vs Sturm
-//! 9.0 / 11.8 µs (gs5pt / grsrp10 matrices, read-out included);
-//! 12x12 Schur ~41 µs vs Sturm ~15 µs; 20x20 Schur ~140 µs vs Sturm ~49 µs. Sturm costs
-//! (10x10, random): balancing 0.1 µs, Hessenberg 1.0 µs, characteristic polynomial 0.2 µs,
-//! Sturm sequence 0.35 µs, isolation + Newton ~0.5 µs per real root, inverse iteration
-//! ~0.6 µs per real root. Elimination: `lu_solve_template` is emitted (10x20: ~0.8 µs vs
-//! `gauss_jordan` ~1.0 µs; 90x102: 37 vs 68 µs; 228x248: 270 vs 604 µs).
+//! Measured on the action matrices the shipped solvers build (`tests/solver_stages.rs`,
+//! medians of interleaved rounds on a shared 2-core VM; absolute figures drift by up to 2x
+//! with the machine's load, ratios within a run do not): Sturm / QR / Schur at 10x10
+//! about 5 / 10 / 12 µs, 12x12 9 / 16 / 290 µs, 20x20 28 / 54 / 650 µs. Elimination:
+//! `lu_solve_template_fixed` is emitted (10x20: ~0.75 µs vs `gauss_jordan` ~1.0 µs; 90x102:
+//! 38 vs 69 µs; 80x100: 39 vs 76 µs).
 
 mod eigen;
 mod elim;

@@ -10,26 +10,28 @@
 const RESID_TOL: f64 = 5e-16;
 
 /// The similarity `S = P_0 L_0 P_1 L_1 ... P_{N-3} L_{N-3}` of the Hessenberg reduction
-/// `H = S^-1 A S`: `P_k` swaps indices `k + 1` and `perm[k]`, `L_k = I + sum_{i >= k+2}
-/// mult[k][i] e_i e_{k+1}^T`.
+/// `H = S^-1 A S` (`P_k` swaps indices `k + 1` and the pivot row, `L_k = I + m_k
+/// e_{k+1}^T` with `m_k` zero above index `k + 2`), stored with the permutations moved to
+/// the left as in a row-pivoted LU: `S = P L`, `P = P_0 ... P_{N-3}` as the gather
+/// `(P z)[i] = z[gather[i]]`, `L = L'_0 ... L'_{N-3}` with `mult[k] = P_{N-3} ... P_{k+1}
+/// m_k`. Applying `S` is then one pass of multiply-adds and one gather, instead of swaps
+/// interleaved with the multiply-adds.
 pub(super) struct Similarity<const N: usize> {
-    perm: [usize; N],
+    gather: [usize; N],
     mult: [[f64; N]; N],
 }
 
 impl<const N: usize> Similarity<N> {
     /// `S y`: an eigenvector of `H` becomes one of `A`.
     pub(super) fn apply(&self, mut y: [f64; N]) -> [f64; N] {
+        // L y: L'_{N-3} first; step k reads y[k+1], which no later-applied step changes.
         for k in (0..N.saturating_sub(2)).rev() {
             let yk1 = y[k + 1];
-            if yk1 != 0.0 {
-                for (yi, m) in y.iter_mut().zip(&self.mult[k]).skip(k + 2) {
-                    *yi += m * yk1;
-                }
+            for (yi, m) in y.iter_mut().zip(&self.mult[k]).skip(k + 2) {
+                *yi += m * yk1;
             }
-            y.swap(k + 1, self.perm[k]);
         }
-        y
+        std::array::from_fn(|i| y[self.gather[i]])
     }
 }
 
@@ -40,9 +42,10 @@ impl<const N: usize> Similarity<N> {
 #[allow(clippy::needless_range_loop)]
 pub(super) fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) -> Similarity<N> {
     let mut s = Similarity {
-        perm: [0; N],
+        gather: std::array::from_fn(|i| i),
         mult: [[0.0; N]; N],
     };
+    let mut perm = [0usize; N];
     for k in 0..N.saturating_sub(2) {
         let mut p = k + 1;
         let mut best = a[k + 1][k].abs();
@@ -53,8 +56,12 @@ pub(super) fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) -> Similarity<N>
                 p = i;
             }
         }
-        s.perm[k] = p;
+        perm[k] = p;
         if p != k + 1 {
+            // Earlier multipliers follow the row interchange (S = P L, see Similarity).
+            for m in s.mult.iter_mut().take(k) {
+                m.swap(p, k + 1);
+            }
             a.swap(p, k + 1);
             for row in a.iter_mut() {
                 row.swap(p, k + 1);
@@ -86,6 +93,10 @@ pub(super) fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) -> Similarity<N>
             }
             row[k + 1] += acc;
         }
+    }
+    // P = P_0 (P_1 (... (P_{N-3} z))) as a gather: the same swaps applied to the indices.
+    for k in (0..N.saturating_sub(2)).rev() {
+        s.gather.swap(k + 1, perm[k]);
     }
     s
 }

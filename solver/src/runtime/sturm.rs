@@ -683,6 +683,58 @@ mod tests {
         }
     }
 
+    /// Spectra symmetric under ± with complex pairs, one cluster of four near 0 (as the
+    /// action matrices of sign-symmetric problems have): every reported pair has a small
+    /// residual, every real eigenvalue is found, and no complex pair away from the axis is
+    /// reported as real.
+    #[test]
+    fn plus_minus_spectra_have_no_spurious_real_roots() {
+        let mut rng = ChaCha8Rng::seed_from_u64(31);
+        for trial in 0..300 {
+            // Block diagonal: ±r (real) and ±(a ± b i) with tiny a, then a random similarity.
+            let mut d = SMatrix::<f64, 12, 12>::zeros();
+            let mut real = Vec::new();
+            for blk in 0..3 {
+                let r = rng.gen_range(0.1..2.0);
+                let i = 4 * blk;
+                d[(i, i)] = r;
+                d[(i + 1, i + 1)] = -r;
+                real.extend([r, -r]);
+                let a = if trial % 2 == 0 { 1e-9 } else { 1e-4 } * rng.gen_range(0.5..1.0);
+                // One pair per matrix is a cluster of four eigenvalues near 0 (the hard case
+                // for the characteristic polynomial), the others well away from the axis.
+                let b = if blk == 0 {
+                    rng.gen_range(1e-7..1e-5)
+                } else {
+                    rng.gen_range(1e-3..0.5)
+                };
+                let sign = if blk % 2 == 0 { 1.0 } else { -1.0 };
+                d[(i + 2, i + 2)] = sign * a;
+                d[(i + 3, i + 3)] = sign * a;
+                d[(i + 2, i + 3)] = -b;
+                d[(i + 3, i + 2)] = b;
+            }
+            let t = SMatrix::<f64, 12, 12>::from_fn(|i, j| {
+                rng.gen_range(-1.0..1.0) + if i == j { 3.0 } else { 0.0 }
+            });
+            let m = t * d * t.try_inverse().unwrap();
+            let pairs = real_eigenpairs_sturm(&m);
+            for (lam, v) in &pairs {
+                assert!(residual(&m, *lam, v) < 1e-10, "trial {trial}: {lam}");
+            }
+            for r in &real {
+                assert!(
+                    pairs
+                        .iter()
+                        .any(|(l, _)| (l - r).abs() < 1e-8 * (1.0 + r.abs())),
+                    "trial {trial}: real eigenvalue {r} missed"
+                );
+            }
+            // At most the near-zero cluster may be reported (as near-real, by QR).
+            assert!(pairs.len() <= real.len() + 2, "trial {trial}");
+        }
+    }
+
     #[test]
     fn degenerate_inputs() {
         let mut m = SMatrix::<f64, 10, 10>::identity();

@@ -219,7 +219,7 @@ impl<const N: usize> HessenbergLu<N> {
 
 /// Scales `y` to unit norm; its former norm, or `None` if zero or not finite.
 #[inline(always)]
-fn normalise<const N: usize>(y: &mut [f64; N]) -> Option<f64> {
+pub(super) fn normalise<const N: usize>(y: &mut [f64; N]) -> Option<f64> {
     let n = y.iter().map(|x| x * x).sum::<f64>().sqrt();
     if !(n > 0.0 && n.is_finite()) {
         return None;

@@ -2,7 +2,7 @@
 //! the Francis double-shift QR iteration (no Schur vectors accumulated), eigenvectors by
 //! inverse iteration on the Hessenberg form (O(N^2) per eigenvalue).
 
-use super::hessenberg::{hessenberg, inverse_iteration};
+use super::hessenberg::{hessenberg, inverse_iteration, normalise};
 use super::{SolutionSet, NEAR_REAL_TOL};
 use nalgebra::{SMatrix, SVector};
 
@@ -293,11 +293,9 @@ pub fn real_eigenpairs_hqr<const N: usize>(
         let near = !real && wi[k].abs() <= (NEAR_REAL_TOL * lam.abs()).max(f64::EPSILON);
         if real || near {
             if let Some(pair) = inverse_iteration(&h0, lam) {
-                let v = sim.apply(pair.vector);
-                let n = v.iter().map(|x| x * x).sum::<f64>().sqrt();
-                if n > 0.0 && n.is_finite() {
-                    let r = 1.0 / n;
-                    out.push((lam * scale, SVector::from_fn(|i, _| v[i] * r)));
+                let mut v = sim.apply(pair.vector);
+                if normalise(&mut v).is_some() {
+                    out.push((lam * scale, SVector::from(v)));
                 }
             }
         }

@@ -23,7 +23,7 @@
 //! when two roots converge to one eigenvalue.
 
 use super::hessenberg::{
-    eigenvector_by_recurrence, hessenberg, inverse_iteration, subdiagonal_reciprocals,
+    eigenvector_by_recurrence, hessenberg, inverse_iteration, normalise, subdiagonal_reciprocals,
 };
 use super::{real_eigenpairs_hqr, SolutionSet};
 use nalgebra::{SMatrix, SVector};
@@ -133,16 +133,12 @@ fn sturm_eigenpairs<const N: usize>(
         }
         lams[k] = lam_mu;
         let mut v = sim.apply(y);
-        let mut n2 = 0.0;
         for (vi, di) in v.iter_mut().zip(&d) {
             *vi *= di;
-            n2 += *vi * *vi;
         }
         let lam = lam_mu * scale;
-        let n = n2.sqrt();
-        if n > 0.0 && n.is_finite() && lam.is_finite() {
-            let r = 1.0 / n;
-            out.push((lam, SVector::from_fn(|i, _| v[i] * r)));
+        if lam.is_finite() && normalise(&mut v).is_some() {
+            out.push((lam, SVector::from(v)));
         }
     }
     Some(out)

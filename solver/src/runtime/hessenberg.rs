@@ -16,19 +16,25 @@ const RESID_TOL: f64 = 5e-16;
 /// `(P z)[i] = z[gather[i]]`, `L = L'_0 ... L'_{N-3}` with `mult[k] = P_{N-3} ... P_{k+1}
 /// m_k`. Applying `S` is then one pass of multiply-adds and one gather, instead of swaps
 /// interleaved with the multiply-adds.
+///
+/// Steps `k < lead` had nothing to eliminate (their column was already reduced), so their
+/// multipliers are zero and [`apply`](Self::apply) skips them.
 pub(super) struct Similarity<const N: usize> {
     gather: [usize; N],
     mult: [[f64; N]; N],
+    lead: usize,
 }
 
 impl<const N: usize> Similarity<N> {
     /// `S y`: an eigenvector of `H` becomes one of `A`.
+    #[allow(clippy::needless_range_loop)] // indexed loops unroll; zip/skip chains did not
     pub(super) fn apply(&self, mut y: [f64; N]) -> [f64; N] {
         // L y: L'_{N-3} first; step k reads y[k+1], which no later-applied step changes.
-        for k in (0..N.saturating_sub(2)).rev() {
+        for k in (self.lead..N.saturating_sub(2)).rev() {
             let yk1 = y[k + 1];
-            for (yi, m) in y.iter_mut().zip(&self.mult[k]).skip(k + 2) {
-                *yi += m * yk1;
+            let m = &self.mult[k];
+            for i in k + 2..N {
+                y[i] += m[i] * yk1;
             }
         }
         std::array::from_fn(|i| y[self.gather[i]])
@@ -38,23 +44,35 @@ impl<const N: usize> Similarity<N> {
 /// Reduces the row-major `a` to upper Hessenberg form in place by stabilised elementary
 /// similarities (Gaussian elimination with partial pivoting, EISPACK `elmhes`): half the
 /// work of Householder reflections, multipliers bounded by 1. Entries below the
-/// subdiagonal are set to zero; returns the similarity for the eigenvectors.
+/// subdiagonal are set to zero; returns the similarity for the eigenvectors. A column that
+/// is already reduced costs one scan (see [`Similarity`]).
 #[allow(clippy::needless_range_loop)]
 pub(super) fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) -> Similarity<N> {
     let mut s = Similarity {
         gather: std::array::from_fn(|i| i),
         mult: [[0.0; N]; N],
+        lead: 0,
     };
-    let mut perm = [0usize; N];
+    let mut perm: [usize; N] = std::array::from_fn(|i| (i + 1).min(N - 1));
     for k in 0..N.saturating_sub(2) {
-        let mut p = k + 1;
-        let mut best = a[k + 1][k].abs();
+        // Pivot: the largest of column k from row k + 1 down; nothing to do if the rows
+        // below k + 1 are already zero (no interchange, no multipliers).
+        let (mut p, mut below) = (k + 1, 0.0f64);
         for i in k + 2..N {
             let x = a[i][k].abs();
-            if x > best {
-                best = x;
+            if x > below {
+                below = x;
                 p = i;
             }
+        }
+        if below == 0.0 {
+            if s.lead == k {
+                s.lead = k + 1;
+            }
+            continue;
+        }
+        if a[k + 1][k].abs() >= below {
+            p = k + 1;
         }
         perm[k] = p;
         if p != k + 1 {
@@ -66,9 +84,6 @@ pub(super) fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) -> Similarity<N>
             for row in a.iter_mut() {
                 row.swap(p, k + 1);
             }
-        }
-        if best == 0.0 {
-            continue; // column already reduced
         }
         let inv = 1.0 / a[k + 1][k];
         let (top, rest) = a.split_at_mut(k + 2);
@@ -311,6 +326,40 @@ pub(super) fn subdiagonal_reciprocals<const N: usize>(h: &[[f64; N]; N]) -> Opti
     Some(r)
 }
 
+/// One Newton step for an eigenvalue of the unreduced upper Hessenberg `h` on Hyman's
+/// determinant: the row-0 residual `r(mu)` of the backward recurrence of
+/// [`eigenvector_by_recurrence`] (with `y[N-1] = 1`) is `det(h - mu I)` over the product of
+/// the subdiagonal, so `mu - r / r'` (the recurrence differentiated alongside) refines `mu`
+/// against `h` itself rather than against the rounded characteristic polynomial. `None` if
+/// the step is not finite.
+pub(super) fn hyman_newton_step<const N: usize>(
+    h: &[[f64; N]; N],
+    inv_sub: &[f64; N],
+    mu: f64,
+) -> Option<f64> {
+    if N == 0 {
+        return None;
+    }
+    let mut y = [0.0f64; N];
+    let mut dy = [0.0f64; N];
+    let mut acc = [0.0f64; N];
+    let mut dacc = [0.0f64; N];
+    y[N - 1] = 1.0;
+    for i in (1..N).rev() {
+        let (yi, dyi) = (y[i], dy[i]);
+        for ((a, da), row) in acc.iter_mut().zip(dacc.iter_mut()).zip(h).take(i + 1) {
+            *a += row[i] * yi;
+            *da += row[i] * dyi;
+        }
+        y[i - 1] = -(acc[i] - mu * yi) * inv_sub[i];
+        dy[i - 1] = -(dacc[i] - yi - mu * dyi) * inv_sub[i];
+    }
+    let r = acc[0] + h[0][0] * y[0] - mu * y[0];
+    let dr = dacc[0] + h[0][0] * dy[0] - y[0] - mu * dy[0];
+    let next = mu - r / dr;
+    next.is_finite().then_some(next)
+}
+
 /// The eigenvector of the unreduced upper Hessenberg `h` for the eigenvalue `lambda`, by
 /// the backward recurrence of `(h - lambda I) y = 0`: `y[N-1] = 1`, row `i` (from the
 /// bottom) gives `y[i-1]`. Rows `1..N` are then satisfied to rounding; row 0 is not used,
@@ -347,4 +396,68 @@ pub(super) fn eigenvector_by_recurrence<const N: usize>(
     let n = normalise(&mut y)?;
     let res = r0.abs() / n;
     res.is_finite().then_some((y, res))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::SMatrix;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    fn to_rows<const N: usize>(m: &SMatrix<f64, N, N>) -> [[f64; N]; N] {
+        std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))
+    }
+
+    /// `S^-1 A S` is the returned Hessenberg form, also when leading columns are already
+    /// reduced (unit rows of an action matrix, permuted to the front) and skipped.
+    #[test]
+    fn similarity_reproduces_the_reduction() {
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        for lead_units in [0usize, 1, 3] {
+            let mut m = SMatrix::<f64, 7, 7>::from_fn(|_, _| rng.gen_range(-1.0..1.0));
+            for k in 0..lead_units {
+                m.column_mut(k).fill(0.0);
+                m[(k + 1, k)] = rng.gen_range(0.5..2.0);
+            }
+            let mut a = to_rows(&m);
+            let sim = hessenberg(&mut a);
+            assert_eq!(sim.lead, lead_units);
+            for (i, row) in a.iter().enumerate() {
+                for &x in &row[..i.saturating_sub(1)] {
+                    assert_eq!(x, 0.0);
+                }
+            }
+            // A S = S H, column by column: S e_j through `apply`.
+            let h = SMatrix::<f64, 7, 7>::from_fn(|i, j| a[i][j]);
+            let s = SMatrix::<f64, 7, 7>::from_fn(|i, j| {
+                sim.apply(std::array::from_fn(|q| if q == j { 1.0 } else { 0.0 }))[i]
+            });
+            assert!((m * s - s * h).norm() < 1e-13, "lead {lead_units}");
+        }
+    }
+
+    /// Hyman's Newton step converges quadratically to an eigenvalue of `h`, and the
+    /// recurrence at the refined value leaves a rounding-level residual.
+    #[test]
+    fn hyman_newton_refines_an_eigenvalue() {
+        let mut rng = ChaCha8Rng::seed_from_u64(12);
+        let m = SMatrix::<f64, 8, 8>::from_fn(|_, _| rng.gen_range(-1.0..1.0));
+        let mut h = to_rows(&m);
+        hessenberg(&mut h);
+        let inv_sub = subdiagonal_reciprocals(&h).unwrap();
+        let eigs = m.complex_eigenvalues();
+        let lam = eigs
+            .iter()
+            .filter(|z| z.im == 0.0)
+            .map(|z| z.re)
+            .next()
+            .expect("this seed gives a real eigenvalue");
+        let mu0 = lam + 1e-6;
+        let mu1 = hyman_newton_step(&h, &inv_sub, mu0).unwrap();
+        assert!((mu1 - lam).abs() < 1e-10, "{mu1} vs {lam}");
+        let mu2 = hyman_newton_step(&h, &inv_sub, mu1).unwrap();
+        let (_, res) = eigenvector_by_recurrence(&h, &inv_sub, mu2).unwrap();
+        assert!(res < 1e-14, "residual {res}");
+    }
 }

@@ -35,7 +35,7 @@ pub(crate) fn stages() -> TokenStream {
     quote!(crate::runtime::Stages)
 }
 
-/// `null_vector3(rows: &[[f64; 3]]) -> Option<[f64; 3]>` (unit null vector).
+/// `null_vector3::<R>(rows: &[[f64; 3]; R]) -> Option<[f64; 3]>` (unit null vector).
 pub(crate) fn null_vector3() -> TokenStream {
     quote!(crate::runtime::null_vector3)
 }

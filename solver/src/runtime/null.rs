@@ -27,7 +27,7 @@ const RANK_TOL: f64 = 1e-12;
 /// max |a_ij| = 1) is at most this.
 const CONSISTENT_RESID: f64 = 1e-13;
 
-/// Unit null vector (sign arbitrary) of the `n x 3` matrix with the given rows, `n >= 2`:
+/// Unit null vector (sign arbitrary) of the `R x 3` matrix with the given rows, `R >= 2`:
 /// in the least-squares sense, the unit `v` minimising `|A v|`.
 ///
 /// Method: the cross product of the best-conditioned pair of rows (all pairs for
@@ -39,10 +39,10 @@ const CONSISTENT_RESID: f64 = 1e-13;
 /// product of the two longest rows (when they are far from parallel), then the best pair,
 /// are returned as soon as `|A v| <= 1e-13` (scaled rows).
 ///
-/// `None` if `n < 2`, an entry is not finite, or the rank is below 2.
+/// `None` if `R < 2`, an entry is not finite, or the rank is below 2.
 /// Never panics, never allocates.
-pub fn null_vector3(rows: &[[f64; 3]]) -> Option<[f64; 3]> {
-    let n = rows.len();
+pub fn null_vector3<const R: usize>(rows: &[[f64; 3]; R]) -> Option<[f64; 3]> {
+    let n = R;
     if n < 2 {
         return None;
     }
@@ -60,7 +60,9 @@ pub fn null_vector3(rows: &[[f64; 3]]) -> Option<[f64; 3]> {
         return None;
     }
     let inv = 1.0 / s;
-    let row = |i: usize| scaled(rows[i], inv);
+    // Scaled once: the fast path alone reads every row three times.
+    let scaled_rows: [[f64; 3]; R] = std::array::from_fn(|i| scaled(rows[i], inv));
+    let row = |i: usize| scaled_rows[i];
     let resid = |v: [f64; 3]| -> f64 {
         (0..n)
             .map(|i| {
@@ -194,33 +196,36 @@ mod tests {
         scaled(v, 1.0 / dot(v, v).sqrt())
     }
 
+    fn check_exact<const N: usize>(rng: &mut ChaCha8Rng) {
+        for _ in 0..100 {
+            let t = unit(rng);
+            // Rows orthogonal to t: random vectors minus their component along t.
+            let rows: [[f64; 3]; N] = std::array::from_fn(|_| {
+                let r = unit(rng);
+                let d = dot(r, t);
+                let r = [r[0] - d * t[0], r[1] - d * t[1], r[2] - d * t[2]];
+                scaled(r, rng.gen_range(0.1..10.0))
+            });
+            let v = null_vector3(&rows).unwrap();
+            assert!((dot(v, t).abs() - 1.0).abs() < 1e-12);
+            assert!((dot(v, v) - 1.0).abs() < 1e-14);
+        }
+    }
+
     #[test]
     fn exact_null_vectors() {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
-        for n in [2usize, 3, 5, 12] {
-            for _ in 0..100 {
-                let t = unit(&mut rng);
-                // Rows orthogonal to t: random vectors minus their component along t.
-                let rows: Vec<[f64; 3]> = (0..n)
-                    .map(|_| {
-                        let r = unit(&mut rng);
-                        let d = dot(r, t);
-                        let r = [r[0] - d * t[0], r[1] - d * t[1], r[2] - d * t[2]];
-                        scaled(r, rng.gen_range(0.1..10.0))
-                    })
-                    .collect();
-                let v = null_vector3(&rows).unwrap();
-                assert!((dot(v, t).abs() - 1.0).abs() < 1e-12);
-                assert!((dot(v, v) - 1.0).abs() < 1e-14);
-            }
-        }
+        check_exact::<2>(&mut rng);
+        check_exact::<3>(&mut rng);
+        check_exact::<5>(&mut rng);
+        check_exact::<12>(&mut rng);
     }
 
     #[test]
     fn least_squares_with_noise() {
         let mut rng = ChaCha8Rng::seed_from_u64(6);
         for _ in 0..100 {
-            let rows: Vec<[f64; 3]> = (0..6).map(|_| unit(&mut rng)).collect();
+            let rows: [[f64; 3]; 6] = std::array::from_fn(|_| unit(&mut rng));
             let v = null_vector3(&rows).unwrap();
             // Compare with nalgebra's smallest eigenvector of A^T A.
             let a = nalgebra::DMatrix::from_fn(6, 3, |i, j| rows[i][j]);

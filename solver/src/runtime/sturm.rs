@@ -44,7 +44,7 @@ const FAST_RESIDUAL: f64 = 2e-15;
 /// Maximum safeguarded Newton iterations per root.
 const MAX_NEWTON: u32 = 40;
 /// Octasection rounds before Newton's iteration (see `Sturm::polish_all`).
-const OCTASECTIONS: usize = 2;
+const OCTASECTIONS: usize = 1;
 
 /// Same contract as [`super::real_eigenpairs`]: the real eigenvalues and unit eigenvectors
 /// of `m` (at most `N`; in increasing order of eigenvalue unless the QR back end took

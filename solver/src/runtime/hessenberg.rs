@@ -45,9 +45,27 @@ impl<const N: usize> Similarity<N> {
 /// similarities (Gaussian elimination with partial pivoting, EISPACK `elmhes`): half the
 /// work of Householder reflections, multipliers bounded by 1. Entries below the
 /// subdiagonal are set to zero; returns the similarity for the eigenvectors. A column that
-/// is already reduced costs one scan (see [`Similarity`]).
-#[allow(clippy::needless_range_loop)]
+/// is already reduced costs one scan (see [`Similarity`]). The work is done on the
+/// transpose by [`hessenberg_of_columns`].
 pub(super) fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) -> Similarity<N> {
+    let mut cols = transpose(a);
+    let s = hessenberg_of_columns(&mut cols);
+    *a = transpose(&cols);
+    s
+}
+
+/// The transpose of a square array of arrays (row-major <-> column-major).
+pub(super) fn transpose<const N: usize>(a: &[[f64; N]; N]) -> [[f64; N]; N] {
+    std::array::from_fn(|i| std::array::from_fn(|j| a[j][i]))
+}
+
+/// [`hessenberg`] on a matrix stored by columns (`cols[j][i]` is entry `(i, j)`), reduced
+/// in place (still by columns). In this layout both updates of a step are contiguous
+/// multiply-adds over columns, which vectorise; by rows the column update is a dot product
+/// per row, which does not.
+#[allow(clippy::needless_range_loop)] // indexed loops over const-size arrays unroll
+pub(super) fn hessenberg_of_columns<const N: usize>(cols: &mut [[f64; N]; N]) -> Similarity<N> {
+    let a = cols;
     let mut s = Similarity {
         gather: std::array::from_fn(|i| i),
         mult: [[0.0; N]; N],
@@ -59,7 +77,7 @@ pub(super) fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) -> Similarity<N>
         // below k + 1 are already zero (no interchange, no multipliers).
         let (mut p, mut below) = (k + 1, 0.0f64);
         for i in k + 2..N {
-            let x = a[i][k].abs();
+            let x = a[k][i].abs();
             if x > below {
                 below = x;
                 p = i;
@@ -71,7 +89,7 @@ pub(super) fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) -> Similarity<N>
             }
             continue;
         }
-        if a[k + 1][k].abs() >= below {
+        if a[k][k + 1].abs() >= below {
             p = k + 1;
         }
         perm[k] = p;
@@ -81,32 +99,31 @@ pub(super) fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) -> Similarity<N>
                 m.swap(p, k + 1);
             }
             a.swap(p, k + 1);
-            for row in a.iter_mut() {
-                row.swap(p, k + 1);
+            for col in a.iter_mut() {
+                col.swap(p, k + 1);
             }
         }
-        let inv = 1.0 / a[k + 1][k];
-        let (top, rest) = a.split_at_mut(k + 2);
-        let pivot_row = &top[k + 1];
-        for (r, row) in rest.iter_mut().enumerate() {
-            let i = k + 2 + r;
-            let m = row[k] * inv;
-            s.mult[k][i] = m;
-            row[k] = 0.0;
-            if m != 0.0 {
-                for j in k + 1..N {
-                    row[j] -= m * pivot_row[j];
-                }
+        let inv = 1.0 / a[k][k + 1];
+        let mut m = [0.0f64; N];
+        for i in k + 2..N {
+            m[i] = a[k][i] * inv;
+            a[k][i] = 0.0;
+        }
+        s.mult[k] = m;
+        // Rows: row_i -= m_i row_{k+1} (i > k + 1), column by column.
+        for j in k + 1..N {
+            let pj = a[j][k + 1];
+            for i in k + 2..N {
+                a[j][i] -= m[i] * pj;
             }
         }
         // Columns: col_{k+1} += sum_i m_i col_i.
-        let mk = &s.mult[k];
-        for row in a.iter_mut() {
-            let mut acc = 0.0;
-            for i in k + 2..N {
-                acc += mk[i] * row[i];
+        let (head, tail) = a.split_at_mut(k + 2);
+        let target = &mut head[k + 1];
+        for (col, &mi) in tail.iter().zip(&m[k + 2..]) {
+            for r in 0..N {
+                target[r] += mi * col[r];
             }
-            row[k + 1] += acc;
         }
     }
     // P = P_0 (P_1 (... (P_{N-3} z))) as a gather: the same swaps applied to the indices.

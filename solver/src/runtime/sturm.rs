@@ -1,7 +1,7 @@
 //! Real eigenpairs of small dense matrices through the characteristic polynomial: a faster
 //! alternative to the QR back end ([`super::real_eigenpairs_hqr`]) for action matrices.
 //!
-//! 1. Balancing (powers of 2), scaling to infinity norm 1, and reduction to upper
+//! 1. Balancing (powers of 2), scaling to 1-norm 1, and reduction to upper
 //!    Hessenberg form `H = S^-1 A S` by stabilised elementary similarities (Gaussian
 //!    elimination with partial pivoting; `S` kept), see [`super::hessenberg`].
 //! 2. Characteristic polynomial of `H` by the Hessenberg determinant recurrence
@@ -24,8 +24,8 @@
 //! when two roots converge to one eigenvalue.
 
 use super::hessenberg::{
-    eigenvector_by_recurrence, hessenberg, hyman_newton_step, inverse_iteration, normalise,
-    subdiagonal_reciprocals,
+    eigenvector_by_recurrence, hessenberg_of_columns, hyman_newton_step, inverse_iteration,
+    normalise, subdiagonal_reciprocals, transpose,
 };
 use super::{real_eigenpairs_hqr, SolutionSet};
 use nalgebra::{SMatrix, SVector};
@@ -70,13 +70,13 @@ fn sturm_eigenpairs<const N: usize>(
     if N == 0 {
         return Some(out);
     }
-    // Row-major copy.
-    let mut a = [[0.0f64; N]; N];
+    // By columns (nalgebra's layout): cols[j][i] = m[(i, j)].
+    let mut cols = [[0.0f64; N]; N];
     let mut finite = true;
-    for (i, row) in a.iter_mut().enumerate() {
-        for (j, x) in row.iter_mut().enumerate() {
-            *x = m[(i, j)];
-            finite &= x.is_finite();
+    for (col, src) in cols.iter_mut().zip(m.column_iter()) {
+        for (x, &y) in col.iter_mut().zip(src.iter()) {
+            *x = y;
+            finite &= y.is_finite();
         }
     }
     if !finite {
@@ -85,10 +85,13 @@ fn sturm_eigenpairs<const N: usize>(
     if N == 1 {
         return None;
     }
-    let d = balance(&mut a);
+    // `balance` reads the array by rows, so it balances m^T: D'^-1 m^T D' is balanced, and
+    // so is its transpose D' m D'^-1 = D^-1 m D with D = D'^-1.
+    let d_transposed = balance(&mut cols);
+    // Largest column sum (the 1-norm; it bounds every eigenvalue as well as any norm).
     let mut scale = 0.0f64;
-    for row in &a {
-        scale = scale.max(row.iter().map(|x| x.abs()).sum::<f64>());
+    for col in &cols {
+        scale = scale.max(col.iter().map(|x| x.abs()).sum::<f64>());
     }
     if !scale.is_finite() {
         return Some(out);
@@ -97,13 +100,13 @@ fn sturm_eigenpairs<const N: usize>(
         return None;
     }
     let inv = 1.0 / scale;
-    for row in a.iter_mut() {
-        for x in row.iter_mut() {
+    for col in cols.iter_mut() {
+        for x in col.iter_mut() {
             *x *= inv;
         }
     }
-    let sim = hessenberg(&mut a);
-    let h = a;
+    let sim = hessenberg_of_columns(&mut cols);
+    let h = transpose(&cols);
     let p = char_poly(&h)?;
     let sturm = Sturm::new(&p)?;
     let mut roots = [0.0f64; N];
@@ -142,8 +145,8 @@ fn sturm_eigenpairs<const N: usize>(
         }
         lams[k] = lam_mu;
         let mut v = sim.apply(y);
-        for (vi, di) in v.iter_mut().zip(&d) {
-            *vi *= di;
+        for (vi, di) in v.iter_mut().zip(&d_transposed) {
+            *vi /= di;
         }
         let lam = lam_mu * scale;
         if lam.is_finite() && normalise(&mut v).is_some() {
@@ -634,6 +637,7 @@ fn root_bound<const N: usize>(p: &[f64; N]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::runtime::hessenberg::hessenberg;
     use crate::runtime::real_eigenpairs;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;

@@ -5,6 +5,7 @@
 
 use super::*;
 use crate::generated::gs5pt;
+use crate::runtime::hessenberg::hessenberg;
 use crate::runtime::Stages;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;

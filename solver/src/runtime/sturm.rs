@@ -54,21 +54,23 @@ const OCTASECTIONS: usize = 1;
 pub fn real_eigenpairs_sturm<const N: usize>(
     m: &SMatrix<f64, N, N>,
 ) -> SolutionSet<(f64, SVector<f64, N>), N> {
-    match sturm_eigenpairs(m) {
-        Some(out) => out,
+    let mut out = SolutionSet::filled_with((0.0, SVector::zeros()));
+    match sturm_eigenpairs(m, &mut out) {
+        Some(()) => out,
         None => real_eigenpairs_hqr(m),
     }
 }
 
-/// The Sturm path of [`real_eigenpairs_sturm`]; `None` when the QR back end must be used
-/// instead (`N = 1`, zero matrix, degenerate Sturm sequence, a root that inverse iteration
-/// does not confirm, or two roots converging to one eigenvalue).
+/// The Sturm path of [`real_eigenpairs_sturm`], filling the empty `out` (in place: the
+/// set is large, and returning it through an `Option` cost a copy); `None` when the QR
+/// back end must be used instead (`N = 1`, zero matrix, degenerate Sturm sequence, a root
+/// that inverse iteration does not confirm, or two roots converging to one eigenvalue).
 fn sturm_eigenpairs<const N: usize>(
     m: &SMatrix<f64, N, N>,
-) -> Option<SolutionSet<(f64, SVector<f64, N>), N>> {
-    let mut out = SolutionSet::filled_with((0.0, SVector::zeros()));
+    out: &mut SolutionSet<(f64, SVector<f64, N>), N>,
+) -> Option<()> {
     if N == 0 {
-        return Some(out);
+        return Some(());
     }
     // By columns (nalgebra's layout): cols[j][i] = m[(i, j)].
     let mut cols = [[0.0f64; N]; N];
@@ -80,7 +82,7 @@ fn sturm_eigenpairs<const N: usize>(
         }
     }
     if !finite {
-        return Some(out);
+        return Some(());
     }
     if N == 1 {
         return None;
@@ -94,7 +96,7 @@ fn sturm_eigenpairs<const N: usize>(
         scale = scale.max(col.iter().map(|x| x.abs()).sum::<f64>());
     }
     if !scale.is_finite() {
-        return Some(out);
+        return Some(());
     }
     if scale == 0.0 {
         return None;
@@ -153,7 +155,7 @@ fn sturm_eigenpairs<const N: usize>(
             out.push((lam, SVector::from(v)));
         }
     }
-    Some(out)
+    Some(())
 }
 
 /// Balances `a` in place by a diagonal similarity `D^-1 a D` with powers of 2 (exact;

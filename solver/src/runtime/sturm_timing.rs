@@ -177,7 +177,11 @@ fn pieces() {
     let [tb, th, tc, ts, tr, ti, tw] = best;
     let fallbacks = mats
         .iter()
-        .filter(|a| sturm_eigenpairs(&SMatrix::<f64, 10, 10>::from_fn(|i, j| a[i][j])).is_none())
+        .filter(|a| {
+            let m = SMatrix::<f64, 10, 10>::from_fn(|i, j| a[i][j]);
+            let mut out = SolutionSet::filled_with((0.0, SVector::zeros()));
+            sturm_eigenpairs(&m, &mut out).is_none()
+        })
         .count();
     println!("QR fallbacks: {fallbacks} of {n}");
     let (mut fast, mut total) = (0, 0);

@@ -1,7 +1,8 @@
 //! µs per call of every generated solver on fixed random instances (seeded; realistic data:
 //! the nullspace basis of five random correspondences for `gs5pt`, random points, rows,
 //! small gyro rates and rotations for `grsrp*`). Each iteration solves the next instance of
-//! a pool of 64, so that data-dependent branches (number of real roots) are averaged.
+//! a pool of 64, so that data-dependent branches (number of real roots) are averaged. The
+//! last entry times the whole 5-point solver from bearings (`minimal::essential_5pt`).
 //!
 //! `cargo bench -p rspose --bench solvers -- --warm-up-time 1 --measurement-time 3`
 //!
@@ -15,14 +16,16 @@ use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rspose::generated::{grsrp, grsrp10, grsrp_gravity, gs5pt};
+use rspose::minimal::essential_5pt;
 
 const POOL: usize = 64;
 
 fn bench_solvers(c: &mut Criterion) {
     let mut rng = ChaCha8Rng::seed_from_u64(2024);
-    let g5: Vec<gs5pt::Data> = (0..POOL)
-        .map(|_| planted::gs5pt_instance(&mut rng).data)
+    let g5_instances: Vec<planted::Gs5pt> = (0..POOL)
+        .map(|_| planted::gs5pt_instance(&mut rng))
         .collect();
+    let g5: Vec<gs5pt::Data> = g5_instances.iter().map(|i| i.data).collect();
     let rs: Vec<planted::Grsrp> = (0..POOL)
         .map(|_| planted::grsrp_instance(&mut rng))
         .collect();
@@ -48,6 +51,21 @@ fn bench_solvers(c: &mut Criterion) {
     bench!("grsrp10 solve", grsrp10, r10);
     bench!("grsrp_gravity solve", grsrp_gravity, gr);
     bench!("grsrp solve", grsrp, r20);
+
+    // The whole 5-point solver from five bearing pairs to essential matrices (null space of
+    // the epipolar constraints, gs5pt, E = x E1 + y E2 + z E3 + E4): the work PoseLib's
+    // `relpose_5pt` does in its essential-matrix form, for comparisons with it.
+    let mut k = 0;
+    let mut es = Vec::with_capacity(10);
+    c.bench_function("essential_5pt (bearings -> E)", |b| {
+        b.iter(|| {
+            k = (k + 1) % POOL;
+            let (b1, b2) = &g5_instances[k].bearings;
+            es.clear();
+            essential_5pt(black_box(b1), black_box(b2), &mut es);
+            black_box(es.len())
+        })
+    });
 }
 
 criterion_group!(benches, bench_solvers);

@@ -36,6 +36,8 @@ pub struct Gs5pt {
     pub data: gs5pt::Data,
     pub basis: [Matrix3<f64>; 4],
     pub e_true: Matrix3<f64>,
+    /// The five bearing pairs (unnormalised rays) the basis was computed from.
+    pub bearings: ([Vector3<f64>; 5], [Vector3<f64>; 5]),
 }
 
 pub fn gs5pt_instance<R: Rng>(rng: &mut R) -> Gs5pt {
@@ -63,6 +65,7 @@ pub fn gs5pt_instance<R: Rng>(rng: &mut R) -> Gs5pt {
             },
             basis,
             e_true,
+            bearings: (b1, b2),
         };
     }
 }

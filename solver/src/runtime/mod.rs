@@ -14,8 +14,8 @@
 //!   double-shift QR with exceptional shifts, and inverse iteration on the Hessenberg form.
 //! - [`real_eigenpairs_sturm`]: the same contract through balancing, Hessenberg form,
 //!   characteristic polynomial, Sturm-sequence root isolation + Newton, and per real root
-//!   the Hessenberg backward recurrence (inverse iteration when its residual is not at
-//!   rounding level); hands the matrix to [`real_eigenpairs_hqr`] when a root is not
+//!   the Hessenberg backward recurrence (again after a Newton step on Hyman's determinant,
+//!   then inverse iteration, when its residual is not at rounding level); hands the matrix to [`real_eigenpairs_hqr`] when a root is not
 //!   confirmed (residual or eigenvalue disagreement: spurious real roots of ±λ spectra) or
 //!   the Sturm sequence degenerates. The emitted solvers use it at every shipped size.
 //! - [`Stages`]: observer of an emitted solver's stages (`solve_staged`), for timings.
@@ -25,7 +25,7 @@
 //! Measured on the action matrices the shipped solvers build (`tests/solver_stages.rs`,
 //! medians of interleaved rounds on a shared 2-core VM; absolute figures drift by up to 2x
 //! with the machine's load, ratios within a run do not): Sturm / QR / Schur at 10x10
-//! about 5 / 10 / 12 µs, 12x12 9 / 16 / 290 µs, 20x20 28 / 54 / 650 µs. Elimination:
+//! about 3.5 / 10 / 12 µs, 12x12 9 / 16 / 290 µs, 20x20 28 / 54 / 650 µs. Elimination:
 //! `lu_solve_template_fixed` is emitted (10x20: ~0.75 µs vs `gauss_jordan` ~1.0 µs; 90x102:
 //! 38 vs 69 µs; 80x100: 39 vs 76 µs).
 

@@ -8,7 +8,7 @@
 //!    (O(N^3 / 6)); every root lies in `[-1, 1]`.
 //! 3. Its real roots: Sturm sequence (stored as linear quotients, O(N) per evaluation),
 //!    quadrisection on sign-change counts (three points evaluated together) until each
-//!    interval holds one root, two octasection rounds on the sign of `p`, then Newton
+//!    interval holds one root, one octasection round on the sign of `p`, then Newton
 //!    steps safeguarded by the bracket.
 //! 4. For every real root, the eigenvector of `H` by the backward recurrence (O(N^2 / 2));
 //!    if the pair's residual is not at rounding level (the root of the rounded polynomial
@@ -360,7 +360,7 @@ impl<const N: usize> Sturm<N> {
         (n.map(|v| v as u32), cur)
     }
 
-    /// Writes the real roots of `p` (every eigenvalue of a matrix of infinity norm 1 lies in
+    /// Writes the real roots of `p` (every eigenvalue of a matrix of 1-norm 1 lies in
     /// `[-1, 1]`) into `roots` in increasing order; returns their number.
     ///
     /// Isolation by quadrisection on Sturm counts (three interior points per interval,
@@ -445,9 +445,9 @@ impl<const N: usize> Sturm<N> {
     /// round: their evaluations are independent, so a pipelined core overlaps them (one
     /// root at a time is bound by the latency of Horner's recurrence).
     ///
-    /// Per root: two octasection rounds on the sign of `p` (seven points evaluated
-    /// together cost about one Newton step; they shrink the bracket 64x and put Newton in
-    /// its quadratic regime), then Newton from the regula-falsi point, safeguarded by the
+    /// Per root: [`OCTASECTIONS`] octasection rounds on the sign of `p` (seven points
+    /// evaluated together cost about one Newton step; each shrinks the bracket 8x toward
+    /// Newton's quadratic regime), then Newton from the regula-falsi point, safeguarded by the
     /// bracket (bisection whenever a step leaves it), to about 1e-12 relative (inverse
     /// iteration refines the eigenvalue afterwards). An interval whose ends have equal
     /// signs (even multiplicity in floating point) is bisected on the Sturm counts instead.
@@ -608,7 +608,7 @@ struct Interval {
 }
 
 /// A power of two bounding the moduli of the roots of the monic `p` (lower coefficients),
-/// at most 1 (the matrix is scaled to infinity norm 1): Fujiwara's bound
+/// at most 1 (the matrix is scaled to 1-norm 1): Fujiwara's bound
 /// `2 max |c_{N-k}|^(1/k)` (`|c_0 / 2|` for `k = N`), rounded up to a power of two without
 /// `powf`, times 1.01 so that roots on the bound are inside.
 fn root_bound<const N: usize>(p: &[f64; N]) -> f64 {

@@ -16,13 +16,10 @@ const RESID_TOL: f64 = 5e-16;
 /// `(P z)[i] = z[gather[i]]`, `L = L'_0 ... L'_{N-3}` with `mult[k] = P_{N-3} ... P_{k+1}
 /// m_k`. Applying `S` is then one pass of multiply-adds and one gather, instead of swaps
 /// interleaved with the multiply-adds.
-///
-/// Steps `k < lead` had nothing to eliminate (their column was already reduced), so their
-/// multipliers are zero and [`apply`](Self::apply) skips them.
+/// A step that had nothing to eliminate (its column already reduced) has zero multipliers.
 pub(super) struct Similarity<const N: usize> {
     gather: [usize; N],
     mult: [[f64; N]; N],
-    lead: usize,
 }
 
 impl<const N: usize> Similarity<N> {
@@ -30,7 +27,7 @@ impl<const N: usize> Similarity<N> {
     #[allow(clippy::needless_range_loop)] // indexed loops unroll; zip/skip chains did not
     pub(super) fn apply(&self, mut y: [f64; N]) -> [f64; N] {
         // L y: L'_{N-3} first; step k reads y[k+1], which no later-applied step changes.
-        for k in (self.lead..N.saturating_sub(2)).rev() {
+        for k in (0..N.saturating_sub(2)).rev() {
             let yk1 = y[k + 1];
             let m = &self.mult[k];
             for i in k + 2..N {
@@ -69,7 +66,6 @@ pub(super) fn hessenberg_of_columns<const N: usize>(cols: &mut [[f64; N]; N]) ->
     let mut s = Similarity {
         gather: std::array::from_fn(|i| i),
         mult: [[0.0; N]; N],
-        lead: 0,
     };
     let mut perm: [usize; N] = std::array::from_fn(|i| (i + 1).min(N - 1));
     for k in 0..N.saturating_sub(2) {
@@ -84,9 +80,6 @@ pub(super) fn hessenberg_of_columns<const N: usize>(cols: &mut [[f64; N]; N]) ->
             }
         }
         if below == 0.0 {
-            if s.lead == k {
-                s.lead = k + 1;
-            }
             continue;
         }
         if a[k][k + 1].abs() >= below {
@@ -439,7 +432,6 @@ mod tests {
             }
             let mut a = to_rows(&m);
             let sim = hessenberg(&mut a);
-            assert_eq!(sim.lead, lead_units);
             for (i, row) in a.iter().enumerate() {
                 for &x in &row[..i.saturating_sub(1)] {
                     assert_eq!(x, 0.0);

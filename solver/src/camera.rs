@@ -4,10 +4,17 @@
 //! The calibration matrix is `K = [[fx, 0, cx], [0, fy, cy], [0, 0, 1]]` and the bearing of a
 //! pixel is `m = K^-1 [u, v, 1]^T` (so `m.z == 1`, "normalised image coordinates").
 //! `readout` is the readout time per row `λ` in seconds per row. A [`View`] adds the gyroscope
-//! angular velocity `ω` in rad/s, expressed in the camera frame (extrinsics and bias applied).
+//! reading: the camera's angular velocity `ω` in its own axes (x right, y down, z forward;
+//! rad/s; extrinsics and bias applied), as a gyroscope reports it, i.e. `Ṙ_wc = R_wc [ω]×`
+//! for the camera-to-world rotation, so row `v`'s world-to-camera rotation is
+//! `exp(−[v λ ω]×) R_cw(0)` ([`crate::rolling_shutter`]). A view may also carry the
+//! orientation over its readout integrated from gyro samples ([`RowTrack`]).
 
+use crate::gyro_log::RowTrack;
+use crate::rolling_shutter::row_rotation;
 use nalgebra::{Matrix3, Vector2, Vector3};
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 use thiserror::Error;
 
 /// Why a camera or view is invalid. Each variant names the offending parameter.
@@ -136,20 +143,43 @@ impl Camera {
     }
 }
 
-/// One image of a pair: the camera and the gyroscope angular velocity `omega = ω` (rad/s,
-/// camera frame) measured while the image was read out (assumed constant over the frame).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// One image of a pair: the camera and its gyroscope reading. `omega = ω` is the camera's
+/// angular velocity in its own axes (rad/s, as a gyroscope reports it), constant over the
+/// frame or the mean over its readout; `track`, where present, is the orientation over the
+/// readout integrated from gyro samples, and then gives the exact row rotations.
+#[derive(Debug, Clone, PartialEq)]
 pub struct View {
     /// The camera that took the image.
     pub camera: Camera,
-    /// Angular velocity ω, rad/s, camera frame.
+    /// Angular velocity ω, rad/s, camera axes (a gyroscope's reading).
     pub omega: Vector3<f64>,
+    /// Orientation over the readout from gyro samples (`None`: constant `omega`).
+    pub track: Option<Arc<RowTrack>>,
 }
 
 impl View {
-    /// A view from a camera and a gyro reading `ω` (rad/s, camera frame).
+    /// A view from a camera and a constant gyro reading `ω` (rad/s, camera axes).
     pub fn new(camera: Camera, omega: Vector3<f64>) -> Self {
-        View { camera, omega }
+        View {
+            camera,
+            omega,
+            track: None,
+        }
+    }
+
+    /// A view whose row rotations come from integrated gyro samples (`track`), with `omega`
+    /// the mean rate over the readout (what the G-RSRP solvers use).
+    pub fn with_track(camera: Camera, omega: Vector3<f64>, track: RowTrack) -> Self {
+        View {
+            camera,
+            omega,
+            track: Some(Arc::new(track)),
+        }
+    }
+
+    /// The same view with a constant rate `omega` only (the integrated track dropped).
+    pub fn constant_rate(&self) -> Self {
+        View::new(self.camera, self.omega)
     }
 
     /// Validate the camera and that `ω` is finite.
@@ -165,9 +195,20 @@ impl View {
         Ok(())
     }
 
-    /// Rotation per row `λ ω` (rad/row): the quantity the G-RSRP solvers take as `w1`/`w2`.
-    pub fn omega_per_row(&self) -> Vector3<f64> {
-        self.omega * self.camera.readout
+    /// Row rotation `Ω(v)` (row-0 camera frame to row-`v` camera frame): from the track where
+    /// present, else `exp(−[v λ ω]×)`.
+    pub fn row_rotation(&self, v: f64) -> Matrix3<f64> {
+        match &self.track {
+            Some(track) => track.row_rotation(v, self.camera.readout),
+            None => row_rotation(v, self.camera.readout, &self.omega),
+        }
+    }
+
+    /// The G-RSRP templates' data `w = λ ω̃` (rad/row) with the paper's sign `ω̃ = −ω`: the
+    /// paper writes row `v`'s undistortion as `(I − v [w]×) m`, which to first order is
+    /// `Ω(v)^T m = exp([v λ ω]×) m`.
+    pub fn paper_rate_per_row(&self) -> Vector3<f64> {
+        -self.omega * self.camera.readout
     }
 }
 

@@ -1,10 +1,13 @@
 //! Per-point epipolar residuals of the three two-view models used by the estimator.
 //!
-//! All bearings are `m = K^-1 [u, v, 1]^T` (third component 1), rows `v` in pixels,
-//! `w = λ ω` in rad/row (DESIGN §4). For a relative pose `(R, t)` (`|t| = 1`, `E = [t]× R`):
+//! All bearings are `m = K^-1 [u, v, 1]^T` (third component 1), rows `v` in pixels. `Ω(v)`
+//! is a view's row rotation ([`View::row_rotation`]: `exp(−[v λ ω]×)` for a constant gyro
+//! rate `ω`, or integrated from gyro samples), and `w = −λ ω` (rad/row) the paper's per-row
+//! rate ([`View::paper_rate_per_row`]). For a relative pose `(R, t)` (`|t| = 1`,
+//! `E = [t]× R`):
 //!
 //! - [`PoseModel::GlobalShutter`]: `r = m2^T E m1`.
-//! - [`PoseModel::ExactAngular`]: `r = (Ω2(v2)^T m2)^T E (Ω1(v1)^T m1)`, `Ω(v) = exp([v w]×)`.
+//! - [`PoseModel::ExactAngular`]: `r = (Ω2(v2)^T m2)^T E (Ω1(v1)^T m1)`.
 //! - [`PoseModel::PaperLinear`]: the paper's G-RSRP model
 //!   `r = m2^T [t]× (I + v2 [w2]×) R (I - v1 [w1]×) m1`.
 //!
@@ -17,7 +20,6 @@
 use crate::camera::View;
 use crate::geometry::skew;
 use crate::pair_file::Match;
-use crate::rolling_shutter::row_rotation;
 use nalgebra::{Matrix3, Vector3};
 
 /// Which two-view model a residual follows (see the module documentation).
@@ -51,9 +53,9 @@ pub struct PointData {
     pub v1: Vec<f64>,
     /// Rows in image 2 (pixels).
     pub v2: Vec<f64>,
-    /// `λ ω1`, rad/row.
+    /// `w1 = −λ ω1`, rad/row (the paper's sign).
     pub w1: Vector3<f64>,
-    /// `λ ω2`, rad/row.
+    /// `w2 = −λ ω2`, rad/row.
     pub w2: Vector3<f64>,
     /// Row rotations `Ω1(v1)`.
     pub omega1: Vec<Matrix3<f64>>,
@@ -76,8 +78,8 @@ impl PointData {
             m2: Vec::with_capacity(n),
             v1: Vec::with_capacity(n),
             v2: Vec::with_capacity(n),
-            w1: view1.omega_per_row(),
-            w2: view2.omega_per_row(),
+            w1: view1.paper_rate_per_row(),
+            w2: view2.paper_rate_per_row(),
             omega1: Vec::with_capacity(n),
             omega2: Vec::with_capacity(n),
             b1: Vec::with_capacity(n),
@@ -87,8 +89,8 @@ impl PointData {
         for m in matches {
             let m1 = view1.camera.bearing(m[0][0], m[0][1]);
             let m2 = view2.camera.bearing(m[1][0], m[1][1]);
-            let o1 = row_rotation(m[0][1], view1.camera.readout, &view1.omega);
-            let o2 = row_rotation(m[1][1], view2.camera.readout, &view2.omega);
+            let o1 = view1.row_rotation(m[0][1]);
+            let o2 = view2.row_rotation(m[1][1]);
             d.b1.push(o1.transpose() * m1);
             d.b2.push(o2.transpose() * m2);
             d.l1.push(m1 - (d.w1 * m[0][1]).cross(&m1));
@@ -287,11 +289,19 @@ mod tests {
         })
         .unwrap();
         let gt = pair.ground_truth.clone().unwrap();
-        let (v1, v2) = pair.views();
+        let (v1, v2) = pair.views().unwrap();
         let d = PointData::new(&v1, &v2, &pair.matches);
         let (r, t) = (gt.rotation_matrix(), gt.translation_vector());
         let e = skew(&t) * r;
         for i in 0..d.len() {
+            // The paper's linear undistortion (I - v [w]×) m is the first-order expansion of
+            // the exact Ω(v)^T m: its error is second order, far below the first-order
+            // correction itself (a flipped sign of w would double the correction instead).
+            let first_order = (d.b1[i] - d.m1[i]).norm();
+            assert!(
+                (d.l1[i] - d.b1[i]).norm() <= 0.1 * first_order + 1e-12,
+                "point {i}: paper undistortion disagrees with the exact one"
+            );
             let exact = d.residual(
                 PoseModel::ExactAngular,
                 ResidualKind::Sampson,
@@ -370,7 +380,7 @@ mod tests {
         })
         .unwrap();
         let gt = pair.ground_truth.clone().unwrap();
-        let (v1, v2) = pair.views();
+        let (v1, v2) = pair.views().unwrap();
         let d = PointData::new(&v1, &v2, &pair.matches);
         let r = gt.rotation_matrix() * exp_so3(&Vector3::new(0.003, -0.002, 0.001));
         let t = gt.translation_vector();

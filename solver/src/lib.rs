@@ -2,7 +2,8 @@
 //!
 //! Matches between two rolling-shutter (RS) images plus the gyroscope reading of each view
 //! in; relative pose out. Conventions (DESIGN §4): pixel (u, v) with v the image row;
-//! bearing m = K⁻¹[u, v, 1]ᵀ; row rotation Ω(v) = exp([v λ ω]×); relative pose refers to
+//! bearing m = K⁻¹[u, v, 1]ᵀ; gyro ω = the camera's angular velocity in its own axes as a gyroscope
+//! reports it, so row rotation Ω(v) = exp(−[v λ ω]×) (row-0 to row-v camera frame); relative pose refers to
 //! row 0 of each image, R = R₂R₁ᵀ, t = R₂(C₁ − C₂), |t| = 1.
 //!
 //! - Minimal solvers: [`generated`] (emitted by `mingen` from `templates/*.mp`) on the
@@ -21,6 +22,7 @@ pub mod runtime;
 pub mod camera;
 pub mod epipolar;
 pub mod geometry;
+pub mod gyro_log;
 pub mod rolling_shutter;
 
 // Robust estimation, refinement and the methods.

@@ -6,7 +6,7 @@
 //!   row-major nullspace matrices of the 5x9 epipolar system; `E = x E1 + y E2 + z E3 + E4`.
 //! - `generated::grsrp10` / `generated::grsrp`: `Data { x1, x2: [[f64; 2]; 5], v1, v2: [f64; 5],
 //!   w1, w2: [f64; 3], r0: [[f64; 3]; 3] }` with normalised image points (bearing
-//!   `[x, y, 1]`), rows in pixels, `w = λ ω` (rad/row), `R_0` row-major;
+//!   `[x, y, 1]`), rows in pixels, `w = −λ ω` (rad/row, the paper's sign: [`crate::camera::View::paper_rate_per_row`]), `R_0` row-major;
 //!   `Solution { a: [f64; 3], t: [f64; 3] }` and `R = R_0 exp([a]×)`.
 //!
 //! Also provides the linear 8-point essential solver (non-minimal, needs ≥ 8 points), usable
@@ -128,7 +128,7 @@ pub enum GrsrpSolver {
 }
 
 /// One minimal G-RSRP sample: normalised image points `x = [m.x, m.y]` (bearing `[x, y, 1]`),
-/// rows `v` (pixels), `w = λ ω` (rad/row), initial rotation `R_0`.
+/// rows `v` (pixels), `w = −λ ω` (rad/row, the paper's sign: [`crate::camera::View::paper_rate_per_row`]), initial rotation `R_0`.
 #[derive(Debug, Clone, Copy)]
 pub struct GrsrpSample {
     /// Image-1 normalised points.
@@ -139,9 +139,9 @@ pub struct GrsrpSample {
     pub v1: [f64; 5],
     /// Image-2 rows.
     pub v2: [f64; 5],
-    /// `λ ω1`.
+    /// `−λ ω1`.
     pub w1: Vector3<f64>,
-    /// `λ ω2`.
+    /// `−λ ω2`.
     pub w2: Vector3<f64>,
     /// `R_0`.
     pub r0: Matrix3<f64>,

@@ -6,7 +6,15 @@
 //! {
 //!   "camera": { "fx": f64, "fy": f64, "cx": f64, "cy": f64,
 //!               "width": f64, "height": f64, "readout": f64 },   // readout: λ, s/row
-//!   "gyro": [[wx, wy, wz], [wx, wy, wz]],   // measured ω of view 1 and view 2, rad/s, camera frame
+//!   "gyro": [[wx, wy, wz], [wx, wy, wz]],   // ω of view 1 and view 2 (see below); optional
+//!                                          // when "gyro_log" is given
+//!   "gyro_log": {                          // optional: gyro samples instead of (or beside) "gyro"
+//!     "camera_from_gyro": [[..3..], [..3..], [..3..]],  // M, ω_cam = M ω_gyro (default I)
+//!     "time_offset": f64,                  // s (default 0): row 0 of an image is read at
+//!                                          // gyro time frame_time + time_offset
+//!     "frame_times": [t1, t2],             // frame times of image 1 and 2, s
+//!     "samples": [[t, wx, wy, wz], ...]    // gyro clock (s), gyro axes (rad/s), increasing t
+//!   },
 //!   "matches": [ [[u1, v1], [u2, v2]], ... ],  // pixel in image 1, pixel in image 2
 //!   "ground_truth": {                      // optional
 //!     "rotation": [[r00, r01, r02], [r10, r11, r12], [r20, r21, r22]],  // R = R2 R1^T, rows
@@ -18,11 +26,20 @@
 //! }
 //! ```
 //!
+//! `gyro` and the samples are what a gyroscope reports: the camera's angular velocity in its
+//! own axes (x right, y down, z forward once rotated by `camera_from_gyro`; rad/s, bias
+//! removed), `Ṙ_wc = R_wc [ω]×`, so row `v`'s world-to-camera rotation is
+//! `exp(−[v λ ω]×) R_cw(0)` for a constant rate. With a log, each view's row rotations are
+//! integrated from the samples over its readout `[t_k + offset, t_k + offset + H λ]` (which
+//! the samples must cover, with no gap longer than `H λ`), and its constant rate is the mean
+//! rate over that interval ([`crate::gyro_log`]).
+//!
 //! Both images share one camera. [`PairFile::load`] parses and then validates every field,
 //! returning a [`PairFileError`] that names the offending field (`camera.fx`, `matches[3]`,
 //! `ground_truth.rotation`, ...).
 
 use crate::camera::{Camera, CameraError, View};
+use crate::gyro_log::{GyroLog, GyroLogError};
 use nalgebra::{Matrix3, Vector3};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -61,13 +78,59 @@ impl GroundTruth {
     }
 }
 
+/// Gyro samples of a pair (see the module documentation).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GyroLogSpec {
+    /// `M` with `ω_cam = M ω_gyro`, row-major rows (default identity).
+    #[serde(default = "identity_rows")]
+    pub camera_from_gyro: [[f64; 3]; 3],
+    /// Gyro-clock time of an image's row 0 minus its frame time, s (default 0).
+    #[serde(default)]
+    pub time_offset: f64,
+    /// Frame times of image 1 and image 2, s.
+    pub frame_times: [f64; 2],
+    /// Samples `[t, ωx, ωy, ωz]`: gyro clock (s), gyro axes (rad/s), increasing `t`.
+    pub samples: Vec<[f64; 4]>,
+}
+
+fn identity_rows() -> [[f64; 3]; 3] {
+    [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+}
+
+/// Row-major rows as a matrix.
+pub fn matrix_from_rows(r: &[[f64; 3]; 3]) -> Matrix3<f64> {
+    Matrix3::from_fn(|i, j| r[i][j])
+}
+
+/// A matrix as row-major rows.
+pub fn rows_of_matrix(m: &Matrix3<f64>) -> [[f64; 3]; 3] {
+    std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))
+}
+
+impl GyroLogSpec {
+    /// The samples as a validated [`GyroLog`] in camera axes.
+    pub fn log(&self) -> Result<GyroLog, GyroLogError> {
+        GyroLog::new(&self.samples, &matrix_from_rows(&self.camera_from_gyro))
+    }
+
+    /// Gyro-clock time of row 0 of image `k` (0 or 1).
+    pub fn row0_time(&self, k: usize) -> f64 {
+        self.frame_times[k] + self.time_offset
+    }
+}
+
 /// A pair of rolling-shutter images with gyro readings and pixel matches (`PAIR.json`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PairFile {
     /// The camera (both images).
     pub camera: Camera,
-    /// Measured angular velocities of view 1 and view 2, rad/s, camera frames.
-    pub gyro: [[f64; 3]; 2],
+    /// Angular velocities of view 1 and view 2 (rad/s, camera axes, as a gyroscope reports
+    /// them), constant over each frame. Optional when `gyro_log` is given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gyro: Option<[[f64; 3]; 2]>,
+    /// Gyro samples: exact row rotations, and the rotation between the frames.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gyro_log: Option<GyroLogSpec>,
     /// Pixel matches `[[u1, v1], [u2, v2]]`.
     pub matches: Vec<Match>,
     /// Ground truth, present in simulated files.
@@ -104,6 +167,21 @@ pub enum PairFileError {
     },
 }
 
+/// A gyro-log error as an invalid field naming the sample (`gyro_log.samples[i]`).
+fn log_error(e: GyroLogError) -> PairFileError {
+    let field = match &e {
+        GyroLogError::NonFinite { index }
+        | GyroLogError::DuplicateTime { index, .. }
+        | GyroLogError::Unsorted { index, .. }
+        | GyroLogError::Gap { index, .. } => format!("gyro_log.samples[{index}]"),
+        GyroLogError::TooFewSamples(_) | GyroLogError::NotCovered { .. } => {
+            "gyro_log.samples".into()
+        }
+        GyroLogError::NotARotation => "gyro_log.camera_from_gyro".into(),
+    };
+    invalid(field, e.to_string())
+}
+
 fn invalid(field: impl Into<String>, reason: impl Into<String>) -> PairFileError {
     PairFileError::InvalidField {
         field: field.into(),
@@ -112,12 +190,45 @@ fn invalid(field: impl Into<String>, reason: impl Into<String>) -> PairFileError
 }
 
 impl PairFile {
-    /// The two views (camera + measured gyro ω).
-    pub fn views(&self) -> (View, View) {
-        (
-            View::new(self.camera, Vector3::from(self.gyro[0])),
-            View::new(self.camera, Vector3::from(self.gyro[1])),
-        )
+    /// The two views: with a gyro log, row rotations integrated from its samples and the
+    /// mean rate over each readout; otherwise the constant `gyro` rates. Errors as
+    /// [`validate`](Self::validate) would.
+    pub fn views(&self) -> Result<(View, View), PairFileError> {
+        let Some(spec) = &self.gyro_log else {
+            let Some(g) = self.gyro else {
+                return Err(invalid("gyro", "missing (give `gyro` or `gyro_log`)"));
+            };
+            return Ok((
+                View::new(self.camera, Vector3::from(g[0])),
+                View::new(self.camera, Vector3::from(g[1])),
+            ));
+        };
+        let log = spec.log().map_err(log_error)?;
+        let duration = self.camera.height * self.camera.readout;
+        log.check_gaps(duration).map_err(log_error)?;
+        let view = |k: usize| -> Result<View, PairFileError> {
+            let t0 = spec.row0_time(k);
+            log.check_covers(t0, t0 + duration, &format!("image {}'s readout", k + 1))
+                .map_err(log_error)?;
+            Ok(View::with_track(
+                self.camera,
+                log.mean_rate(t0, t0 + duration),
+                log.row_track(t0, duration),
+            ))
+        };
+        Ok((view(0)?, view(1)?))
+    }
+
+    /// The relative rotation `R = R2 R1^T` between the row-0 poses of the two images,
+    /// integrated from the gyro log (`Q^T` with `Q` the orientation at image 2's row 0 in
+    /// image 1's): `None` without a log or when its samples do not span both row-0 times.
+    /// A rotation reference on real recordings, and a source of `R_0` for G-RSRP.
+    pub fn gyro_relative_rotation(&self) -> Option<Matrix3<f64>> {
+        let spec = self.gyro_log.as_ref()?;
+        let log = spec.log().ok()?;
+        let (t1, t2) = (spec.row0_time(0), spec.row0_time(1));
+        log.check_covers(t1.min(t2), t1.max(t2), "both frames").ok()?;
+        Some(log.rotation_between(t1, t2).transpose())
     }
 
     /// Check every field: camera parameters, finite gyro, finite pixels, and (if present) a
@@ -134,11 +245,22 @@ impl PairFile {
             };
             invalid(field, e.to_string())
         })?;
-        for (i, w) in self.gyro.iter().enumerate() {
-            if !w.iter().all(|x| x.is_finite()) {
-                return Err(invalid(format!("gyro[{i}]"), "non-finite angular velocity"));
+        if let Some(g) = &self.gyro {
+            for (i, w) in g.iter().enumerate() {
+                if !w.iter().all(|x| x.is_finite()) {
+                    return Err(invalid(format!("gyro[{i}]"), "non-finite angular velocity"));
+                }
             }
         }
+        if let Some(spec) = &self.gyro_log {
+            if !spec.frame_times.iter().all(|t| t.is_finite()) {
+                return Err(invalid("gyro_log.frame_times", "non-finite time"));
+            }
+            if !spec.time_offset.is_finite() {
+                return Err(invalid("gyro_log.time_offset", "non-finite value"));
+            }
+        }
+        self.views()?;
         for (i, m) in self.matches.iter().enumerate() {
             if !m.iter().flatten().all(|x| x.is_finite()) {
                 return Err(invalid(
@@ -229,7 +351,8 @@ mod tests {
     fn sample() -> PairFile {
         PairFile {
             camera: Camera::paper(),
-            gyro: [[0.1, 0.2, 0.3], [0.0, -1.0, 0.5]],
+            gyro: Some([[0.1, 0.2, 0.3], [0.0, -1.0, 0.5]]),
+            gyro_log: None,
             matches: vec![[[1.0, 2.0], [3.0, 4.0]], [[5.0, 6.0], [7.0, 8.0]]],
             ground_truth: Some(GroundTruth {
                 rotation: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],

@@ -11,7 +11,7 @@
 //!
 //! Three costs:
 //! - [`refine_pose`] with [`PoseModel::PaperLinear`] + [`ResidualKind::Algebraic`]: the
-//!   paper's `grsrp+` cost `m2^T [t]× (I + v2[λω2]×) R (I - v1[λω1]×) m1` over inliers;
+//!   paper's `grsrp+` cost `m2^T [t]× (I + v2 [w2]×) R (I - v1 [w1]×) m1` (`w = −λω`) over inliers;
 //! - [`refine_pose`] with [`PoseModel::ExactAngular`] + [`ResidualKind::Sampson`]: Sampson
 //!   error of the exact angular model (`rectified`), or the global-shutter model (`gsrp`);
 //! - [`refine_nrsrp`]: Dai et al.'s generalized epipolar constraint for the uniform RS model,
@@ -395,14 +395,15 @@ pub fn refine_pose(
 
 /// State of the NRSRP (Dai et al.) model, in the row-0 frame of camera 1 (world frame
 /// `R1 = I, C1 = 0`): relative pose `(R, t)`, and per camera the rotation and displacement
-/// accumulated over one full frame, `phi_c = H λ ω_c` (rad, camera frame) and
+/// accumulated over one full frame, `phi_c = −H λ ω_c` (rad, camera frame; `ω_c` the
+/// physical angular velocity, so `exp([s phi]×)` is the row rotation at fraction `s`) and
 /// `delta_c = H λ d_c` (units of the baseline |t| = 1, camera-1 frame), with `H` the image
 /// height in rows. Scaling by the frame duration keeps the 17 unknowns commensurate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NrsrpState {
     /// Relative pose.
     pub pose: Pose,
-    /// Per-frame rotation of camera 1 and 2 (`H λ ω`).
+    /// Per-frame rotation of camera 1 and 2 (`−H λ ω`).
     pub phi: [Vector3<f64>; 2],
     /// Per-frame displacement of camera 1 and 2 (`H λ d`).
     pub delta: [Vector3<f64>; 2],
@@ -610,7 +611,7 @@ mod tests {
         })
         .unwrap();
         let gt = pair.ground_truth.clone().unwrap();
-        let (v1, v2) = pair.views();
+        let (v1, v2) = pair.views().unwrap();
         let d = PointData::new(&v1, &v2, &pair.matches);
         let idx: Vec<usize> = (0..d.len()).collect();
         let start = perturbed(&gt.rotation_matrix(), &gt.translation_vector());
@@ -694,7 +695,7 @@ mod tests {
         })
         .unwrap();
         let gt = pair.ground_truth.clone().unwrap();
-        let (v1, v2) = pair.views();
+        let (v1, v2) = pair.views().unwrap();
         let d = PointData::new(&v1, &v2, &pair.matches);
         let idx: Vec<usize> = (0..d.len()).collect();
         let (gr, gtt) = (gt.rotation_matrix(), gt.translation_vector());
@@ -719,7 +720,7 @@ mod tests {
         })
         .unwrap();
         let gt = pair.ground_truth.clone().unwrap();
-        let (v1, v2) = pair.views();
+        let (v1, v2) = pair.views().unwrap();
         let d = PointData::new(&v1, &v2, &pair.matches);
         let idx: Vec<usize> = (0..d.len()).collect();
         let (gr, gtt) = (gt.rotation_matrix(), gt.translation_vector());
@@ -775,7 +776,7 @@ mod tests {
         let r1 = rotation_error_deg(&gr, &res.state.pose.matrix());
         assert!(r1 < r0, "{r1} vs {r0}");
         // The recovered per-frame rotation of camera 1 approximates the truth.
-        let phi_true = Vector3::from(gt.omega[0]) * cam.height * cam.readout;
+        let phi_true = -Vector3::from(gt.omega[0]) * cam.height * cam.readout;
         assert!(
             (res.state.phi[0] - phi_true).norm() < 0.5 * phi_true.norm(),
             "{:?} {:?}",

@@ -1,30 +1,45 @@
-//! Rolling-shutter row model (DESIGN §4).
+//! Rolling-shutter row model.
 //!
-//! Row `v` of a view is exposed `v λ` seconds after row 0. With gyro angular velocity `ω`
-//! (camera frame) the row rotation is `Ω(v) = exp([v λ ω]×)`. Camera `c` at row `v` has
-//! orientation `Ω_c(v) R_c` (world-to-camera) and centre `C_c + v λ d_c` (`d_c` linear velocity,
-//! world frame), so a world point `X` has camera coordinates `Ω_c(v) R_c (X - C_c - v λ d_c)`.
-//! A bearing `m` observed at row `v` is brought to the row-0 frame by `Ω(v)^T m`.
+//! Row `v` of a view is exposed `v λ` seconds after row 0. The gyro convention is the
+//! physical one: `ω` is what a gyroscope reports, rotated into camera axes (x right, y down,
+//! z forward; rad/s, bias removed), i.e. the camera's angular velocity in its own frame,
+//! `Ṙ_wc = R_wc [ω]×` for the camera-to-world rotation `R_wc`. So the world-to-camera
+//! rotation of row `v` is `R_cw(v) = exp(−[v λ ω]×) R_cw(0)`, and the *row rotation*
+//!
+//! `Ω(v) = R_cw(v) R_cw(0)^T = exp(−[v λ ω]×)`
+//!
+//! takes row-0 camera coordinates to row-`v` camera coordinates. Camera `c` at row `v` has
+//! orientation `Ω_c(v) R_c` (world-to-camera) and centre `C_c + v λ d_c` (`d_c` linear
+//! velocity, world frame), so a world point `X` has camera coordinates
+//! `Ω_c(v) R_c (X - C_c - v λ d_c)`. A bearing `m` observed at row `v` is brought to the
+//! row-0 frame by `Ω(v)^T m = exp([v λ ω]×) m`.
+//!
+//! Check from first principles: a camera turning about its +y axis (y down) pans right, so a
+//! world point straight ahead drifts left in the image as later rows are read: a vertical
+//! world line images with `u` decreasing down the image (tested below).
 
 use crate::camera::{Camera, View};
 use crate::geometry::exp_so3;
 use nalgebra::{Matrix3, Vector2, Vector3};
 use thiserror::Error;
 
-/// Row rotation `Ω(v) = exp([v λ ω]×)` for row `v`, readout `λ` (s/row), `ω` (rad/s).
+/// Row rotation `Ω(v) = exp(−[v λ ω]×)` (row-0 camera frame to row-`v` camera frame) for
+/// row `v`, readout `λ` (s/row) and a constant gyro rate `ω` (rad/s, camera axes).
 pub fn row_rotation(v: f64, readout: f64, omega: &Vector3<f64>) -> Matrix3<f64> {
-    exp_so3(&(omega * (v * readout)))
+    exp_so3(&(omega * (-v * readout)))
 }
 
 /// Bearing of pixel `(u, v)` expressed in the row-0 camera frame: `Ω(v)^T K^-1 [u, v, 1]^T`
-/// (not rescaled: its third component is generally not 1).
+/// with the view's row rotation ([`View::row_rotation`]: from its gyro samples where it
+/// has them, else from its constant rate); not rescaled (its third component is generally
+/// not 1).
 pub fn undistort_bearing(view: &View, u: f64, v: f64) -> Vector3<f64> {
-    row_rotation(v, view.camera.readout, &view.omega).transpose() * view.camera.bearing(u, v)
+    view.row_rotation(v).transpose() * view.camera.bearing(u, v)
 }
 
 /// Pose of a moving rolling-shutter camera at row 0: `rotation = R_c` (world-to-camera),
 /// `centre = C_c` (world), linear velocity `velocity = d_c` (m/s, world frame), angular
-/// velocity `omega = ω` (rad/s, camera frame).
+/// velocity `omega = ω` (rad/s, camera frame, as a gyroscope reports it).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RsPose {
     /// World-to-camera rotation at row 0.
@@ -63,7 +78,7 @@ pub fn project_rs(
     let mut v = camera.cy;
     for _ in 0..MAX_ROW_ITERATIONS {
         let s = v * camera.readout;
-        let r = exp_so3(&(pose.omega * s)) * pose.rotation;
+        let r = row_rotation(v, camera.readout, &pose.omega) * pose.rotation;
         let xc = r * (x - pose.centre - pose.velocity * s);
         let p = camera.project(&xc).ok_or(ProjectionError::BehindCamera)?;
         if (p.y - v).abs() < 1e-9 {
@@ -120,5 +135,52 @@ mod tests {
             Err(ProjectionError::BehindCamera)
         );
         assert!(project_rs(&cam, &pose1, &Vector3::new(f64::NAN, 0.0, 5.0)).is_err());
+    }
+
+    /// First principles, independent of `exp_so3` and `row_rotation`: a camera at the origin
+    /// turning about its +y axis (y down) at `w` rad/s has camera-to-world rotation
+    /// `R_wc(s) = R_y(w s)` (`Ṙ_wc = R_wc [ω]×`), whose forward axis `R_y(θ) e_z =
+    /// (sin θ, 0, cos θ)` swings to +x: the camera pans right. A world point straight ahead
+    /// then drifts left, so a vertical world line images with `u` decreasing down the image.
+    /// The simulator's projection must show exactly that, and undistorting with the gyro
+    /// reading `ω = (0, w, 0)` must make the line vertical again.
+    #[test]
+    fn a_camera_turning_about_plus_y_pans_right() {
+        let cam = Camera::paper();
+        let w = 1.5;
+        let pose = RsPose {
+            rotation: Matrix3::identity(),
+            centre: Vector3::zeros(),
+            velocity: Vector3::zeros(),
+            omega: Vector3::new(0.0, w, 0.0),
+        };
+        let view = View::new(cam, pose.omega);
+        let mut last: Option<Vector2<f64>> = None;
+        for k in 0..9 {
+            let x = Vector3::new(0.3, -4.0 + k as f64, 10.0);
+            let p = project_rs(&cam, &pose, &x).unwrap();
+            // The camera frame at the time row p.y is read, by hand.
+            let th = w * p.y * cam.readout;
+            let (sn, cs) = th.sin_cos();
+            let r_wc = Matrix3::new(cs, 0.0, sn, 0.0, 1.0, 0.0, -sn, 0.0, cs);
+            let xc = r_wc.transpose() * x;
+            assert!((cam.fx * xc.x / xc.z + cam.cx - p.x).abs() < 1e-6, "row {}", p.y);
+            assert!((cam.fy * xc.y / xc.z + cam.cy - p.y).abs() < 1e-6);
+            if let Some(q) = last {
+                assert!(p.y > q.y, "points further down image further down");
+                assert!(p.x < q.x, "u must decrease down the image: {q} then {p}");
+            }
+            last = Some(p);
+            let b = undistort_bearing(&view, p.x, p.y);
+            assert!((b.x / b.z - 0.03).abs() < 1e-9, "undistorted line is vertical");
+        }
+        // The reversed turn pans left: u increases down the image.
+        let left = RsPose {
+            omega: -pose.omega,
+            ..pose
+        };
+        let a = project_rs(&cam, &left, &Vector3::new(0.3, -4.0, 10.0)).unwrap();
+        let b = project_rs(&cam, &left, &Vector3::new(0.3, 4.0, 10.0)).unwrap();
+        assert!(b.y > a.y && b.x > a.x);
     }
 }

@@ -254,7 +254,8 @@ pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError
     let t = (-r2 * c2).normalize();
     Ok(PairFile {
         camera: cam,
-        gyro: [gyro[0].into(), gyro[1].into()],
+        gyro: Some([gyro[0].into(), gyro[1].into()]),
+        gyro_log: None,
         matches,
         ground_truth: Some(GroundTruth {
             rotation: to_rows(&r2),
@@ -306,8 +307,8 @@ mod tests {
         };
         let pair = simulate(&opts).unwrap();
         let gt = pair.ground_truth.clone().unwrap();
-        assert_eq!(pair.gyro, gt.omega);
-        let (v1, v2) = pair.views();
+        assert_eq!(pair.gyro, Some(gt.omega));
+        let (v1, v2) = pair.views().unwrap();
         let e = skew(&gt.translation_vector()) * gt.rotation_matrix();
         let mut max_plain: f64 = 0.0;
         for m in &pair.matches {

@@ -2,6 +2,8 @@
 
 use super::{CliError, Preset};
 use rspose::evaluate::pose_errors;
+use rspose::geometry::rotation_error_deg;
+use rspose::methods::R0Source;
 use rspose::pair_file::PairFile;
 use rspose::{estimate_relative_pose, EstimateError, Method};
 use std::path::PathBuf;
@@ -21,9 +23,58 @@ pub struct Args {
     /// RANSAC sampler seed.
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// Where grsrp/grsrp+ take R_0 from: the preset's choice (paper: gsrp, default:
+    /// rectified), or `gyro` (integrated from the pair's gyro log between the frames).
+    #[arg(long, value_enum)]
+    r0: Option<R0Choice>,
+    /// Row rotations from a gyro log: `integrated` (exact, the default) or `constant` (the
+    /// mean rate over each readout). Without a log the constant `gyro` rates are used.
+    #[arg(long, value_enum, default_value_t = Rows::Integrated)]
+    rows: Rows,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
+}
+
+/// Source of `R_0` on the command line.
+#[derive(Debug, Clone, Copy, clap::ValueEnum, PartialEq, Eq)]
+pub enum R0Choice {
+    /// The gsrp estimate.
+    Gsrp,
+    /// The rectified estimate.
+    Rectified,
+    /// Integrated from the pair's gyro log.
+    Gyro,
+}
+
+/// Row-rotation model for pairs with a gyro log.
+#[derive(Debug, Clone, Copy, clap::ValueEnum, PartialEq, Eq)]
+pub enum Rows {
+    /// Integrated from the samples over each readout.
+    Integrated,
+    /// Constant: each frame's mean rate.
+    Constant,
+}
+
+/// The options for `method` with the command line's `--r0` applied.
+pub fn apply_r0(
+    options: &mut rspose::EstimateOptions,
+    r0: Option<R0Choice>,
+    pair: &PairFile,
+    path: &std::path::Path,
+) -> Result<(), CliError> {
+    options.r0_source = match r0 {
+        None => return Ok(()),
+        Some(R0Choice::Gsrp) => R0Source::Gsrp,
+        Some(R0Choice::Rectified) => R0Source::Rectified,
+        Some(R0Choice::Gyro) => R0Source::Given(pair.gyro_relative_rotation().ok_or_else(|| {
+            CliError::input(format!(
+                "{}: --r0 gyro needs a gyro_log whose samples span both frames",
+                path.display()
+            ))
+        })?),
+    };
+    Ok(())
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
@@ -32,8 +83,14 @@ pub fn run(a: Args) -> Result<(), CliError> {
         .parse()
         .map_err(|e: rspose::methods::ParseMethodError| CliError::input(e.to_string()))?;
     let pair = PairFile::load(&a.pair).map_err(|e| CliError::input(e.to_string()))?;
-    let (v1, v2) = pair.views();
-    let options = a.preset.options(method, a.seed);
+    let (mut v1, mut v2) = pair
+        .views()
+        .map_err(|e| CliError::input(format!("{}: {e}", a.pair.display())))?;
+    if a.rows == Rows::Constant {
+        (v1, v2) = (v1.constant_rate(), v2.constant_rate());
+    }
+    let mut options = a.preset.options(method, a.seed);
+    apply_r0(&mut options, a.r0, &pair, &a.pair)?;
     let start = Instant::now();
     let est = estimate_relative_pose(&v1, &v2, &pair.matches, &options).map_err(|e| match e {
         EstimateError::NoSolution => CliError::failed(format!("{}: {e}", a.pair.display())),
@@ -41,6 +98,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
     })?;
     let seconds = start.elapsed().as_secs_f64();
     let errors = pair.ground_truth.as_ref().map(|gt| pose_errors(&est, gt));
+    let gyro_difference = pair
+        .gyro_relative_rotation()
+        .map(|r| rotation_error_deg(&r, &est.rotation));
     let rows: Vec<[f64; 3]> = (0..3)
         .map(|i| {
             [
@@ -63,6 +123,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
             obj["rotation_error_deg"] = e.rotation_error_deg.into();
             obj["translation_error_deg"] = e.translation_error_deg.into();
         }
+        if let Some(d) = gyro_difference {
+            obj["gyro_rotation_difference_deg"] = d.into();
+        }
         println!("{obj}");
     } else {
         println!("method       {}", method.name());
@@ -82,6 +145,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
         if let Some(e) = errors {
             println!("rotation error     {:.4} deg", e.rotation_error_deg);
             println!("translation error  {:.4} deg", e.translation_error_deg);
+        }
+        if let Some(d) = gyro_difference {
+            println!("rotation vs gyro   {d:.4} deg (gyro-integrated reference)");
         }
     }
     Ok(())

@@ -141,7 +141,9 @@ pub fn run_methods(
             let Some(gt) = &pair.ground_truth else {
                 return failed;
             };
-            let (v1, v2) = pair.views();
+            let Ok((v1, v2)) = pair.views() else {
+                return failed;
+            };
             let start = Instant::now();
             let est = estimate_relative_pose(&v1, &v2, &pair.matches, &options_for(m));
             let seconds = start.elapsed().as_secs_f64();

@@ -3,7 +3,7 @@
 //! or is given ([`super::R0Source`]); the generated G-RSRP solver (10 or 20 solutions,
 //! [`crate::minimal::GrsrpSolver`]) runs on 5-point samples in RANSAC, each solution
 //! `R = R_0 exp([a]×)`, `t` (sign by cheirality on the sample), scored with the paper's model
-//! `m2^T [t]× (I + v2 [λω2]×) R (I - v1 [λω1]×) m1` (algebraic or Sampson).
+//! `m2^T [t]× (I + v2 [w2]×) R (I - v1 [w1]×) m1` with `w = −λω` (algebraic or Sampson).
 //! `grsrp+` then refines `(R, t)` by LM with unit-quaternion tangent steps and unit `t` on
 //! the paper's algebraic cost over the RANSAC inliers.
 

@@ -56,7 +56,8 @@ pub fn estimate(
         inliers: init.inliers,
         iterations: init.iterations,
         refinement_iterations: res.iterations,
-        angular_velocity: Some([s.phi[0] / per_frame1, s.phi[1] / per_frame2]),
+        // The model's per-frame rotation is `−H λ ω` (see `NrsrpState`).
+        angular_velocity: Some([-s.phi[0] / per_frame1, -s.phi[1] / per_frame2]),
         linear_velocity: Some([s.delta[0] / per_frame1, s.delta[1] / per_frame2]),
     })
 }

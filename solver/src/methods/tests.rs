@@ -11,7 +11,7 @@ fn pair(opts: SimulationOptions) -> PairFile {
 }
 
 fn run(p: &PairFile, o: &EstimateOptions) -> Result<Estimate, EstimateError> {
-    let (v1, v2) = p.views();
+    let (v1, v2) = p.views().unwrap();
     estimate_relative_pose(&v1, &v2, &p.matches, o)
 }
 
@@ -37,7 +37,7 @@ fn input_errors_are_typed() {
         points: 30,
         ..Default::default()
     });
-    let (v1, v2) = p.views();
+    let (v1, v2) = p.views().unwrap();
     let o = EstimateOptions::for_method(Method::Gsrp);
     let mut m = p.matches.clone();
     m[3][1][0] = f64::NAN;
@@ -63,13 +63,13 @@ fn input_errors_are_typed() {
         estimate_relative_pose(&v1, &v2, &dup, &o),
         Err(EstimateError::Degenerate { distinct: 1, .. })
     ));
-    let mut bad = v1;
+    let mut bad = v1.clone();
     bad.camera.fy = -3.0;
     assert!(matches!(
         estimate_relative_pose(&bad, &v2, &p.matches, &o),
         Err(EstimateError::InvalidCamera { view: 1, .. })
     ));
-    let mut bad = v2;
+    let mut bad = v2.clone();
     bad.omega.x = f64::INFINITY;
     assert!(matches!(
         estimate_relative_pose(&v1, &bad, &p.matches, &o),
@@ -311,7 +311,7 @@ fn paper_accuracy_at_2_5_rad_s() {
 #[test]
 fn grsrp_variants_and_r0_sources_agree() {
     let p = pair(SimulationOptions {
-        seed: 3,
+        seed: 2,
         ..Default::default()
     });
     let gt = p.ground_truth.as_ref().unwrap();

@@ -8,7 +8,7 @@ use std::hint::black_box;
 
 fn bench(c: &mut Criterion) {
     let pair = simulate(&SimulationOptions::default()).expect("simulation");
-    let (v1, v2) = pair.views();
+    let (v1, v2) = pair.views().unwrap();
     let mut group = c.benchmark_group("estimator_150_matches_200_iterations");
     for method in Method::ALL {
         let opts = EstimateOptions::paper(method);

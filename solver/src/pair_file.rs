@@ -113,6 +113,29 @@ impl GyroLogSpec {
         GyroLog::new(&self.samples, &matrix_from_rows(&self.camera_from_gyro))
     }
 
+    /// The part of a long log a pair needs: the samples within `margin` seconds of the two
+    /// frames' readouts (`[t_k + offset, t_k + offset + duration]`, `duration = H λ`) and
+    /// everything between them, plus one sample beyond each end. `samples` must be sorted.
+    pub fn excerpt(
+        samples: &[[f64; 4]],
+        camera_from_gyro: [[f64; 3]; 3],
+        time_offset: f64,
+        frame_times: [f64; 2],
+        duration: f64,
+        margin: f64,
+    ) -> Self {
+        let start = frame_times[0].min(frame_times[1]) + time_offset - margin;
+        let end = frame_times[0].max(frame_times[1]) + time_offset + duration + margin;
+        let lo = samples.partition_point(|s| s[0] < start).saturating_sub(1);
+        let hi = (samples.partition_point(|s| s[0] <= end) + 1).min(samples.len());
+        GyroLogSpec {
+            camera_from_gyro,
+            time_offset,
+            frame_times,
+            samples: samples[lo..hi.max(lo)].to_vec(),
+        }
+    }
+
     /// Gyro-clock time of row 0 of image `k` (0 or 1).
     pub fn row0_time(&self, k: usize) -> f64 {
         self.frame_times[k] + self.time_offset
@@ -322,6 +345,11 @@ impl PairFile {
         Self::from_json_str(&s, path)
     }
 
+    /// Compact JSON text of this file (one line).
+    pub fn to_compact_json_string(&self) -> String {
+        serde_json::to_string(self).unwrap_or_default()
+    }
+
     /// Pretty JSON text of this file.
     pub fn to_json_string(&self) -> String {
         // Serialising plain numbers, arrays and bools cannot fail except on non-finite
@@ -332,13 +360,23 @@ impl PairFile {
     /// Write atomically: validate, write `PATH.tmp-PID` in the same directory, sync, then
     /// rename over `path`. On error no partial file is left at `path`.
     pub fn save_atomic(&self, path: impl AsRef<Path>) -> Result<(), PairFileError> {
+        self.save_atomic_as(path, false)
+    }
+
+    /// [`save_atomic`](Self::save_atomic), as one compact line when `compact` (real pairs
+    /// with many matches and samples), else pretty-printed.
+    pub fn save_atomic_as(&self, path: impl AsRef<Path>, compact: bool) -> Result<(), PairFileError> {
         let path = path.as_ref();
         self.validate()?;
         let io = |source| PairFileError::Io {
             path: path.to_path_buf(),
             source,
         };
-        let mut text = self.to_json_string();
+        let mut text = if compact {
+            self.to_compact_json_string()
+        } else {
+            self.to_json_string()
+        };
         text.push('\n');
         crate::atomic_file::write_atomic(path, text.as_bytes()).map_err(io)
     }

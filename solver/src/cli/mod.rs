@@ -1,8 +1,10 @@
 //! Subcommands of the `rspose` binary (one file each) and their shared error type.
 
+mod compare;
 mod demo;
 mod estimate;
 mod experiment;
+mod make_pair;
 mod simulate;
 
 use clap::{Parser, Subcommand, ValueEnum};
@@ -27,6 +29,10 @@ enum Command {
     Experiment(experiment::Args),
     /// Simulate one scene at 2.5 rad/s with the paper's noise and compare every method.
     Demo(demo::Args),
+    /// Run every method on pair files (e.g. real ones) against their rotation reference.
+    Compare(compare::Args),
+    /// Make a pair file from a real recording: gyro CSV, frame times, calibration, matches.
+    MakePair(make_pair::Args),
 }
 
 /// RANSAC/refinement settings to use.
@@ -92,6 +98,8 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Estimate(a) => estimate::run(a),
         Command::Experiment(a) => experiment::run(a),
         Command::Demo(a) => demo::run(a),
+        Command::MakePair(a) => make_pair::run(a),
+        Command::Compare(a) => compare::run(a),
     }
 }
 

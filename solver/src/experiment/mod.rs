@@ -6,6 +6,7 @@
 //! threads changes the wall time, never the numbers (except the timing columns).
 
 mod plot;
+pub mod real;
 mod stats;
 mod sweep;
 

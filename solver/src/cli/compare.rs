@@ -1,0 +1,102 @@
+//! `rspose compare`: every method on a set of pair files (e.g. from a real recording),
+//! against each pair's rotation reference (ground truth, else the gyro-integrated rotation).
+
+use super::estimate::{apply_r0, R0Choice, Rows};
+use super::{CliError, Preset, ALL_METHODS};
+use rspose::experiment::real::{reference_rotation, run_real, to_markdown};
+use rspose::pair_file::PairFile;
+use std::path::{Path, PathBuf};
+
+/// Options of `rspose compare`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Pair files, or directories (every `pair*.json` in them).
+    #[arg(required = true)]
+    pairs: Vec<PathBuf>,
+    /// RANSAC/refinement settings.
+    #[arg(long, value_enum, default_value_t = Preset::Default)]
+    preset: Preset,
+    /// Where grsrp/grsrp+ take R_0 from (default: the preset's).
+    #[arg(long, value_enum)]
+    r0: Option<R0Choice>,
+    /// Row rotations for pairs with a gyro log.
+    #[arg(long, value_enum, default_value_t = Rows::Integrated)]
+    rows: Rows,
+    /// RANSAC sampler seed.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Print JSON (one object per method, with per-pair figures) instead of a table.
+    #[arg(long)]
+    json: bool,
+}
+
+fn pair_paths(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, CliError> {
+    let mut out = Vec::new();
+    for p in inputs {
+        if p.is_dir() {
+            let mut found: Vec<PathBuf> = std::fs::read_dir(p)
+                .map_err(|e| CliError::input(format!("{}: {e}", p.display())))?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|f| {
+                    let name = f.file_name().map(|n| n.to_string_lossy().into_owned());
+                    name.is_some_and(|n| n.starts_with("pair") && n.ends_with(".json"))
+                })
+                .collect();
+            if found.is_empty() {
+                return Err(CliError::input(format!("{}: no pair*.json files", p.display())));
+            }
+            found.sort();
+            out.extend(found);
+        } else {
+            out.push(p.clone());
+        }
+    }
+    Ok(out)
+}
+
+fn load(path: &Path) -> Result<PairFile, CliError> {
+    let pair = PairFile::load(path).map_err(|e| CliError::input(e.to_string()))?;
+    if reference_rotation(&pair).is_none() {
+        return Err(CliError::input(format!(
+            "{}: no rotation reference (neither ground_truth nor a gyro_log spanning both frames)",
+            path.display()
+        )));
+    }
+    Ok(pair)
+}
+
+pub fn run(a: Args) -> Result<(), CliError> {
+    let paths = pair_paths(&a.pairs)?;
+    let pairs = paths
+        .iter()
+        .map(|p| load(p))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut options = Vec::with_capacity(pairs.len());
+    for (pair, path) in pairs.iter().zip(&paths) {
+        let mut o = a.preset.options(rspose::Method::GrsrpPlus, a.seed);
+        apply_r0(&mut o, a.r0, pair, path)?;
+        options.push(o);
+    }
+    let rows = run_real(
+        &pairs,
+        &ALL_METHODS,
+        |method, pair| {
+            let k = pairs.iter().position(|p| std::ptr::eq(p, pair)).unwrap_or(0);
+            rspose::EstimateOptions {
+                method,
+                ..options[k].clone()
+            }
+        },
+        a.rows == Rows::Constant,
+    );
+    if a.json {
+        let v = serde_json::json!({
+            "pairs": paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>(),
+            "methods": rows,
+        });
+        println!("{v}");
+    } else {
+        print!("{}", to_markdown(&rows));
+    }
+    Ok(())
+}

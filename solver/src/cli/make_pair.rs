@@ -1,0 +1,251 @@
+//! `rspose make-pair`: a pair file from a real recording — a gyro log (CSV), frame
+//! timestamps, a rig calibration and the matches of two frames.
+
+use super::{check_output_dir, CliError};
+use rspose::camera::Camera;
+use rspose::gyro_log::{parse_gyro_csv, GyroLog, GyroLogError};
+use rspose::pair_file::{matrix_from_rows, GyroLogSpec, Match, PairFile};
+use serde::Deserialize;
+use std::path::{Path, PathBuf};
+
+/// Options of `rspose make-pair`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Rig calibration (JSON): `camera` (as in a pair file), `camera_from_gyro` (3x3 rows,
+    /// ω_cam = M ω_gyro; default identity), `time_offset` (s, gyro time of a frame's row 0
+    /// minus its frame time; default 0), `gyro_time_column` (0-based column of the time in
+    /// the gyro CSV; default 3, for `gx,gy,gz,t`).
+    #[arg(long)]
+    calibration: PathBuf,
+    /// Gyro log: one sample per line, four numbers separated by commas or spaces (the time
+    /// in seconds and the rates in rad/s in the gyro's axes); `#` comments and a header line
+    /// allowed.
+    #[arg(long)]
+    gyro: PathBuf,
+    /// Frame timestamps, seconds, one per line: frame N is line N.
+    #[arg(long = "frame-times")]
+    frame_times: PathBuf,
+    /// Matches (JSON): an object with `matches` ([[[u1, v1], [u2, v2]], ...], pixels) and
+    /// optionally `frames` ([N1, N2]), as written by `tools/match_frames.py`.
+    #[arg(long)]
+    matches: PathBuf,
+    /// Frame numbers of image 1 and image 2 (default: the matches file's `frames`).
+    #[arg(long, num_args = 2, value_names = ["N1", "N2"])]
+    frames: Option<Vec<usize>>,
+    /// Samples kept around the two frames' readouts, seconds (room for calibrating the
+    /// time offset).
+    #[arg(long, default_value_t = 0.03)]
+    margin: f64,
+    /// Output pair file (JSON, one line).
+    #[arg(short = 'o', long = "output")]
+    output: PathBuf,
+}
+
+/// A camera-gyro rig's calibration file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RigCalibration {
+    /// The camera.
+    pub camera: Camera,
+    /// `ω_cam = M ω_gyro`, row-major rows.
+    #[serde(default = "identity")]
+    pub camera_from_gyro: [[f64; 3]; 3],
+    /// Gyro time of a frame's row 0 minus its frame time, s.
+    #[serde(default)]
+    pub time_offset: f64,
+    /// 0-based column of the time in the gyro CSV.
+    #[serde(default = "default_time_column")]
+    pub gyro_time_column: usize,
+}
+
+fn identity() -> [[f64; 3]; 3] {
+    [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+}
+
+fn default_time_column() -> usize {
+    3
+}
+
+#[derive(Debug, Deserialize)]
+struct MatchesFile {
+    matches: Vec<Match>,
+    #[serde(default)]
+    frames: Option<[usize; 2]>,
+}
+
+fn read(path: &Path) -> Result<String, CliError> {
+    std::fs::read_to_string(path).map_err(|e| CliError::input(format!("{}: {e}", path.display())))
+}
+
+fn parse_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, CliError> {
+    serde_json::from_str(&read(path)?)
+        .map_err(|e| CliError::input(format!("{}: {e}", path.display())))
+}
+
+/// Reads a rig calibration and checks it (camera parameters, rotation, time column).
+pub fn load_calibration(path: &Path) -> Result<RigCalibration, CliError> {
+    let c: RigCalibration = parse_json(path)?;
+    let bad = |what: String| CliError::input(format!("{}: {what}", path.display()));
+    c.camera.validate().map_err(|e| bad(e.to_string()))?;
+    if c.gyro_time_column > 3 {
+        return Err(bad("gyro_time_column must be 0..=3".into()));
+    }
+    if !c.time_offset.is_finite() {
+        return Err(bad("time_offset must be finite".into()));
+    }
+    GyroLog::new(&[[0.0; 4], [1.0; 4]], &matrix_from_rows(&c.camera_from_gyro))
+        .map_err(|_| bad("camera_from_gyro is not a rotation matrix".into()))?;
+    Ok(c)
+}
+
+/// A gyro CSV's samples, each one's line, and the file's name for messages.
+pub struct GyroCsv {
+    /// The file.
+    pub path: PathBuf,
+    /// Samples `[t, ωx, ωy, ωz]` (gyro axes).
+    pub samples: Vec<[f64; 4]>,
+    /// 1-based line of each sample.
+    pub lines: Vec<usize>,
+}
+
+impl GyroCsv {
+    /// A gyro-log error about sample `first + index` as a message naming the file and line.
+    pub fn error(&self, first: usize, e: &GyroLogError) -> CliError {
+        let index = match e {
+            GyroLogError::NonFinite { index }
+            | GyroLogError::DuplicateTime { index, .. }
+            | GyroLogError::Unsorted { index, .. }
+            | GyroLogError::Gap { index, .. } => Some(first + index),
+            _ => None,
+        };
+        match index.and_then(|i| self.lines.get(i)) {
+            Some(line) => CliError::input(format!("{}:{line}: {e}", self.path.display())),
+            None => CliError::input(format!("{}: {e}", self.path.display())),
+        }
+    }
+
+    /// Index of the first sample at or after time `t`.
+    pub fn index_at(&self, t: f64) -> usize {
+        self.samples.partition_point(|s| s[0] < t)
+    }
+}
+
+/// Reads and checks a whole gyro CSV: numbers, sorted distinct times, finite values (gaps
+/// are checked where a pair needs the samples). Errors name the file and line.
+pub fn load_gyro_csv(path: &Path, calibration: &RigCalibration) -> Result<GyroCsv, CliError> {
+    let text = read(path)?;
+    let at = |line: usize, what: String| CliError::input(format!("{}:{line}: {what}", path.display()));
+    let (samples, lines) =
+        parse_gyro_csv(&text, calibration.gyro_time_column).map_err(|(l, e)| at(l, e))?;
+    let csv = GyroCsv {
+        path: path.to_path_buf(),
+        samples,
+        lines,
+    };
+    GyroLog::new(&csv.samples, &matrix_from_rows(&calibration.camera_from_gyro))
+        .map_err(|e| csv.error(0, &e))?;
+    Ok(csv)
+}
+
+/// Reads frame timestamps (one per line; frame N is line N). Errors name the line.
+pub fn load_frame_times(path: &Path) -> Result<Vec<f64>, CliError> {
+    read(path)?
+        .lines()
+        .enumerate()
+        .map(|(i, l)| {
+            l.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|t| t.is_finite())
+                .ok_or_else(|| {
+                    CliError::input(format!(
+                        "{}:{}: not a finite time in seconds: `{}`",
+                        path.display(),
+                        i + 1,
+                        l.trim()
+                    ))
+                })
+        })
+        .collect()
+}
+
+pub fn run(a: Args) -> Result<(), CliError> {
+    check_output_dir(&a.output)?;
+    let calibration = load_calibration(&a.calibration)?;
+    let camera = calibration.camera;
+    let duration = camera.height * camera.readout;
+    let csv = load_gyro_csv(&a.gyro, &calibration)?;
+    let times = load_frame_times(&a.frame_times)?;
+    let m: MatchesFile = parse_json(&a.matches)?;
+    let frames = match (&a.frames, m.frames) {
+        (Some(f), _) => [f[0], f[1]],
+        (None, Some(f)) => f,
+        (None, None) => {
+            return Err(CliError::input(format!(
+                "{}: no `frames` in the matches file; give --frames N1 N2",
+                a.matches.display()
+            )))
+        }
+    };
+    let frame_time = |n: usize| -> Result<f64, CliError> {
+        (n >= 1)
+            .then(|| times.get(n - 1).copied())
+            .flatten()
+            .ok_or_else(|| {
+                CliError::input(format!(
+                    "{}: no line {n} for frame {n} ({} lines)",
+                    a.frame_times.display(),
+                    times.len()
+                ))
+            })
+    };
+    let frame_times = [frame_time(frames[0])?, frame_time(frames[1])?];
+    if !(a.margin.is_finite() && a.margin >= 0.0) {
+        return Err(CliError::input("--margin must be finite and non-negative"));
+    }
+    let spec = GyroLogSpec::excerpt(
+        &csv.samples,
+        calibration.camera_from_gyro,
+        calibration.time_offset,
+        frame_times,
+        duration,
+        a.margin,
+    );
+    let mut pair = PairFile {
+        camera,
+        gyro: None,
+        gyro_log: Some(spec),
+        matches: m.matches,
+        ground_truth: None,
+    };
+    // Gaps and coverage, checked on the samples the pair uses, named by line.
+    let first = pair
+        .gyro_log
+        .as_ref()
+        .and_then(|s| s.samples.first())
+        .map_or(0, |s| csv.index_at(s[0]));
+    let log = GyroLog::new(&pair.gyro_log.as_ref().map_or(vec![], |s| s.samples.clone()), &matrix_from_rows(&calibration.camera_from_gyro))
+        .and_then(|log| log.check_gaps(duration).map(|_| log))
+        .map_err(|e| csv.error(first, &e))?;
+    for (k, t) in frame_times.iter().enumerate() {
+        let t0 = t + calibration.time_offset;
+        log.check_covers(t0, t0 + duration, &format!("frame {}'s readout", frames[k]))
+            .map_err(|e| csv.error(first, &e))?;
+    }
+    let (v1, v2) = pair
+        .views()
+        .map_err(|e| CliError::input(format!("{}: {e}", a.gyro.display())))?;
+    // The mean rates beside the samples, for readers that take one rate per frame.
+    pair.gyro = Some([v1.omega.into(), v2.omega.into()]);
+    pair.save_atomic_as(&a.output, true)
+        .map_err(|e| CliError::input(format!("{}: {e}", a.matches.display())))?;
+    eprintln!(
+        "wrote {} (frames {} and {}, {} matches, {} gyro samples)",
+        a.output.display(),
+        frames[0],
+        frames[1],
+        pair.matches.len(),
+        pair.gyro_log.as_ref().map_or(0, |s| s.samples.len())
+    );
+    Ok(())
+}

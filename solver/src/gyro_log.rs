@@ -57,7 +57,9 @@ pub enum GyroLogError {
         max_gap: f64,
     },
     /// The log does not span a time interval that is needed.
-    #[error("the samples ({first:.6} to {last:.6} s) do not cover {what} ({start:.6} to {end:.6} s)")]
+    #[error(
+        "the samples ({first:.6} to {last:.6} s) do not cover {what} ({start:.6} to {end:.6} s)"
+    )]
     NotCovered {
         /// What needed covering, e.g. "image 1's readout".
         what: String,
@@ -87,7 +89,10 @@ impl GyroLog {
     /// A log from samples `[t, ωx, ωy, ωz]` in the gyro's axes, rotated into camera axes by
     /// `camera_from_gyro` (`ω_cam = M ω_gyro`). Errors on fewer than two samples, non-finite
     /// values, duplicate or decreasing times, or a matrix that is not a rotation.
-    pub fn new(samples: &[[f64; 4]], camera_from_gyro: &Matrix3<f64>) -> Result<Self, GyroLogError> {
+    pub fn new(
+        samples: &[[f64; 4]],
+        camera_from_gyro: &Matrix3<f64>,
+    ) -> Result<Self, GyroLogError> {
         let m = camera_from_gyro;
         if !m.iter().all(|x| x.is_finite())
             || (m.transpose() * m - Matrix3::identity()).norm() > 1e-6
@@ -317,7 +322,10 @@ pub fn parse_gyro_csv(
             ));
         }
         let t = values[time_column.min(3)];
-        let mut rate = values.iter().enumerate().filter(|(j, _)| *j != time_column.min(3));
+        let mut rate = values
+            .iter()
+            .enumerate()
+            .filter(|(j, _)| *j != time_column.min(3));
         let mut next = || rate.next().map(|(_, &x)| x).unwrap_or(f64::NAN);
         samples.push([t, next(), next(), next()]);
         lines.push(line_no);
@@ -358,10 +366,12 @@ mod tests {
     fn a_linear_ramp_integrates_to_second_order() {
         // ω(t) = (0, a t, 0) about one axis: the angle is a t² / 2 exactly.
         let a = 3.0;
-        let s: Vec<[f64; 4]> = (0..101).map(|i| {
-            let t = i as f64 * 0.01;
-            [t, 0.0, a * t, 0.0]
-        }).collect();
+        let s: Vec<[f64; 4]> = (0..101)
+            .map(|i| {
+                let t = i as f64 * 0.01;
+                [t, 0.0, a * t, 0.0]
+            })
+            .collect();
         let log = GyroLog::new(&s, &Matrix3::identity()).unwrap();
         let q = log.rotation_between(0.123, 0.777);
         let angle = 0.5 * a * (0.777f64.powi(2) - 0.123f64.powi(2));

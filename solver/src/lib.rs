@@ -19,6 +19,7 @@ pub mod minimal;
 pub mod runtime;
 
 // Camera model and geometry.
+pub mod calibrate;
 pub mod camera;
 pub mod epipolar;
 pub mod geometry;

@@ -250,7 +250,8 @@ impl PairFile {
         let spec = self.gyro_log.as_ref()?;
         let log = spec.log().ok()?;
         let (t1, t2) = (spec.row0_time(0), spec.row0_time(1));
-        log.check_covers(t1.min(t2), t1.max(t2), "both frames").ok()?;
+        log.check_covers(t1.min(t2), t1.max(t2), "both frames")
+            .ok()?;
         Some(log.rotation_between(t1, t2).transpose())
     }
 
@@ -365,7 +366,11 @@ impl PairFile {
 
     /// [`save_atomic`](Self::save_atomic), as one compact line when `compact` (real pairs
     /// with many matches and samples), else pretty-printed.
-    pub fn save_atomic_as(&self, path: impl AsRef<Path>, compact: bool) -> Result<(), PairFileError> {
+    pub fn save_atomic_as(
+        &self,
+        path: impl AsRef<Path>,
+        compact: bool,
+    ) -> Result<(), PairFileError> {
         let path = path.as_ref();
         self.validate()?;
         let io = |source| PairFileError::Io {
@@ -441,5 +446,31 @@ mod tests {
         let err = PairFile::load("/nonexistent/dir/pair.json").unwrap_err();
         assert!(matches!(err, PairFileError::Io { .. }));
         assert!(PairFile::from_json_str(&sample().to_json_string(), p).is_ok());
+
+        // A gyro log's bad sample is named by its index; coverage is checked per frame.
+        let mut with_log = sample();
+        with_log.gyro = None;
+        with_log.gyro_log = Some(GyroLogSpec {
+            camera_from_gyro: identity_rows(),
+            time_offset: 0.0,
+            frame_times: [0.0, 0.1],
+            samples: (0..100)
+                .map(|i| [i as f64 * 0.002, 0.1, 0.2, 0.3])
+                .collect(),
+        });
+        assert!(with_log.validate().is_ok());
+        assert!(with_log.gyro_relative_rotation().is_some());
+        let mut bad = with_log.clone();
+        bad.gyro_log.as_mut().unwrap().samples.swap(10, 11);
+        let err = bad.validate().unwrap_err().to_string();
+        assert!(err.contains("gyro_log.samples[11]"), "{err}");
+        let mut bad = with_log.clone();
+        bad.gyro_log.as_mut().unwrap().frame_times[1] = 0.19;
+        let err = bad.validate().unwrap_err().to_string();
+        assert!(err.contains("image 2's readout"), "{err}");
+        let mut bad = with_log;
+        bad.gyro_log = None;
+        let err = bad.validate().unwrap_err().to_string();
+        assert!(err.contains("gyro"), "{err}");
     }
 }

@@ -30,7 +30,9 @@ pub struct Args {
     json: bool,
 }
 
-fn pair_paths(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, CliError> {
+/// Pair files named on the command line: files as given, directories expanded to their
+/// `pair*.json` files in name order.
+pub fn pair_paths(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, CliError> {
     let mut out = Vec::new();
     for p in inputs {
         if p.is_dir() {
@@ -43,7 +45,10 @@ fn pair_paths(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, CliError> {
                 })
                 .collect();
             if found.is_empty() {
-                return Err(CliError::input(format!("{}: no pair*.json files", p.display())));
+                return Err(CliError::input(format!(
+                    "{}: no pair*.json files",
+                    p.display()
+                )));
             }
             found.sort();
             out.extend(found);
@@ -81,7 +86,10 @@ pub fn run(a: Args) -> Result<(), CliError> {
         &pairs,
         &ALL_METHODS,
         |method, pair| {
-            let k = pairs.iter().position(|p| std::ptr::eq(p, pair)).unwrap_or(0);
+            let k = pairs
+                .iter()
+                .position(|p| std::ptr::eq(p, pair))
+                .unwrap_or(0);
             rspose::EstimateOptions {
                 method,
                 ..options[k].clone()

@@ -67,12 +67,14 @@ pub fn apply_r0(
         None => return Ok(()),
         Some(R0Choice::Gsrp) => R0Source::Gsrp,
         Some(R0Choice::Rectified) => R0Source::Rectified,
-        Some(R0Choice::Gyro) => R0Source::Given(pair.gyro_relative_rotation().ok_or_else(|| {
-            CliError::input(format!(
-                "{}: --r0 gyro needs a gyro_log whose samples span both frames",
-                path.display()
-            ))
-        })?),
+        Some(R0Choice::Gyro) => {
+            R0Source::Given(pair.gyro_relative_rotation().ok_or_else(|| {
+                CliError::input(format!(
+                    "{}: --r0 gyro needs a gyro_log whose samples span both frames",
+                    path.display()
+                ))
+            })?)
+        }
     };
     Ok(())
 }

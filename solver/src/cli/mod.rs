@@ -1,5 +1,6 @@
 //! Subcommands of the `rspose` binary (one file each) and their shared error type.
 
+mod calibrate;
 mod compare;
 mod demo;
 mod estimate;
@@ -31,6 +32,8 @@ enum Command {
     Demo(demo::Args),
     /// Run every method on pair files (e.g. real ones) against their rotation reference.
     Compare(compare::Args),
+    /// Estimate the readout time and camera-gyro time offset from pairs with gyro logs.
+    Calibrate(calibrate::Args),
     /// Make a pair file from a real recording: gyro CSV, frame times, calibration, matches.
     MakePair(make_pair::Args),
 }
@@ -100,6 +103,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Demo(a) => demo::run(a),
         Command::MakePair(a) => make_pair::run(a),
         Command::Compare(a) => compare::run(a),
+        Command::Calibrate(a) => calibrate::run(a),
     }
 }
 

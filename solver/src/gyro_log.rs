@@ -288,15 +288,30 @@ impl RowTrack {
     }
 }
 
+/// Samples parsed from a gyro CSV, with the 1-based line each came from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GyroCsvSamples {
+    /// Samples `[t, ωx, ωy, ωz]`.
+    pub samples: Vec<[f64; 4]>,
+    /// The line of each sample.
+    pub lines: Vec<usize>,
+}
+
+/// A line of a gyro CSV that is not a sample.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("line {line}: {reason}")]
+pub struct GyroCsvError {
+    /// 1-based line.
+    pub line: usize,
+    /// What is wrong.
+    pub reason: String,
+}
+
 /// Parses a gyro CSV (or whitespace-separated) log into samples `[t, ωx, ωy, ωz]`, with the
 /// time in column `time_column` (0-based) of four and the rates in the other three, in
 /// order. Blank lines and lines starting with `#` are skipped, as is a first line that does
-/// not parse as numbers (a header). Returns the samples and each one's 1-based line number.
-/// Errors name the line.
-pub fn parse_gyro_csv(
-    text: &str,
-    time_column: usize,
-) -> Result<(Vec<[f64; 4]>, Vec<usize>), (usize, String)> {
+/// not parse as numbers (a header). Errors name the line.
+pub fn parse_gyro_csv(text: &str, time_column: usize) -> Result<GyroCsvSamples, GyroCsvError> {
     let mut samples = Vec::new();
     let mut lines = Vec::new();
     for (i, line) in text.lines().enumerate() {
@@ -312,14 +327,19 @@ pub fn parse_gyro_csv(
         let parsed: Result<Vec<f64>, _> = fields.iter().map(|f| f.parse::<f64>()).collect();
         let values = match parsed {
             Ok(v) => v,
-            Err(_) if samples.is_empty() && lines.is_empty() && i == 0 => continue,
-            Err(e) => return Err((line_no, format!("not a number: {e}"))),
+            Err(_) if i == 0 => continue,
+            Err(e) => {
+                return Err(GyroCsvError {
+                    line: line_no,
+                    reason: format!("not a number: {e}"),
+                })
+            }
         };
         if values.len() != 4 {
-            return Err((
-                line_no,
-                format!("expected 4 values (time and 3 rates), got {}", values.len()),
-            ));
+            return Err(GyroCsvError {
+                line: line_no,
+                reason: format!("expected 4 values (time and 3 rates), got {}", values.len()),
+            });
         }
         let t = values[time_column.min(3)];
         let mut rate = values
@@ -330,7 +350,7 @@ pub fn parse_gyro_csv(
         samples.push([t, next(), next(), next()]);
         lines.push(line_no);
     }
-    Ok((samples, lines))
+    Ok(GyroCsvSamples { samples, lines })
 }
 
 #[cfg(test)]
@@ -418,12 +438,15 @@ mod tests {
     #[test]
     fn csv_parsing_names_lines() {
         let text = "gx,gy,gz,t\n0.1,0.2,0.3,10.0\n\n# comment\n0.1,0.2,0.3,10.01\n";
-        let (s, lines) = parse_gyro_csv(text, 3).unwrap();
-        assert_eq!(s, vec![[10.0, 0.1, 0.2, 0.3], [10.01, 0.1, 0.2, 0.3]]);
-        assert_eq!(lines, vec![2, 5]);
-        let (s, _) = parse_gyro_csv("10.0 0.1 0.2 0.3\n", 0).unwrap();
-        assert_eq!(s, vec![[10.0, 0.1, 0.2, 0.3]]);
-        assert_eq!(parse_gyro_csv("1,2,3,4\n1,2,x,4\n", 3).unwrap_err().0, 2);
-        assert_eq!(parse_gyro_csv("1,2,3,4\n1,2,4\n", 3).unwrap_err().0, 2);
+        let p = parse_gyro_csv(text, 3).unwrap();
+        assert_eq!(
+            p.samples,
+            vec![[10.0, 0.1, 0.2, 0.3], [10.01, 0.1, 0.2, 0.3]]
+        );
+        assert_eq!(p.lines, vec![2, 5]);
+        let p = parse_gyro_csv("10.0 0.1 0.2 0.3\n", 0).unwrap();
+        assert_eq!(p.samples, vec![[10.0, 0.1, 0.2, 0.3]]);
+        assert_eq!(parse_gyro_csv("1,2,3,4\n1,2,x,4\n", 3).unwrap_err().line, 2);
+        assert_eq!(parse_gyro_csv("1,2,3,4\n1,2,4\n", 3).unwrap_err().line, 2);
     }
 }

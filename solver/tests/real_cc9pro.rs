@@ -28,7 +28,7 @@ fn pairs() -> Vec<PairFile> {
     paths.iter().map(|p| PairFile::load(p).unwrap()).collect()
 }
 
-fn row<'a>(rows: &'a [RealRow], m: Method) -> &'a RealRow {
+fn row(rows: &[RealRow], m: Method) -> &RealRow {
     rows.iter().find(|r| r.method == m.name()).unwrap()
 }
 

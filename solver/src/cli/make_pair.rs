@@ -142,12 +142,12 @@ pub fn load_gyro_csv(
     let text = read(path)?;
     let at =
         |line: usize, what: String| CliError::input(format!("{}:{line}: {what}", path.display()));
-    let (samples, lines) =
-        parse_gyro_csv(&text, calibration.gyro_time_column).map_err(|(l, e)| at(l, e))?;
+    let parsed =
+        parse_gyro_csv(&text, calibration.gyro_time_column).map_err(|e| at(e.line, e.reason))?;
     let csv = GyroCsv {
         path: path.to_path_buf(),
-        samples,
-        lines,
+        samples: parsed.samples,
+        lines: parsed.lines,
     };
     let log = GyroLog::new(
         &csv.samples,

@@ -187,10 +187,11 @@ pub fn cheirality(
 /// [`cheirality`] (ties: the first of `(R_a, t), (R_a, -t), (R_b, t), (R_b, -t)`). `None` if
 /// `E` cannot be decomposed or no pair passes.
 ///
-/// Closed form (no SVD): with `E` scaled to `|E|_F = √2` (singular values `1, 1, 0`), `t` is
-/// the normalised largest cross product of two rows of `E` (`t^T E = 0`) and the two
-/// rotations are `cof(E) ∓ [t]× E` (for `E = [t]× R`: `cof(E) = t t^T R` and
-/// `[t]×^T E = (I - t t^T) R`). Each rotation is checked for orthonormality; if `E` is too
+/// Closed form (no SVD): with `E` scaled to `|E|_F = √2` (singular values `1, 1, 0`) and
+/// `E = [t]× R`, the cofactor matrix is `cof(E) = cof([t]×) cof(R) = t t^T R`: its rows are
+/// multiples of `R^T t` and its columns multiples of `t` (`t^T E = 0`), so `t` is its
+/// normalised largest column, and the two rotations are `cof(E) ∓ [t]× E` (as
+/// `[t]× E = (t t^T - I) R`; the second is the twisted pair `(2 t t^T - I) R`). Each rotation is checked for orthonormality; if `E` is too
 /// far from an essential matrix for that, the SVD decomposition
 /// ([`decompose_essential`]) is used instead. Cheirality of `-t` is read off the depths of
 /// `t` (both flip sign), so each pair is triangulated once per rotation.
@@ -232,23 +233,27 @@ fn essential_rotations(e: &Matrix3<f64>) -> Option<([Matrix3<f64>; 2], Vector3<f
     let r0: Vector3<f64> = e.row(0).transpose();
     let r1: Vector3<f64> = e.row(1).transpose();
     let r2: Vector3<f64> = e.row(2).transpose();
-    let c12 = r1.cross(&r2);
-    let c20 = r2.cross(&r0);
-    let c01 = r0.cross(&r1);
-    let (n12, n20, n01) = (c12.norm_squared(), c20.norm_squared(), c01.norm_squared());
-    let (c, cn) = if n12 >= n20 && n12 >= n01 {
-        (c12, n12)
-    } else if n20 >= n01 {
-        (c20, n20)
+    // Row i of the cofactor matrix is the cross product of the other two rows.
+    let cof = Matrix3::from_rows(&[
+        r1.cross(&r2).transpose(),
+        r2.cross(&r0).transpose(),
+        r0.cross(&r1).transpose(),
+    ]);
+    let norms = [0, 1, 2].map(|j| cof.column(j).norm_squared());
+    let j = if norms[0] >= norms[1] && norms[0] >= norms[2] {
+        0
+    } else if norms[1] >= norms[2] {
+        1
     } else {
-        (c01, n01)
+        2
     };
-    // For an essential matrix with |E|_F = √2 the largest row cross product has norm ≥ 1/3.
+    // The column norms of t t^T R are |(R^T t)_j| and sum in square to 1: the largest is
+    // at least 1/√3.
+    let cn = norms[j];
     if cn.is_nan() || cn <= 1e-4 {
         return None;
     }
-    let t = c / cn.sqrt();
-    let cof = Matrix3::from_rows(&[c12.transpose(), c20.transpose(), c01.transpose()]);
+    let t: Vector3<f64> = cof.column(j) / cn.sqrt();
     let te = skew(&t) * e;
     let ra = cof - te;
     let rb = cof + te;
@@ -464,6 +469,10 @@ mod tests {
                 .iter()
                 .any(|(rr, tt)| rotation_error_deg(&r, rr) < 1e-6
                     && translation_error_deg(&t, tt) < 1e-6));
+            // The closed form itself succeeds (no SVD fallback) and contains the pose.
+            let (rots, t_closed) = essential_rotations(&e).expect("closed form");
+            assert!(t_closed.cross(&t).norm() < 1e-9, "t up to sign");
+            assert!(rots.iter().any(|rr| rotation_error_deg(&r, rr) < 1e-6));
             let (rr, tt) = pose_from_essential(&e, &m1, &m2).unwrap();
             assert!(rotation_error_deg(&r, &rr) < 1e-6);
             assert!(translation_error_deg(&t, &tt) < 1e-6);

@@ -8,6 +8,7 @@ use super::pose_ransac::{indices, orient};
 use super::{gsrp, Estimate, EstimateError, EstimateOptions, Method};
 use crate::camera::View;
 use crate::epipolar::PointData;
+use crate::geometry::exp_so3;
 use crate::pair_file::Match;
 use crate::refine::{refine_nrsrp, LmOptions, NrsrpState, Pose};
 use nalgebra::Vector3;
@@ -40,13 +41,18 @@ pub fn estimate(
     let res = refine_nrsrp(&data, height, options.nrsrp_cauchy_px / f, start, &lm);
     let s = res.state;
     let r = s.pose.matrix();
-    let t = orient(
-        &r,
-        &s.pose.translation,
-        &data.m1,
-        &data.m2,
-        &indices(&init.inliers),
-    );
+    // Cheirality on bearings undistorted with the estimated per-frame rotations: under
+    // strong rolling-shutter distortion the raw bearings can put most points behind a
+    // camera for the right sign of t.
+    let undistort = |m: &[Vector3<f64>], v: &[f64], phi: &Vector3<f64>| -> Vec<Vector3<f64>> {
+        m.iter()
+            .zip(v)
+            .map(|(m, v)| exp_so3(&(phi * (v / height))).transpose() * m)
+            .collect()
+    };
+    let b1 = undistort(&data.m1, &data.v1, &s.phi[0]);
+    let b2 = undistort(&data.m2, &data.v2, &s.phi[1]);
+    let t = orient(&r, &s.pose.translation, &b1, &b2, &indices(&init.inliers));
     let per_frame1 = height * view1.camera.readout;
     let per_frame2 = height * view2.camera.readout;
     Ok(Estimate {

@@ -52,7 +52,14 @@ pub struct SimulationOptions {
     pub outlier_fraction: f64,
     /// Random seed (default 0).
     pub seed: u64,
+    /// A planar scene: every point on the plane `z = plane_depth` (m) of camera 1's row-0
+    /// frame, instead of depths uniform in `[min_depth, max_depth]` (default `None`).
+    pub plane_depth: Option<f64>,
 }
+
+/// The largest number of points [`simulate`] makes (a pair file of this size is a few
+/// hundred MB).
+pub const MAX_POINTS: usize = 2_000_000;
 
 impl Default for SimulationOptions {
     fn default() -> Self {
@@ -69,6 +76,7 @@ impl Default for SimulationOptions {
             gyro_noise: 0.1,
             outlier_fraction: 0.0,
             seed: 0,
+            plane_depth: None,
         }
     }
 }
@@ -125,8 +133,13 @@ fn check(options: &SimulationOptions) -> Result<(), SimulationError> {
     if let Err(e) = options.camera.validate() {
         return bad("camera", &e.to_string());
     }
-    if options.points == 0 {
-        return bad("points", "must be at least 1");
+    if options.points == 0 || options.points > MAX_POINTS {
+        return bad("points", &format!("must be between 1 and {MAX_POINTS}"));
+    }
+    if let Some(d) = options.plane_depth {
+        if !(d.is_finite() && d > 0.0) {
+            return bad("plane_depth", "must be finite and positive");
+        }
     }
     let nonneg = [
         ("rotation_std_deg", options.rotation_std_deg),
@@ -205,7 +218,10 @@ pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError
         attempts += 1;
         let u = rng.gen_range(0.0..cam.width);
         let v = rng.gen_range(0.0..cam.height);
-        let depth = rng.gen_range(options.min_depth..options.max_depth);
+        let depth = match options.plane_depth {
+            Some(d) => d,
+            None => rng.gen_range(options.min_depth..options.max_depth),
+        };
         let x = cam.bearing(u, v) * depth;
         if x.norm() > options.max_depth || (x - c2).norm() > options.max_depth {
             continue;

@@ -120,6 +120,12 @@ pub fn run(a: Args) -> Result<(), CliError> {
             "inliers": est.num_inliers(),
             "iterations": est.iterations,
             "seconds": seconds,
+            "inlier_ratio": est.quality.inlier_ratio,
+            "ransac_score": est.ransac_score,
+            "refinement_iterations": est.refinement_iterations,
+            "refinement_cost": est.refinement_cost,
+            "quality": est.quality,
+            "flags": est.quality.flags(),
         });
         if let Some(e) = errors {
             obj["rotation_error_deg"] = e.rotation_error_deg.into();
@@ -143,6 +149,17 @@ pub fn run(a: Args) -> Result<(), CliError> {
             pair.matches.len()
         );
         println!("iterations   {}", est.iterations);
+        println!(
+            "quality      inlier ratio {:.3}, parallax {:.2} px, epipolar {:.2} px, homography {:.2} px",
+            est.quality.inlier_ratio,
+            est.quality.parallax_px,
+            est.quality.epipolar_px,
+            est.quality.homography_px
+        );
+        let flags = est.quality.flags();
+        if !flags.is_empty() {
+            println!("flags        {}", flags.join(", "));
+        }
         println!("seconds      {seconds:.6}");
         if let Some(e) = errors {
             println!("rotation error     {:.4} deg", e.rotation_error_deg);

@@ -19,7 +19,7 @@ pub struct Args {
     /// Gyro noise standard deviation per axis (rad/s).
     #[arg(long = "gyro-noise", default_value_t = 0.1)]
     gyro_noise: f64,
-    /// Number of matches.
+    /// Number of matches (at most 2,000,000).
     #[arg(long, default_value_t = 150)]
     points: usize,
     /// Fraction of matches replaced by outliers, in [0, 1).
@@ -28,6 +28,12 @@ pub struct Args {
     /// Random seed.
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// Planar scene: every point on the plane at this depth (m) in front of camera 1.
+    #[arg(long)]
+    plane: Option<f64>,
+    /// Standard deviation of camera 2's centre per axis (m); the baseline.
+    #[arg(long = "translation-std", default_value_t = 2.0)]
+    translation_std: f64,
     /// Output pair file (JSON).
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
@@ -43,6 +49,8 @@ pub fn run(a: Args) -> Result<(), CliError> {
         points: a.points,
         outlier_fraction: a.outliers,
         seed: a.seed,
+        plane_depth: a.plane,
+        translation_std: a.translation_std,
         ..SimulationOptions::default()
     };
     let pair = simulate(&options).map_err(|e| CliError::input(e.to_string()))?;

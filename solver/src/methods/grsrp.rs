@@ -41,6 +41,7 @@ pub fn estimate(
     let (mut h, res) = run(&mut est, options, thr_sq)?;
     let mut inliers = res.inliers;
     let mut refinement_iterations = 0;
+    let mut refinement_cost = None;
     if plus {
         let idx = indices(&inliers);
         let r = refine_pose(
@@ -53,6 +54,7 @@ pub fn estimate(
             &options.refinement,
         );
         refinement_iterations = r.iterations;
+        refinement_cost = Some(r.cost);
         h = Hypothesis::from_pose(&r.state);
         for (i, f) in inliers.iter_mut().enumerate() {
             let x = data.residual(PoseModel::PaperLinear, kind, i, &h.r, &h.t, &h.e);
@@ -70,7 +72,10 @@ pub fn estimate(
         translation: t,
         inliers,
         iterations: res.iterations,
+        ransac_score: res.score.msac,
         refinement_iterations,
+        refinement_cost,
+        quality: Default::default(),
         angular_velocity: None,
         linear_velocity: None,
     })

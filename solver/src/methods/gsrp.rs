@@ -33,6 +33,7 @@ pub(crate) fn run_on(
     let (mut h, res) = run(&mut est, options, thr_sq)?;
     let mut inliers = res.inliers;
     let mut refinement_iterations = 0;
+    let mut refinement_cost = None;
     if options.robust.final_refinement {
         let idx = indices(&inliers);
         let r = refine_pose(
@@ -45,6 +46,7 @@ pub(crate) fn run_on(
             &options.refinement,
         );
         refinement_iterations = r.iterations;
+        refinement_cost = Some(r.cost);
         h = Hypothesis::from_pose(&r.state);
         for (i, f) in inliers.iter_mut().enumerate() {
             let x = data.residual(PoseModel::GlobalShutter, kind, i, &h.r, &h.t, &h.e);
@@ -58,7 +60,10 @@ pub(crate) fn run_on(
         translation: t,
         inliers,
         iterations: res.iterations,
+        ransac_score: res.score.msac,
         refinement_iterations,
+        refinement_cost,
+        quality: Default::default(),
         angular_velocity: None,
         linear_velocity: None,
     })

@@ -15,6 +15,7 @@ pub mod grsrp;
 pub mod gsrp;
 pub mod nrsrp;
 mod pose_ransac;
+pub mod quality;
 pub mod rectified;
 
 use crate::camera::{CameraError, View};
@@ -22,6 +23,7 @@ use crate::minimal::{EssentialSolver, GrsrpSolver};
 use crate::pair_file::Match;
 use crate::refine::LmOptions;
 use nalgebra::{Matrix3, Vector3};
+pub use quality::{Quality, QualityOptions};
 use std::fmt;
 use std::str::FromStr;
 use thiserror::Error;
@@ -187,6 +189,8 @@ pub struct EstimateOptions {
     pub r0_source: R0Source,
     /// Cauchy loss scale of `nrsrp`, in pixels (default 2).
     pub nrsrp_cauchy_px: f64,
+    /// Thresholds of the quality flags on every estimate.
+    pub quality: QualityOptions,
 }
 
 impl EstimateOptions {
@@ -249,6 +253,7 @@ impl Default for EstimateOptions {
             grsrp_solver: GrsrpSolver::Ten,
             r0_source: R0Source::Rectified,
             nrsrp_cauchy_px: 2.0,
+            quality: QualityOptions::default(),
         }
     }
 }
@@ -266,8 +271,15 @@ pub struct Estimate {
     pub inliers: Vec<bool>,
     /// RANSAC iterations of the final RANSAC stage.
     pub iterations: usize,
+    /// MSAC score of the best RANSAC hypothesis: `Σ min(r², τ²)` over the matches, in the
+    /// units of the method's threshold (squared).
+    pub ransac_score: f64,
     /// Levenberg-Marquardt iterations of the final refinement (0 if none).
     pub refinement_iterations: usize,
+    /// Final cost of the refinement (`None` without one), in the refinement's units.
+    pub refinement_cost: Option<f64>,
+    /// Inlier ratio, parallax, homography fit and the flags computed from them.
+    pub quality: Quality,
     /// `nrsrp` only: estimated angular velocities ω1, ω2 (rad/s, camera frames).
     pub angular_velocity: Option<[Vector3<f64>; 2]>,
     /// `nrsrp` only: estimated linear velocities d1, d2 (baseline units per second, camera-1
@@ -456,6 +468,29 @@ pub fn estimate_relative_pose(
         Method::GrsrpPlus => grsrp::estimate(view1, view2, matches, options, true),
         Method::Nrsrp => nrsrp::estimate(view1, view2, matches, options),
     }?;
+    let mut est = est;
+    // The bearings each method works on: gyro-undistorted, undistorted with `nrsrp`'s own
+    // rotation estimates, or raw.
+    let (b1, b2) = match (options.method, est.angular_velocity) {
+        (Method::Grsrp | Method::GrsrpPlus | Method::Rectified, _) => {
+            (view1.clone(), view2.clone())
+        }
+        (_, Some([w1, w2])) => (View::new(view1.camera, w1), View::new(view2.camera, w2)),
+        _ => (
+            View::new(view1.camera, Vector3::zeros()),
+            View::new(view2.camera, Vector3::zeros()),
+        ),
+    };
+    est.quality = quality::assess(
+        &b1,
+        &b2,
+        matches,
+        &est.inliers,
+        &est.rotation,
+        &est.translation,
+        &options.quality,
+        options.robust.seed,
+    );
     let finite = est.rotation.iter().all(|x| x.is_finite())
         && est.translation.iter().all(|x| x.is_finite())
         && (est.translation.norm() - 1.0).abs() < 1e-6;

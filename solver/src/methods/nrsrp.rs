@@ -61,7 +61,10 @@ pub fn estimate(
         translation: t,
         inliers: init.inliers,
         iterations: init.iterations,
+        ransac_score: init.ransac_score,
         refinement_iterations: res.iterations,
+        refinement_cost: Some(res.cost),
+        quality: Default::default(),
         // The model's per-frame rotation is `−H λ ω` (see `NrsrpState`).
         angular_velocity: Some([-s.phi[0] / per_frame1, -s.phi[1] / per_frame2]),
         linear_velocity: Some([s.delta[0] / per_frame1, s.delta[1] / per_frame2]),

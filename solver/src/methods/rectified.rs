@@ -52,7 +52,10 @@ pub(crate) fn run_on(
         translation: t,
         inliers,
         iterations: res.iterations,
+        ransac_score: res.score.msac,
         refinement_iterations: r.iterations,
+        refinement_cost: Some(r.cost),
+        quality: Default::default(),
         angular_velocity: None,
         linear_velocity: None,
     })

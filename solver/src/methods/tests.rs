@@ -355,3 +355,68 @@ fn nrsrp_chooses_the_sign_of_t_on_undistorted_bearings() {
         );
     }
 }
+
+fn flags(p: &PairFile, method: Method) -> Vec<&'static str> {
+    run(p, &EstimateOptions::for_method(method))
+        .unwrap()
+        .quality
+        .flags()
+}
+
+#[test]
+fn quality_flags_fire_on_a_plane_and_a_one_centimetre_baseline() {
+    for seed in 1..4 {
+        let plane = pair(SimulationOptions {
+            plane_depth: Some(10.0),
+            seed,
+            ..Default::default()
+        });
+        // |C2| of about 1 cm.
+        let tiny = pair(SimulationOptions {
+            translation_std: 0.01 / 3f64.sqrt(),
+            seed,
+            ..Default::default()
+        });
+        for m in [Method::Rectified, Method::GrsrpPlus] {
+            assert!(
+                flags(&plane, m).contains(&"near_planar"),
+                "plane, {m}, seed {seed}"
+            );
+            assert!(
+                flags(&tiny, m).contains(&"translation_undetermined"),
+                "1 cm, {m}, seed {seed}"
+            );
+        }
+    }
+}
+
+#[test]
+fn quality_flags_stay_silent_on_the_papers_scenes() {
+    for (angular, seed) in [(0.5, 0), (0.5, 1), (1.5, 2), (2.5, 3), (2.5, 4), (2.5, 5)] {
+        let p = pair(SimulationOptions {
+            angular_velocity: angular,
+            seed,
+            ..Default::default()
+        });
+        for m in [
+            Method::Nrsrp,
+            Method::Grsrp,
+            Method::GrsrpPlus,
+            Method::Rectified,
+        ] {
+            let e = run(&p, &EstimateOptions::for_method(m)).unwrap();
+            assert!(
+                e.quality.flags().is_empty(),
+                "{m} at {angular} rad/s, seed {seed}: {:?}",
+                e.quality
+            );
+            assert!(e.quality.inlier_ratio > 0.3 && e.ransac_score.is_finite());
+        }
+    }
+    let few = pair(SimulationOptions {
+        points: 12,
+        seed: 2,
+        ..Default::default()
+    });
+    assert!(flags(&few, Method::Rectified).contains(&"too_few_inliers"));
+}

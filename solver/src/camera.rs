@@ -17,38 +17,49 @@ use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use thiserror::Error;
 
+/// Largest focal length, principal-point coordinate and image size accepted, pixels:
+/// beyond any real sensor, and small enough that products of pixel quantities stay finite.
+pub const MAX_PIXELS: f64 = 1e7;
+/// Smallest focal length accepted, pixels.
+pub const MIN_FOCAL: f64 = 1e-3;
+/// Longest frame readout accepted, `height × readout`, seconds.
+pub const MAX_FRAME_READOUT: f64 = 10.0;
+/// Largest angular velocity accepted, rad/s (consumer gyroscopes saturate near 35 rad/s).
+pub const MAX_ANGULAR_VELOCITY: f64 = 100.0;
+
 /// Why a camera or view is invalid. Each variant names the offending parameter.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum CameraError {
-    /// A focal length is zero, negative or not finite.
-    #[error("camera focal length `{name}` must be finite and positive, got {value}")]
+    /// A focal length is not finite or outside `[MIN_FOCAL, MAX_PIXELS]`.
+    #[error("camera focal length `{name}` must be between 1e-3 and 1e7 pixels, got {value}")]
     InvalidFocal {
         /// `"fx"` or `"fy"`.
         name: &'static str,
         /// The rejected value.
         value: f64,
     },
-    /// The principal point is not finite.
-    #[error("camera principal point `{name}` must be finite, got {value}")]
+    /// The principal point is not finite or further than `MAX_PIXELS` from the origin.
+    #[error("camera principal point `{name}` must be within ±1e7 pixels, got {value}")]
     InvalidPrincipalPoint {
         /// `"cx"` or `"cy"`.
         name: &'static str,
         /// The rejected value.
         value: f64,
     },
-    /// The readout time per row is zero, negative or not finite.
-    #[error("camera readout time per row must be finite and positive, got {0}")]
+    /// The readout time per row is negative, not finite, or makes a frame's readout longer
+    /// than `MAX_FRAME_READOUT` (0 is a global-shutter camera).
+    #[error("camera readout time per row must be >= 0 with height x readout <= 10 s, got {0}")]
     InvalidReadout(f64),
-    /// The image size is zero or not finite.
-    #[error("camera image size must be finite and positive, got {width}x{height}")]
+    /// The image size is not finite or outside `(0, MAX_PIXELS]`.
+    #[error("camera image size must be positive and at most 1e7 pixels, got {width}x{height}")]
     InvalidSize {
         /// Width in pixels.
         width: f64,
         /// Height in pixels.
         height: f64,
     },
-    /// The gyroscope angular velocity has a non-finite component.
-    #[error("gyro angular velocity must be finite, got [{0}, {1}, {2}]")]
+    /// The gyroscope angular velocity is not finite or faster than `MAX_ANGULAR_VELOCITY`.
+    #[error("gyro angular velocity must be finite and at most 100 rad/s, got [{0}, {1}, {2}]")]
     InvalidGyro(f64, f64, f64),
 }
 
@@ -87,30 +98,30 @@ impl Camera {
         }
     }
 
-    /// Check that all parameters are finite, focal lengths, size and readout positive.
+    /// Check that every parameter is finite and physically plausible: focal lengths in
+    /// `[MIN_FOCAL, MAX_PIXELS]`, principal point within `±MAX_PIXELS`, size in
+    /// `(0, MAX_PIXELS]`, readout `>= 0` (0: global shutter) with a frame readout of at most
+    /// `MAX_FRAME_READOUT`.
     pub fn validate(&self) -> Result<(), CameraError> {
         for (name, value) in [("fx", self.fx), ("fy", self.fy)] {
-            if !(value.is_finite() && value > 0.0) {
+            if !(MIN_FOCAL..=MAX_PIXELS).contains(&value) {
                 return Err(CameraError::InvalidFocal { name, value });
             }
         }
         for (name, value) in [("cx", self.cx), ("cy", self.cy)] {
-            if !value.is_finite() {
+            if !(value.abs() <= MAX_PIXELS) {
                 return Err(CameraError::InvalidPrincipalPoint { name, value });
             }
         }
-        if !(self.readout.is_finite() && self.readout > 0.0) {
-            return Err(CameraError::InvalidReadout(self.readout));
-        }
-        if !(self.width.is_finite()
-            && self.width > 0.0
-            && self.height.is_finite()
-            && self.height > 0.0)
-        {
+        let size_ok = |x: f64| x > 0.0 && x <= MAX_PIXELS;
+        if !(size_ok(self.width) && size_ok(self.height)) {
             return Err(CameraError::InvalidSize {
                 width: self.width,
                 height: self.height,
             });
+        }
+        if !(self.readout >= 0.0 && self.readout * self.height <= MAX_FRAME_READOUT) {
+            return Err(CameraError::InvalidReadout(self.readout));
         }
         Ok(())
     }
@@ -182,10 +193,10 @@ impl View {
         View::new(self.camera, self.omega)
     }
 
-    /// Validate the camera and that `ω` is finite.
+    /// Validate the camera and that `ω` is finite and at most `MAX_ANGULAR_VELOCITY`.
     pub fn validate(&self) -> Result<(), CameraError> {
         self.camera.validate()?;
-        if !self.omega.iter().all(|c| c.is_finite()) {
+        if !(self.omega.norm() <= MAX_ANGULAR_VELOCITY) {
             return Err(CameraError::InvalidGyro(
                 self.omega.x,
                 self.omega.y,
@@ -244,6 +255,25 @@ mod tests {
         let mut cam = Camera::paper();
         cam.cy = f64::NAN;
         assert!(cam.validate().is_err());
+        // Finite but implausible values are rejected too, naming the parameter.
+        let mut cam = Camera::paper();
+        cam.fy = 1e-300;
+        assert!(matches!(
+            cam.validate(),
+            Err(CameraError::InvalidFocal { name: "fy", .. })
+        ));
+        let mut cam = Camera::paper();
+        cam.cx = 1e308;
+        assert!(matches!(
+            cam.validate(),
+            Err(CameraError::InvalidPrincipalPoint { name: "cx", .. })
+        ));
+        let v = View::new(Camera::paper(), Vector3::new(1.7e308, 0.0, 0.0));
+        assert!(matches!(v.validate(), Err(CameraError::InvalidGyro(..))));
+        // Readout 0 is a global-shutter camera.
+        let mut cam = Camera::paper();
+        cam.readout = 0.0;
+        assert!(cam.validate().is_ok());
         let v = View::new(Camera::paper(), Vector3::new(f64::INFINITY, 0.0, 0.0));
         assert!(matches!(v.validate(), Err(CameraError::InvalidGyro(..))));
     }

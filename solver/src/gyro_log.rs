@@ -27,6 +27,13 @@ pub enum GyroLogError {
         /// Sample index.
         index: usize,
     },
+    /// An angular velocity faster than any gyroscope measures
+    /// ([`crate::camera::MAX_ANGULAR_VELOCITY`]).
+    #[error("sample {index}: angular velocity above 100 rad/s")]
+    Implausible {
+        /// Sample index.
+        index: usize,
+    },
     /// A timestamp equals the previous one.
     #[error("sample {index}: duplicate timestamp {time}")]
     DuplicateTime {
@@ -108,6 +115,9 @@ impl GyroLog {
         for (index, s) in samples.iter().enumerate() {
             if !s.iter().all(|x| x.is_finite()) {
                 return Err(GyroLogError::NonFinite { index });
+            }
+            if Vector3::new(s[1], s[2], s[3]).norm() > crate::camera::MAX_ANGULAR_VELOCITY {
+                return Err(GyroLogError::Implausible { index });
             }
             if let Some(&previous) = times.last() {
                 if s[0] == previous {

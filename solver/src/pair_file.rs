@@ -194,6 +194,7 @@ pub enum PairFileError {
 fn log_error(e: GyroLogError) -> PairFileError {
     let field = match &e {
         GyroLogError::NonFinite { index }
+        | GyroLogError::Implausible { index }
         | GyroLogError::DuplicateTime { index, .. }
         | GyroLogError::Unsorted { index, .. }
         | GyroLogError::Gap { index, .. } => format!("gyro_log.samples[{index}]"),
@@ -228,7 +229,10 @@ impl PairFile {
         };
         let log = spec.log().map_err(log_error)?;
         let duration = self.camera.height * self.camera.readout;
-        log.check_gaps(duration).map_err(log_error)?;
+        // A global-shutter camera (readout 0) reads each frame at one instant.
+        if duration > 0.0 {
+            log.check_gaps(duration).map_err(log_error)?;
+        }
         let view = |k: usize| -> Result<View, PairFileError> {
             let t0 = spec.row0_time(k);
             log.check_covers(t0, t0 + duration, &format!("image {}'s readout", k + 1))
@@ -271,8 +275,11 @@ impl PairFile {
         })?;
         if let Some(g) = &self.gyro {
             for (i, w) in g.iter().enumerate() {
-                if !w.iter().all(|x| x.is_finite()) {
-                    return Err(invalid(format!("gyro[{i}]"), "non-finite angular velocity"));
+                if !(Vector3::from(*w).norm() <= crate::camera::MAX_ANGULAR_VELOCITY) {
+                    return Err(invalid(
+                        format!("gyro[{i}]"),
+                        "angular velocity must be finite and at most 100 rad/s",
+                    ));
                 }
             }
         }

@@ -279,3 +279,19 @@ fn demo_prints_every_method() {
     }
     assert!(!out.contains("failed"), "{out}");
 }
+
+#[test]
+fn implausible_finite_values_are_bad_input_naming_the_field() {
+    let d = scratch("implausible");
+    for (field, edit) in [
+        ("camera.fy", ["camera", "fy", "1e-300"]),
+        ("camera.cx", ["camera", "cx", "1e308"]),
+    ] {
+        let p = edited_pair(&d, |v| {
+            v[edit[0]][edit[1]] = serde_json::Value::from(edit[2].parse::<f64>().unwrap())
+        });
+        assert_bad_input(&rspose(&["estimate", p.to_str().unwrap()]), field);
+    }
+    let p = edited_pair(&d, |v| v["gyro"][0][0] = serde_json::Value::from(1.7e308));
+    assert_bad_input(&rspose(&["estimate", p.to_str().unwrap()]), "gyro[0]");
+}

@@ -116,6 +116,7 @@ impl GyroCsv {
     pub fn error(&self, first: usize, e: &GyroLogError) -> CliError {
         let index = match e {
             GyroLogError::NonFinite { index }
+            | GyroLogError::Implausible { index }
             | GyroLogError::DuplicateTime { index, .. }
             | GyroLogError::Unsorted { index, .. }
             | GyroLogError::Gap { index, .. } => Some(first + index),
@@ -238,7 +239,13 @@ pub fn run(a: Args) -> Result<(), CliError> {
     if let Some(spec) = &pair.gyro_log {
         let first = spec.samples.first().map_or(0, |s| csv.index_at(s[0]));
         spec.log()
-            .and_then(|log| log.check_gaps(duration))
+            .and_then(|log| {
+                if duration > 0.0 {
+                    log.check_gaps(duration)
+                } else {
+                    Ok(())
+                }
+            })
             .map_err(|e| csv.error(first, &e))?;
     }
     let (v1, v2) = pair

@@ -65,8 +65,11 @@ pub fn estimate(
         refinement_iterations: res.iterations,
         refinement_cost: Some(res.cost),
         quality: Default::default(),
-        // The model's per-frame rotation is `−H λ ω` (see `NrsrpState`).
-        angular_velocity: Some([-s.phi[0] / per_frame1, -s.phi[1] / per_frame2]),
-        linear_velocity: Some([s.delta[0] / per_frame1, s.delta[1] / per_frame2]),
+        // The model's per-frame rotation is `−H λ ω` (see `NrsrpState`); a global-shutter
+        // camera (readout 0) has no rates to report.
+        angular_velocity: (per_frame1 > 0.0 && per_frame2 > 0.0)
+            .then(|| [-s.phi[0] / per_frame1, -s.phi[1] / per_frame2]),
+        linear_velocity: (per_frame1 > 0.0 && per_frame2 > 0.0)
+            .then(|| [s.delta[0] / per_frame1, s.delta[1] / per_frame2]),
     })
 }

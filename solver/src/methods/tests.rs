@@ -420,3 +420,30 @@ fn quality_flags_stay_silent_on_the_papers_scenes() {
     });
     assert!(flags(&few, Method::Rectified).contains(&"too_few_inliers"));
 }
+
+/// Readout 0 is a global-shutter camera: every row is read at once, the gyro changes
+/// nothing, and the gyro-aided methods must give the global-shutter answer.
+#[test]
+fn a_global_shutter_camera_makes_the_gyro_methods_agree_with_gsrp() {
+    let p = pair(SimulationOptions {
+        camera: crate::camera::Camera {
+            readout: 0.0,
+            ..crate::camera::Camera::paper()
+        },
+        angular_velocity: 2.5,
+        seed: 4,
+        ..Default::default()
+    });
+    let gt = p.ground_truth.as_ref().unwrap();
+    let gs = run(&p, &EstimateOptions::for_method(Method::Gsrp)).unwrap();
+    for m in [Method::Rectified, Method::Grsrp, Method::GrsrpPlus] {
+        let e = run(&p, &EstimateOptions::for_method(m)).unwrap();
+        let err = pose_errors(&e, gt);
+        assert!(
+            err.rotation_error_deg < 0.5 && err.translation_error_deg < 3.0,
+            "{m}: {err:?}"
+        );
+        let d = crate::geometry::rotation_error_deg(&gs.rotation, &e.rotation);
+        assert!(d < 0.2, "{m} differs from gsrp by {d} deg");
+    }
+}

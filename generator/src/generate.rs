@@ -116,7 +116,10 @@ pub fn generated_mod_rs(names: &[String]) -> String {
     );
     // rustfmt would reformat prettyplease's output and make the files stale.
     for n in names {
-        s.push_str(&format!("#[rustfmt::skip]\npub mod {n};\n"));
+        s.push_str(&format!(
+            "/// The solver of `templates/{n}.mp` (its [`Solver`]({n}::Solver) type implements \
+             `mingen_runtime::MinimalSolver`).\n#[rustfmt::skip]\npub mod {n};\n"
+        ));
     }
     s
 }

@@ -164,7 +164,11 @@ mod tests {
             let (sn, cs) = th.sin_cos();
             let r_wc = Matrix3::new(cs, 0.0, sn, 0.0, 1.0, 0.0, -sn, 0.0, cs);
             let xc = r_wc.transpose() * x;
-            assert!((cam.fx * xc.x / xc.z + cam.cx - p.x).abs() < 1e-6, "row {}", p.y);
+            assert!(
+                (cam.fx * xc.x / xc.z + cam.cx - p.x).abs() < 1e-6,
+                "row {}",
+                p.y
+            );
             assert!((cam.fy * xc.y / xc.z + cam.cy - p.y).abs() < 1e-6);
             if let Some(q) = last {
                 assert!(p.y > q.y, "points further down image further down");
@@ -172,7 +176,10 @@ mod tests {
             }
             last = Some(p);
             let b = undistort_bearing(&view, p.x, p.y);
-            assert!((b.x / b.z - 0.03).abs() < 1e-9, "undistorted line is vertical");
+            assert!(
+                (b.x / b.z - 0.03).abs() < 1e-9,
+                "undistorted line is vertical"
+            );
         }
         // The reversed turn pans left: u increases down the image.
         let left = RsPose {

@@ -41,15 +41,6 @@ pub(super) fn doc(s: impl AsRef<str>) -> TokenStream {
     quote!(#[doc = #s])
 }
 
-fn inner_doc(s: impl AsRef<str>) -> TokenStream {
-    let s = if s.as_ref().is_empty() {
-        String::new()
-    } else {
-        format!(" {}", s.as_ref())
-    };
-    quote!(#![doc = #s])
-}
-
 /// Everything `solve` needs, validated and indexed.
 struct Plan<'a> {
     spec: &'a SolverSpec,
@@ -341,13 +332,26 @@ pub fn emit_solver(spec: &SolverSpec) -> Result<String, EmitError> {
     }
     module_doc.push(String::new());
     module_doc.push("Do not edit: regenerate with `mingen generate`.".into());
-    let module_doc: Vec<TokenStream> = module_doc.iter().map(inner_doc).collect();
+    // Plain comments, not `//!`: an included file (`include!`) may not have inner
+    // attributes, and the same text documents the `Solver` type.
+    let comment: String = module_doc
+        .iter()
+        .map(|l| {
+            if l.is_empty() {
+                "//\n".to_string()
+            } else {
+                format!("// {l}\n")
+            }
+        })
+        .collect();
+    let solver_doc: Vec<TokenStream> = module_doc[..module_doc.len() - 2].iter().map(doc).collect();
 
     let max = lit(nb);
     let set = rt::solution_set();
+    let solver_trait = rt::minimal_solver();
+    let stages = rt::stages();
+    let name = &layout.name;
     let tokens = quote! {
-        #(#module_doc)*
-
         #data_items
 
         #solution_items
@@ -359,11 +363,30 @@ pub fn emit_solver(spec: &SolverSpec) -> Result<String, EmitError> {
         pub type Solutions = #set<Solution, MAX_SOLUTIONS>;
 
         #solve_fn
+
+        #(#solver_doc)*
+        #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+        pub struct Solver;
+
+        impl #solver_trait for Solver {
+            const NAME: &'static str = #name;
+            const MAX_SOLUTIONS: usize = MAX_SOLUTIONS;
+            const TEMPLATE_SHAPE: [usize; 4] = TEMPLATE_SHAPE;
+            type Data = Data;
+            type Solution = Solution;
+            type Solutions = Solutions;
+            fn solve(data: &Data) -> Solutions {
+                solve(data)
+            }
+            fn solve_staged<S: #stages>(data: &Data, stages: &mut S) -> Solutions {
+                solve_staged(data, stages)
+            }
+        }
     };
     let file: syn::File = syn::parse2(tokens).map_err(|e| EmitError::Internal(e.to_string()))?;
     let body = prettyplease::unparse(&file);
     Ok(format!(
-        "{}\n{}",
+        "{}\n{comment}\n{}",
         generated_header_for_path(&problem_path),
         body
     ))
@@ -655,7 +678,6 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let docs: Vec<TokenStream> = docs.iter().map(doc).collect();
     let solve = quote! {
         /// The elimination template's `[rows, cols, pivot columns, first reduced row]`.
-        #[doc(hidden)]
         pub const TEMPLATE_SHAPE: [usize; 4] = [#rows_l, #cols_l, #pivots_l, #first_row];
 
         #(#docs)*

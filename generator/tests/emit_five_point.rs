@@ -131,6 +131,7 @@ fn five_point_template() -> EliminationTemplate {
         columns,
         n_excess: 4,
         n_reducible: 6,
+        n_dependent: 0,
         basis,
         action,
     }
@@ -438,6 +439,7 @@ fn elimination_emission_parses() {
         columns: vec![s2, s.clone(), one.clone()],
         n_excess: 0,
         n_reducible: 1,
+        n_dependent: 0,
         basis: vec![s.clone(), one.clone()],
         action: s.clone(),
     };

@@ -86,6 +86,15 @@ fn nearest<S: MinimalSolver>(data: &S::Data, truth: &[f64]) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
+/// The median error is below `median` and all but the two worst below `worst`: near-
+/// degenerate random scenes may lose accuracy, not every instance must be exact.
+fn assert_recovered(mut errors: Vec<f64>, median: f64, worst: f64) {
+    errors.sort_by(f64::total_cmp);
+    let n = errors.len();
+    assert!(errors[n / 2] < median, "median {}", errors[n / 2]);
+    assert!(errors[n - 3] < worst, "{errors:?}");
+}
+
 #[test]
 fn five_point_recovers_the_planted_essential_matrix() {
     let mut rng = ChaCha8Rng::seed_from_u64(5);
@@ -106,13 +115,7 @@ fn five_point_recovers_the_planted_essential_matrix() {
         };
         errors.push(nearest::<gs5pt::Solver>(&data, &truth));
     }
-    errors.sort_by(f64::total_cmp);
-    assert!(
-        errors[errors.len() / 2] < 1e-9,
-        "median {}",
-        errors[errors.len() / 2]
-    );
-    assert!(errors[errors.len() - 3] < 1e-5, "{errors:?}");
+    assert_recovered(errors, 1e-9, 1e-5);
 }
 
 #[test]
@@ -140,13 +143,7 @@ fn six_point_focal_recovers_the_planted_focal_length() {
         };
         errors.push(nearest::<relpose_6pt_focal::Solver>(&data, &truth));
     }
-    errors.sort_by(f64::total_cmp);
-    assert!(
-        errors[errors.len() / 2] < 1e-8,
-        "median {}",
-        errors[errors.len() / 2]
-    );
-    assert!(errors[errors.len() - 3] < 1e-4, "{errors:?}");
+    assert_recovered(errors, 1e-8, 1e-4);
 }
 
 #[test]

@@ -237,24 +237,9 @@ fn emit_data_slots(layout: &ProblemLayout, idents: &[Ident]) -> Result<TokenStre
         doc(format!("Slot order: {order}.")),
     ];
     let d_to = doc("The flat form of the data (inverse of [`from_slots`](Self::from_slots)).");
-    let flat = rt::flat_values();
+    let flat_impl = flat_values_impl(&quote!(Data), &n, &quote!(from_slots), &quote!(to_slots));
     Ok(quote! {
-        impl #flat for Data {
-            const LEN: usize = #n;
-            fn from_flat(values: &[f64]) -> Option<Self> {
-                let slots: &[f64; #n] = values.try_into().ok()?;
-                Some(Data::from_slots(slots))
-            }
-            fn write_flat(&self, out: &mut [f64]) -> bool {
-                match out.get_mut(..#n) {
-                    Some(out) => {
-                        out.copy_from_slice(&self.to_slots());
-                        true
-                    }
-                    None => false,
-                }
-            }
-        }
+        #flat_impl
         impl Data {
             #d_slots
             pub const SLOTS: usize = #n;
@@ -364,7 +349,12 @@ fn emit_solution_unknowns(layout: &ProblemLayout, idents: &[Ident]) -> TokenStre
     ));
     let d_from =
         doc("The solution from its flat form (inverse of [`to_unknowns`](Self::to_unknowns)).");
-    let flat = rt::flat_values();
+    let flat_impl = flat_values_impl(
+        &quote!(Solution),
+        &n,
+        &quote!(from_unknowns),
+        &quote!(to_unknowns),
+    );
     quote! {
         impl Solution {
             #d_n
@@ -380,16 +370,30 @@ fn emit_solution_unknowns(layout: &ProblemLayout, idents: &[Ident]) -> TokenStre
                 Solution { #(#inits)* }
             }
         }
-        impl #flat for Solution {
+        #flat_impl
+    }
+}
+
+/// `impl FlatValues for TY` through its inherent array conversions `from(&[f64; N]) -> TY`
+/// and `to(&self) -> [f64; N]`.
+fn flat_values_impl(
+    ty: &TokenStream,
+    n: &proc_macro2::Literal,
+    from: &TokenStream,
+    to: &TokenStream,
+) -> TokenStream {
+    let flat = rt::flat_values();
+    quote! {
+        impl #flat for #ty {
             const LEN: usize = #n;
             fn from_flat(values: &[f64]) -> Option<Self> {
-                let unknowns: &[f64; #n] = values.try_into().ok()?;
-                Some(Solution::from_unknowns(unknowns))
+                let values: &[f64; #n] = values.try_into().ok()?;
+                Some(#ty::#from(values))
             }
             fn write_flat(&self, out: &mut [f64]) -> bool {
                 match out.get_mut(..#n) {
                     Some(out) => {
-                        out.copy_from_slice(&self.to_unknowns());
+                        out.copy_from_slice(&self.#to());
                         true
                     }
                     None => false,

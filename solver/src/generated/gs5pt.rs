@@ -23,8 +23,8 @@ pub struct Data {
 impl mingen_runtime::FlatValues for Data {
     const LEN: usize = 36;
     fn from_flat(values: &[f64]) -> Option<Self> {
-        let slots: &[f64; 36] = values.try_into().ok()?;
-        Some(Data::from_slots(slots))
+        let values: &[f64; 36] = values.try_into().ok()?;
+        Some(Data::from_slots(values))
     }
     fn write_flat(&self, out: &mut [f64]) -> bool {
         match out.get_mut(..36) {
@@ -142,8 +142,8 @@ impl Solution {
 impl mingen_runtime::FlatValues for Solution {
     const LEN: usize = 3;
     fn from_flat(values: &[f64]) -> Option<Self> {
-        let unknowns: &[f64; 3] = values.try_into().ok()?;
-        Some(Solution::from_unknowns(unknowns))
+        let values: &[f64; 3] = values.try_into().ok()?;
+        Some(Solution::from_unknowns(values))
     }
     fn write_flat(&self, out: &mut [f64]) -> bool {
         match out.get_mut(..3) {

@@ -84,8 +84,17 @@ pub fn plan_file(path: &Path, options: &TemplateOptions) -> Result<SolverPlan, G
     Ok(plan(problem, &path.display().to_string(), options)?)
 }
 
-/// Emits the solver source of a planned problem.
+/// Emits the solver source of a planned problem, as checked in under
+/// `solver/src/generated/` (header naming `templates/<name>.mp`).
 pub fn emit_plan(plan: &SolverPlan) -> Result<String, GenerateError> {
+    emit_plan_from(plan, &format!("templates/{}.mp", plan.problem.layout.name))
+}
+
+/// Emits the solver source of a planned problem, its header naming the problem file
+/// `problem_path`. The source is a self-contained module body for any crate that depends
+/// on `mingen-runtime`: it names no `crate::` path and has no inner attributes, so it can
+/// be a module file (`mod name;`) or `include!`d into `mod name { ... }`.
+pub fn emit_plan_from(plan: &SolverPlan, problem_path: &str) -> Result<String, GenerateError> {
     let layout = &plan.problem.layout;
     let tracer = Tracer::new();
     let data = tracer.inputs(layout.data_slot_count());
@@ -94,7 +103,7 @@ pub fn emit_plan(plan: &SolverPlan) -> Result<String, GenerateError> {
         layout: layout.clone(),
         template: plan.generated.built.template.clone(),
         equations,
-        problem_path: format!("templates/{}.mp", layout.name),
+        problem_path: problem_path.to_string(),
         elimination: elimination.map(|e| EliminationSpec {
             eliminated: e.eliminated,
             remaining: e.remaining,
@@ -107,6 +116,30 @@ pub fn emit_plan(plan: &SolverPlan) -> Result<String, GenerateError> {
     })
 }
 
+/// Plans and emits one problem file into `out` (any path, e.g. a module of another crate);
+/// with `check`, writes nothing and only reports whether `out` is up to date. The header
+/// names the problem file as given.
+pub fn generate_to(
+    problem: &Path,
+    out: &Path,
+    check: bool,
+) -> Result<GeneratedFile, GenerateError> {
+    let plan = plan_file(problem, &TemplateOptions::default())?;
+    let source = emit_plan_from(&plan, &problem.display().to_string())?;
+    let io = |source| GenerateError::Io {
+        path: out.display().to_string(),
+        source,
+    };
+    let fresh = is_fresh(out, &source).map_err(io)?;
+    if !check && !fresh {
+        write_atomic(out, &source).map_err(io)?;
+    }
+    Ok(GeneratedFile {
+        path: out.to_path_buf(),
+        fresh,
+    })
+}
+
 /// The generated `solver/src/generated/mod.rs` declaring one module per problem.
 pub fn generated_mod_rs(names: &[String]) -> String {
     let mut s = String::from(
@@ -116,7 +149,10 @@ pub fn generated_mod_rs(names: &[String]) -> String {
     );
     // rustfmt would reformat prettyplease's output and make the files stale.
     for n in names {
-        s.push_str(&format!("#[rustfmt::skip]\npub mod {n};\n"));
+        s.push_str(&format!(
+            "/// The solver of `templates/{n}.mp` (its [`Solver`]({n}::Solver) type implements \
+             `mingen_runtime::MinimalSolver`).\n#[rustfmt::skip]\npub mod {n};\n"
+        ));
     }
     s
 }

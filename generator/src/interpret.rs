@@ -9,7 +9,7 @@
 //! monomials, not only `v[x_i] / v[1]`).
 
 use crate::algebra::{Monomial, Poly};
-use crate::template::EliminationTemplate;
+use crate::template::{EliminationTemplate, ShapeError};
 use nalgebra::{Complex, DMatrix, Schur};
 use std::collections::HashMap;
 
@@ -90,39 +90,17 @@ pub const INTERPRET_PIVOT_TOL: f64 = 1e-12;
 /// `REAL_TOL * max(1, max_i |x_i|)`.
 pub const REAL_TOL: f64 = 1e-8;
 
+/// The shared predicate [`EliminationTemplate::check_emittable`], in this module's errors.
 fn check_template(t: &EliminationTemplate) -> Result<(), InterpretError> {
-    let npiv = t.n_excess + t.n_reducible;
-    if t.columns.len() != npiv + t.basis.len() {
-        return Err(InterpretError::Malformed(format!(
-            "{} columns but {} excess + {} reducible + {} basis",
-            t.columns.len(),
-            t.n_excess,
-            t.n_reducible,
-            t.basis.len()
-        )));
-    }
-    if t.columns[npiv..] != t.basis[..] {
-        return Err(InterpretError::Malformed(
-            "the last columns are not the basis, in order".into(),
-        ));
-    }
-    if t.basis.is_empty() {
-        return Err(InterpretError::Malformed("empty basis".into()));
-    }
-    let bad = t
-        .columns
-        .iter()
-        .chain(std::iter::once(&t.action))
-        .chain(t.rows.iter().map(|r| &r.multiplier))
-        .find(|m| m.nvars() != t.nvars);
-    if let Some(m) = bad {
-        return Err(InterpretError::Malformed(format!(
-            "monomial {m:?} has {} variables, the template {}",
-            m.nvars(),
-            t.nvars
-        )));
-    }
-    Ok(())
+    t.check_emittable(&[]).map_err(|e| match e {
+        ShapeError::BasisLacks(m) => InterpretError::MissingReadout(m),
+        ShapeError::ActionNotCovered { basis, product } => {
+            InterpretError::ActionNotCovered { basis, product }
+        }
+        e @ (ShapeError::Malformed(_) | ShapeError::TooFewRows { .. }) => {
+            InterpretError::Malformed(e.to_string())
+        }
+    })
 }
 
 /// Fills the template matrix (rows x columns, see the convention) for these equations.
@@ -173,7 +151,8 @@ pub fn fill_template(
 }
 
 /// Gauss-Jordan elimination of a filled template (partial pivoting, rows scaled to unit
-/// max-norm first) on the `excess | reducible` columns. Returns, for each reducible column
+/// max-norm first) on the `excess | reducible` columns, the dependent excess columns left
+/// out as in the emitted solvers. Returns, for each reducible column
 /// `n_excess + k`, the row that holds its reduced polynomial `r + sum_j T[r, j] b_j`.
 pub fn reduce_template(
     m: &mut DMatrix<f64>,
@@ -196,6 +175,9 @@ pub fn reduce_template(
     let mut next = 0;
     let mut pivot_row = vec![usize::MAX; npiv];
     for (j, pr) in pivot_row.iter_mut().enumerate() {
+        if template.eliminated_column(j).is_none() {
+            continue;
+        }
         let mut p = next;
         let mut best = 0.0;
         for i in next..nr {
@@ -588,6 +570,7 @@ mod tests {
             ],
             n_excess: 1,
             n_reducible: 2,
+            n_dependent: 0,
             basis: vec![mono(&[1, 0]), mono(&[0, 1]), mono(&[0, 0])],
             action: mono(&[1, 0]),
         };

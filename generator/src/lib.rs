@@ -5,11 +5,15 @@
 //!  -> groebner -> quotient (basis, #solutions) -> template (build, shrink) -> emit`,
 //! with `interpret` + `audit` solving the same template in f64 without compilation.
 //!
+//! [`build`] is the build-script API (problem files to solvers in `$OUT_DIR`); the emitted
+//! code depends on the `mingen-runtime` crate only.
+//!
 //! All algebra is generic over [`algebra::Ring`], so one code path serves exact rationals,
 //! the prime fields used for Gröbner bases, `f64`, and traced expressions for code emission.
 
 pub mod algebra;
 pub mod audit;
+pub mod build;
 pub mod eliminate;
 pub mod emit;
 pub mod groebner;

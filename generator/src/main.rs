@@ -43,7 +43,9 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Emit solver/src/generated/<name>.rs for problem files (or all of templates/*.mp).
+    /// Emit solver/src/generated/<name>.rs for problem files (or all of templates/*.mp),
+    /// or, with --out, one problem's solver as a module for any crate that depends on
+    /// mingen-runtime.
     Generate {
         /// Problem files.
         files: Vec<PathBuf>,
@@ -53,6 +55,10 @@ enum Command {
         /// Write nothing; exit 1 naming each stale or missing generated file.
         #[arg(long)]
         check: bool,
+        /// Write the solver of the one problem file given here instead (a self-contained
+        /// module: it refers to mingen_runtime only).
+        #[arg(long, value_name = "PATH.rs")]
+        out: Option<PathBuf>,
     },
 }
 
@@ -109,7 +115,15 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Inspect { file, json } => inspect(&file, json),
-        Command::Generate { files, all, check } => generate(files, all, check),
+        Command::Generate {
+            files,
+            all,
+            check,
+            out,
+        } => match out {
+            Some(out) => generate_out(&files, all, &out, check),
+            None => generate(files, all, check),
+        },
         Command::Audit {
             file,
             instances,
@@ -252,14 +266,21 @@ fn print_plan(out: &mut String, plan: &mingen::pipeline::SolverPlan) {
             .join(" ")
     );
     outln!(out, "action: {}", t.action.display_with(&names));
-    let (rows, cols) = t.size();
+    let (rows, cols) = t.eliminated_size();
     outln!(
         out,
         "template: {rows} x {cols} ({} excess, {} reducible, {} basis columns)",
-        t.n_excess,
+        t.n_excess - t.n_dependent,
         t.n_reducible,
         t.basis.len()
     );
+    if t.n_dependent > 0 {
+        outln!(
+            out,
+            "  (and {} excess columns that are linear combinations of the others, left out)",
+            t.n_dependent
+        );
+    }
     outln!(out, "shrinking:");
     for (step, r, c) in &g.built.history {
         outln!(out, "  {r:>5} x {c:<5} {step}");
@@ -299,12 +320,39 @@ fn audit(file: &Path, instances: usize, seed: u64, as_json: bool) -> Result<(), 
         let text = serde_json::to_string_pretty(&report.to_json()).unwrap_or_default();
         return emit(&format!("{text}\n"));
     }
-    let (rows, cols) = plan.generated.built.template.size();
+    let (rows, cols) = plan.generated.built.template.eliminated_size();
     emit(&format!(
         "problem {} (template {rows} x {cols}, {} solutions)\n{report}",
         plan.problem.name(),
         plan.generated.count
     ))
+}
+
+fn generate_out(files: &[PathBuf], all: bool, out: &Path, check: bool) -> Result<(), CliError> {
+    let [file] = files else {
+        return Err(CliError {
+            message: "--out takes exactly one problem file".into(),
+            code: 2,
+        });
+    };
+    if all {
+        return Err(CliError {
+            message: "--out and --all cannot be combined".into(),
+            code: 2,
+        });
+    }
+    let f = mingen::generate::generate_to(file, out, check)?;
+    match (check, f.fresh) {
+        (_, true) => eprintln!("fresh   {}", out.display()),
+        (true, false) => {
+            return Err(CliError {
+                message: format!("{} is stale", out.display()),
+                code: 1,
+            })
+        }
+        (false, false) => eprintln!("wrote   {}", out.display()),
+    }
+    Ok(())
 }
 
 fn generate(files: Vec<PathBuf>, all: bool, check: bool) -> Result<(), CliError> {

@@ -171,14 +171,16 @@ impl SolverPlan {
     }
 
     /// The `inspect --json` keys computed by the algebra (DESIGN §6): `solutions`, `basis`,
-    /// `action`, `template` `{rows, cols}`, `eliminated`, `seconds`, plus `shrink_history`
-    /// and `per_action`.
+    /// `action`, `template` `{rows, cols}` (as eliminated by the emitted solver),
+    /// `eliminated`, `seconds`, plus `dependent_columns` (excess columns left out of the
+    /// elimination) and `per_action`.
     pub fn summary_json(&self) -> Value {
         let names = self.variable_names();
         let t = &self.generated.built.template;
-        let (rows, cols) = t.size();
+        let (rows, cols) = t.eliminated_size();
         json!({
             "solutions": self.generated.count,
+            "dependent_columns": t.n_dependent,
             "basis": t.basis.iter().map(|m| m.display_with(&names)).collect::<Vec<_>>(),
             "action": t.action.display_with(&names),
             "template": { "rows": rows, "cols": cols },

@@ -131,6 +131,7 @@ fn five_point_template() -> EliminationTemplate {
         columns,
         n_excess: 4,
         n_reducible: 6,
+        n_dependent: 0,
         basis,
         action,
     }
@@ -371,10 +372,10 @@ fn five_point_emission_is_deterministic_parses_and_has_the_header() {
         "pub e1: [[f64; 3]; 3]",
         "pub struct Solution",
         "pub const MAX_SOLUTIONS: usize = 10;",
-        "pub type Solutions = crate::runtime::SolutionSet<Solution, MAX_SOLUTIONS>;",
+        "pub type Solutions = mingen_runtime::SolutionSet<Solution, MAX_SOLUTIONS>;",
         "pub fn solve(data: &Data) -> Solutions",
-        "crate::runtime::lu_solve_template_fixed::<10, 20, 10, 4>(&mut m)",
-        "crate::runtime::real_eigenpairs_sturm::<10>(&a)",
+        "mingen_runtime::lu_solve_template_fixed::<10, 20, 10, 4>(&mut m)",
+        "mingen_runtime::real_eigenpairs_sturm::<10>(&a)",
         "let mut m = [0.0f64; 200];",
     ] {
         assert!(a.contains(needle), "missing `{needle}`");
@@ -438,6 +439,7 @@ fn elimination_emission_parses() {
         columns: vec![s2, s.clone(), one.clone()],
         n_excess: 0,
         n_reducible: 1,
+        n_dependent: 0,
         basis: vec![s.clone(), one.clone()],
         action: s.clone(),
     };
@@ -466,7 +468,7 @@ fn elimination_emission_parses() {
     assert_eq!(a, emit_solver(&spec).unwrap());
     syn::parse_file(&a).expect("emitted code parses");
     assert!(a.starts_with(&generated_header("toyelim")));
-    assert!(a.contains("crate::runtime::null_vector3(&rows)"));
+    assert!(a.contains("mingen_runtime::null_vector3(&rows)"));
     assert!(a.contains("t: [n[0], n[1], n[2]]"));
     std::fs::write(out_dir().join("toyelim.rs"), &a).unwrap();
 
@@ -514,6 +516,6 @@ fn large_templates_use_the_heap() {
     syn::parse_file(&a).expect("emitted code parses");
     assert!(a.starts_with(&generated_header("fivept_big")));
     assert!(a.contains("let mut m = vec![0.0f64; 900];"));
-    assert!(a.contains("crate::runtime::lu_solve_template_fixed::<45, 20, 10, 4>(&mut m)"));
+    assert!(a.contains("mingen_runtime::lu_solve_template_fixed::<45, 20, 10, 4>(&mut m)"));
     std::fs::write(out_dir().join("fivept_big.rs"), &a).unwrap();
 }

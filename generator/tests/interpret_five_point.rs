@@ -51,6 +51,7 @@ fn five_point_template() -> EliminationTemplate {
         columns,
         n_excess: 4,
         n_reducible: 6,
+        n_dependent: 0,
         basis,
         action: x,
     }
@@ -258,6 +259,7 @@ fn audit_with_eliminated_unknowns() {
         ],
         n_excess: 1,
         n_reducible: 2,
+        n_dependent: 0,
         basis: vec![m2([1, 0]), m2([0, 1]), m2([0, 0])],
         action: m2([1, 0]),
     };

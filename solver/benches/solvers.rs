@@ -6,13 +6,14 @@
 //!
 //! `cargo bench -p rspose --bench solvers -- --warm-up-time 1 --measurement-time 3`
 //!
-//! The per-stage breakdown (coefficients, elimination, eigen) on the same instances is
-//! printed by `cargo test --release -p rspose --test solver_stages -- --ignored --nocapture`.
+//! The per-stage breakdown (coefficients, elimination, eigen) on the same instances:
+//! `cargo bench -p rspose --bench stages`.
 
 #[path = "../tests/planted/mod.rs"]
 mod planted;
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use mingen_runtime::MinimalSolver;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rspose::generated::{grsrp, grsrp10, grsrp_gravity, gs5pt};
@@ -35,22 +36,10 @@ fn bench_solvers(c: &mut Criterion) {
         .map(|_| planted::gravity_instance(&mut rng).data)
         .collect();
 
-    macro_rules! bench {
-        ($name:literal, $module:ident, $pool:expr) => {{
-            let pool = &$pool;
-            let mut k = 0;
-            c.bench_function($name, |b| {
-                b.iter(|| {
-                    k = (k + 1) % POOL;
-                    black_box($module::solve(black_box(&pool[k])))
-                })
-            });
-        }};
-    }
-    bench!("gs5pt solve", gs5pt, g5);
-    bench!("grsrp10 solve", grsrp10, r10);
-    bench!("grsrp_gravity solve", grsrp_gravity, gr);
-    bench!("grsrp solve", grsrp, r20);
+    bench::<gs5pt::Solver>(c, &g5);
+    bench::<grsrp10::Solver>(c, &r10);
+    bench::<grsrp_gravity::Solver>(c, &gr);
+    bench::<grsrp::Solver>(c, &r20);
 
     // The whole 5-point solver from five bearing pairs to essential matrices (null space of
     // the epipolar constraints, gs5pt, E = x E1 + y E2 + z E3 + E4): the work PoseLib's
@@ -64,6 +53,17 @@ fn bench_solvers(c: &mut Criterion) {
             es.clear();
             essential_5pt(black_box(b1), black_box(b2), &mut es);
             black_box(es.len())
+        })
+    });
+}
+
+/// `<name> solve`: one call per iteration, cycling through the instance pool.
+fn bench<S: MinimalSolver>(c: &mut Criterion, pool: &[S::Data]) {
+    let mut k = 0;
+    c.bench_function(&format!("{} solve", S::NAME), |b| {
+        b.iter(|| {
+            k = (k + 1) % pool.len();
+            black_box(S::solve(black_box(&pool[k])))
         })
     });
 }

@@ -7,16 +7,16 @@
 //! row 0 of each image, R = R₂R₁ᵀ, t = R₂(C₁ − C₂), |t| = 1.
 //!
 //! - Minimal solvers: [`generated`] (emitted by `mingen` from `templates/*.mp`) on the
-//!   shared numeric [`runtime`], adapted for the estimator in [`minimal`].
+//!   numeric back end of the `mingen-runtime` crate, adapted for the estimator in
+//!   [`minimal`].
 //! - Model: [`camera`], [`rolling_shutter`], [`geometry`], [`epipolar`].
 //! - Estimation: [`ransac`], [`refine`], [`methods`] (one file per method) behind
 //!   [`estimate_relative_pose`].
 //! - Data and evaluation: [`pair_file`], [`simulate`], [`evaluate`], [`experiment`].
 
-// Minimal solvers and their numeric runtime.
+// Minimal solvers (their numeric back end is the mingen-runtime crate).
 pub mod generated;
 pub mod minimal;
-pub mod runtime;
 
 // Camera model and geometry.
 pub mod calibrate;

@@ -1,5 +1,6 @@
-//! Adapter between the estimator and the minimal solvers emitted into `crate::generated`.
-//! Only this file changes if the generated API shifts.
+//! Adapter between the estimator and the minimal solvers emitted into `crate::generated`
+//! (each a `mingen_runtime::MinimalSolver`). Only this file changes if the generated API
+//! shifts.
 //!
 //! Generated API coded against:
 //! - `generated::gs5pt::{Data { e1, e2, e3, e4 }, Solution { x, y, z }, solve}`: the four
@@ -13,6 +14,7 @@
 //! as a non-minimal alternative to the 5-point solver ([`EssentialSolver::EightPoint`]).
 
 use crate::geometry::{epipolar_nullspace, exp_so3};
+use mingen_runtime::{FlatValues, MinimalSolver};
 use nalgebra::{Matrix3, SMatrix, Vector3};
 
 use crate::generated;
@@ -147,43 +149,58 @@ pub struct GrsrpSample {
     pub r0: Matrix3<f64>,
 }
 
+impl GrsrpSample {
+    /// The flat data of the `grsrp10` / `grsrp` problem files (their data declarations are
+    /// the same): `x1[5]: point, x2[5]: point, v1[5], v2[5], w1: vec3, w2: vec3,
+    /// R0: rotation`, in the slot order of [`FlatValues`].
+    fn slots(&self) -> [f64; GRSRP_SLOTS] {
+        let mut s = [0.0; GRSRP_SLOTS];
+        let points = self.x1.iter().chain(&self.x2).flatten();
+        let scalars = self.v1.iter().chain(&self.v2);
+        let vectors = self.w1.iter().chain(self.w2.iter());
+        let r0 = (0..9).map(|k| &self.r0[(k / 3, k % 3)]);
+        for (d, x) in s
+            .iter_mut()
+            .zip(points.chain(scalars).chain(vectors).chain(r0))
+        {
+            *d = *x;
+        }
+        s
+    }
+}
+
+/// Data slots of the G-RSRP problem files: 2 x 5 points (2 slots each), 2 x 5 rows,
+/// 2 rates (3 each), `R_0` (9).
+const GRSRP_SLOTS: usize = 20 + 10 + 6 + 9;
+
+/// Runs the G-RSRP solver `S` on `sample`; its unknowns are `a[3], t[3]` (in that order).
+fn solve_grsrp<S: MinimalSolver>(
+    sample: &GrsrpSample,
+    out: &mut Vec<(Matrix3<f64>, Vector3<f64>)>,
+) {
+    let Some(data) = S::Data::from_flat(&sample.slots()) else {
+        return;
+    };
+    let mut u = [0.0; 6];
+    for sol in S::solve(&data).as_ref() {
+        if !sol.write_flat(&mut u) {
+            return;
+        }
+        let a = Vector3::new(u[0], u[1], u[2]);
+        let t = Vector3::new(u[3], u[4], u[5]);
+        let n = t.norm();
+        if a.iter().all(|x| x.is_finite()) && n.is_finite() && n > 0.0 {
+            out.push((sample.r0 * exp_so3(&a), t / n));
+        }
+    }
+}
+
 impl GrsrpSolver {
     /// Solve one sample; appends `(R = R_0 exp([a]×), t / |t|)` for each finite solution.
     pub fn solve(&self, s: &GrsrpSample, out: &mut Vec<(Matrix3<f64>, Vector3<f64>)>) {
-        // grsrp10 and grsrp are emitted from problem files with the same data
-        // declarations, hence structurally identical `Data` types.
-        macro_rules! data {
-            ($module:ident) => {
-                generated::$module::Data {
-                    x1: s.x1,
-                    x2: s.x2,
-                    v1: s.v1,
-                    v2: s.v2,
-                    w1: s.w1.into(),
-                    w2: s.w2.into(),
-                    r0: rows(&s.r0),
-                }
-            };
-        }
-        let push = |a: [f64; 3], t: [f64; 3], out: &mut Vec<(Matrix3<f64>, Vector3<f64>)>| {
-            let a = Vector3::from(a);
-            let t = Vector3::from(t);
-            let n = t.norm();
-            if a.iter().all(|x| x.is_finite()) && n.is_finite() && n > 0.0 {
-                out.push((s.r0 * exp_so3(&a), t / n));
-            }
-        };
         match self {
-            GrsrpSolver::Ten => {
-                for sol in generated::grsrp10::solve(&data!(grsrp10)).iter() {
-                    push(sol.a, sol.t, out);
-                }
-            }
-            GrsrpSolver::Twenty => {
-                for sol in generated::grsrp::solve(&data!(grsrp)).iter() {
-                    push(sol.a, sol.t, out);
-                }
-            }
+            GrsrpSolver::Ten => solve_grsrp::<generated::grsrp10::Solver>(s, out),
+            GrsrpSolver::Twenty => solve_grsrp::<generated::grsrp::Solver>(s, out),
         }
     }
 }
@@ -192,6 +209,34 @@ impl GrsrpSolver {
 mod tests {
     use super::*;
     use crate::geometry::{essential_from_pose, exp_so3};
+
+    #[test]
+    fn grsrp_slots_follow_the_generated_data_layout() {
+        let s = GrsrpSample {
+            x1: std::array::from_fn(|k| [k as f64, 10.0 + k as f64]),
+            x2: std::array::from_fn(|k| [20.0 + k as f64, 30.0 + k as f64]),
+            v1: std::array::from_fn(|k| 40.0 + k as f64),
+            v2: std::array::from_fn(|k| 50.0 + k as f64),
+            w1: Vector3::new(60.0, 61.0, 62.0),
+            w2: Vector3::new(70.0, 71.0, 72.0),
+            r0: Matrix3::from_fn(|i, j| 80.0 + (3 * i + j) as f64),
+        };
+        let typed = generated::grsrp10::Data {
+            x1: s.x1,
+            x2: s.x2,
+            v1: s.v1,
+            v2: s.v2,
+            w1: s.w1.into(),
+            w2: s.w2.into(),
+            r0: rows(&s.r0),
+        };
+        assert_eq!(s.slots(), typed.to_slots());
+        assert_eq!(
+            <generated::grsrp::Solver as MinimalSolver>::Data::from_flat(&s.slots())
+                .map(|d| d.to_slots()),
+            Some(typed.to_slots())
+        );
+    }
 
     #[test]
     fn eight_point_recovers_noise_free_essential() {

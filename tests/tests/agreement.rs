@@ -10,7 +10,7 @@
 //! - *agree*: same number of real solutions, all matched to [`REL_TOL`];
 //! - *count differs*: the smaller set is matched to [`REL_TOL`], the other has extra
 //!   solutions. The solvers decide "real" differently (the emitted one on the 2x2 blocks of
-//!   the real Schur form, `rspose::runtime::NEAR_REAL_TOL`; the interpreter on the
+//!   the real Schur form, `mingen_runtime::NEAR_REAL_TOL`; the interpreter on the
 //!   imaginary parts of the solution, `mingen::interpret::REAL_TOL`) and a near-double root
 //!   may split or merge by rounding. Allowed on at most [`MAX_COUNT_DIFFERS`] of instances;
 //! - *emitted found none*: the emitted solver returns nothing while the interpreter finds
@@ -339,7 +339,7 @@ fn nth_instance(name: &str, seed: u64, k: usize) -> (Vec<f64>, Vec<Poly<f64>>) {
 
 /// Reproducer (agreement_grsrp_gravity, instance 10 of seed 3): the interpreter finds 4 real
 /// solutions with residuals ~1e-10; the emitted solver returns none because
-/// `rspose::runtime::real_eigenpairs` gives up when `Schur::try_new` does not converge
+/// `mingen_runtime::real_eigenpairs` gives up when `Schur::try_new` does not converge
 /// within its cap of `30 N + 10` iterations.
 #[test]
 fn reproducer_grsrp_gravity_finds_the_real_solutions() {

@@ -11,7 +11,7 @@
 //! - `structs`: the emitted `Data` / `Solution` structs and their slot conversions.
 //! - `files`: header line, output path, atomic write, freshness check.
 //!
-//! All calls into `rspose::runtime` are spelled in `runtime_api` only.
+//! All calls into `mingen_runtime` are spelled in `runtime_api` only.
 //!
 //! Determinism: everything iterates in a fixed order (template rows, `Poly` terms in their
 //! `BTreeMap` order, DAG nodes in creation order), no hash map order reaches the output, and

@@ -7,10 +7,10 @@ use super::structs::{emit_data, emit_solution, field_ident, slot_access};
 use super::traced::Traced;
 use super::{EmitError, SolverSpec};
 use crate::algebra::{Monomial, MonomialOrder, Poly};
-use crate::template::EliminationTemplate;
+use crate::template::{EliminationTemplate, ShapeError};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
-use std::collections::{BTreeSet, HashMap};
+use std::collections::HashMap;
 
 /// Templates with at most this many rows are kept on the stack; larger ones use a `Vec`.
 pub const SMALL_TEMPLATE_ROWS: usize = 40;
@@ -41,15 +41,6 @@ pub(super) fn doc(s: impl AsRef<str>) -> TokenStream {
     quote!(#[doc = #s])
 }
 
-fn inner_doc(s: impl AsRef<str>) -> TokenStream {
-    let s = if s.as_ref().is_empty() {
-        String::new()
-    } else {
-        format!(" {}", s.as_ref())
-    };
-    quote!(#![doc = #s])
-}
-
 /// Everything `solve` needs, validated and indexed.
 struct Plan<'a> {
     spec: &'a SolverSpec,
@@ -67,67 +58,19 @@ struct Plan<'a> {
 fn validate_template(
     t: &EliminationTemplate,
     equations: &[Poly<Traced>],
+    names: &[String],
 ) -> Result<HashMap<Monomial, usize>, EmitError> {
     let bad = |s: String| Err(EmitError::Invalid(s));
-    let nb = t.basis.len();
-    if nb == 0 {
-        return bad("the quotient basis is empty".into());
-    }
-    if t.columns.len() != t.n_excess + t.n_reducible + nb {
-        return bad(format!(
-            "{} columns but {} excess + {} reducible + {} basis",
-            t.columns.len(),
-            t.n_excess,
-            t.n_reducible,
-            nb
-        ));
-    }
-    if t.columns[t.n_excess + t.n_reducible..] != t.basis[..] {
-        return bad("the last block of columns is not the basis (in basis order)".into());
-    }
-    let mut column_of = HashMap::new();
-    for (i, m) in t.columns.iter().enumerate() {
-        if m.nvars() != t.nvars {
-            return bad(format!("column {i} has {} variables", m.nvars()));
-        }
-        if column_of.insert(m.clone(), i).is_some() {
-            return bad(format!("column monomial {m:?} appears twice"));
-        }
-    }
-    if t.action.nvars() != t.nvars {
-        return bad("the action monomial has the wrong number of variables".into());
-    }
-    // Reducible columns are exactly the products action * b outside B.
-    let mut needed = BTreeSet::new();
-    for b in &t.basis {
-        let p = t.action.mul(b);
-        match column_of.get(&p) {
-            Some(&c) if c >= t.n_excess + t.n_reducible => {}
-            Some(&c) if c >= t.n_excess => {
-                needed.insert(c);
-            }
-            _ => {
-                return bad(format!(
-                    "action * {b:?} = {p:?} is neither a basis nor a reducible column"
-                ))
-            }
-        }
-    }
-    if needed.len() != t.n_reducible {
-        return bad(format!(
-            "{} reducible columns but {} products action * b fall outside the basis",
-            t.n_reducible,
-            needed.len()
-        ));
-    }
-    let pivots = t.n_excess + t.n_reducible;
-    if t.rows.len() < pivots {
-        return bad(format!(
-            "{} rows cannot eliminate {} excess + reducible columns",
-            t.rows.len(),
-            pivots
-        ));
-    }
+    t.check_emittable(names).map_err(|e| match e {
+        ShapeError::BasisLacks(_) => EmitError::Unsupported(e.to_string()),
+        e => EmitError::Invalid(e.to_string()),
+    })?;
+    let column_of: HashMap<Monomial, usize> = t
+        .columns
+        .iter()
+        .enumerate()
+        .map(|(i, m)| (m.clone(), i))
+        .collect();
     for (i, row) in t.rows.iter().enumerate() {
         let eq = equations.get(row.equation).ok_or_else(|| {
             EmitError::Invalid(format!(
@@ -156,9 +99,17 @@ impl<'a> Plan<'a> {
     fn new(spec: &'a SolverSpec) -> Result<Self, EmitError> {
         let t = &spec.template;
         let layout = &spec.layout;
-        let column_of = validate_template(t, &spec.equations)?;
         let n_unknowns = layout.unknown_count();
         let names = layout.unknown_names();
+        let template_names: Vec<String> = match &spec.elimination {
+            Some(el) => el
+                .remaining
+                .iter()
+                .map(|&i| names.get(i).cloned().unwrap_or_default())
+                .collect(),
+            None => names.clone(),
+        };
+        let column_of = validate_template(t, &spec.equations, &template_names)?;
         let mut source = vec![Err(usize::MAX); n_unknowns];
         let var_names: Vec<String>;
         match &spec.elimination {
@@ -283,9 +234,17 @@ pub fn emit_solver(spec: &SolverSpec) -> Result<String, EmitError> {
     let solution_items = emit_solution(layout)?;
     let (solve_fn, stats) = emit_solve(&plan)?;
 
-    let (rows, cols) = t.size();
+    let (rows, cols) = t.eliminated_size();
     let nb = t.basis.len();
     let basis: Vec<String> = t.basis.iter().map(|b| plan.mono(b)).collect();
+    let dependent = if t.n_dependent > 0 {
+        format!(
+            " ({} more excess monomials are linear combinations of these and left out)",
+            t.n_dependent
+        )
+    } else {
+        String::new()
+    };
     let mut module_doc = vec![
         format!(
             "Minimal solver for the problem `{}` (`{}`).",
@@ -314,9 +273,9 @@ pub fn emit_solver(spec: &SolverSpec) -> Result<String, EmitError> {
                 .join(", ")
         ),
         format!(
-            "Elimination template {rows} x {cols} ({} excess, {} reducible, {nb} basis columns), \
-             action `{}`, at most {nb} solutions.",
-            t.n_excess,
+            "Elimination template {rows} x {cols} ({} excess, {} reducible, {nb} basis \
+             columns){dependent}, action `{}`, at most {nb} solutions.",
+            t.n_excess - t.n_dependent,
             t.n_reducible,
             plan.mono(&t.action)
         ),
@@ -341,13 +300,26 @@ pub fn emit_solver(spec: &SolverSpec) -> Result<String, EmitError> {
     }
     module_doc.push(String::new());
     module_doc.push("Do not edit: regenerate with `mingen generate`.".into());
-    let module_doc: Vec<TokenStream> = module_doc.iter().map(inner_doc).collect();
+    // Plain comments, not `//!`: an included file (`include!`) may not have inner
+    // attributes, and the same text documents the `Solver` type.
+    let comment: String = module_doc
+        .iter()
+        .map(|l| {
+            if l.is_empty() {
+                "//\n".to_string()
+            } else {
+                format!("// {l}\n")
+            }
+        })
+        .collect();
+    let solver_doc: Vec<TokenStream> = module_doc[..module_doc.len() - 2].iter().map(doc).collect();
 
     let max = lit(nb);
     let set = rt::solution_set();
+    let solver_trait = rt::minimal_solver();
+    let stages = rt::stages();
+    let name = &layout.name;
     let tokens = quote! {
-        #(#module_doc)*
-
         #data_items
 
         #solution_items
@@ -359,11 +331,30 @@ pub fn emit_solver(spec: &SolverSpec) -> Result<String, EmitError> {
         pub type Solutions = #set<Solution, MAX_SOLUTIONS>;
 
         #solve_fn
+
+        #(#solver_doc)*
+        #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+        pub struct Solver;
+
+        impl #solver_trait for Solver {
+            const NAME: &'static str = #name;
+            const MAX_SOLUTIONS: usize = MAX_SOLUTIONS;
+            const TEMPLATE_SHAPE: [usize; 4] = TEMPLATE_SHAPE;
+            type Data = Data;
+            type Solution = Solution;
+            type Solutions = Solutions;
+            fn solve(data: &Data) -> Solutions {
+                solve(data)
+            }
+            fn solve_staged<S: #stages>(data: &Data, stages: &mut S) -> Solutions {
+                solve_staged(data, stages)
+            }
+        }
     };
     let file: syn::File = syn::parse2(tokens).map_err(|e| EmitError::Internal(e.to_string()))?;
     let body = prettyplease::unparse(&file);
     Ok(format!(
-        "{}\n{}",
+        "{}\n{comment}\n{}",
         generated_header_for_path(&problem_path),
         body
     ))
@@ -437,9 +428,9 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let spec = plan.spec;
     let t = &spec.template;
     let layout = &spec.layout;
-    let (rows, cols) = t.size();
+    let (rows, cols) = t.eliminated_size();
     let nb = t.basis.len();
-    let pivots = t.n_excess + t.n_reducible;
+    let pivots = t.pivot_columns();
 
     // Data flattening, in slot order.
     let n_slots = layout.data_slot_count();
@@ -473,7 +464,10 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let mut fill_vals: Vec<Traced> = Vec::new();
     for (i, row) in t.rows.iter().enumerate() {
         for (m, c) in spec.equations[row.equation].terms() {
-            let col = plan.column_of[&row.multiplier.mul(m)];
+            // Dependent excess columns are not part of the eliminated matrix.
+            let Some(col) = t.eliminated_column(plan.column_of[&row.multiplier.mul(m)]) else {
+                continue;
+            };
             fill_pos.push(i * cols + col);
             fill_vals.push(c.clone());
         }
@@ -531,7 +525,9 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let mut single_source = None;
     for (j, b) in t.basis.iter().enumerate() {
         let p = t.action.mul(b);
-        let c = plan.column_of[&p];
+        let c = t
+            .eliminated_column(plan.column_of[&p])
+            .expect("action products are reducible or basis columns");
         let jl = lit(j);
         if c >= pivots {
             let k = lit(c - pivots);
@@ -622,7 +618,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     }
 
     let lu = rt::lu_solve_template();
-    let first_row = lit(t.n_excess);
+    let first_row = lit(t.n_excess - t.n_dependent);
     let eig = if nb <= STURM_MAX_BASIS {
         rt::real_eigenpairs_sturm()
     } else {
@@ -655,7 +651,6 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let docs: Vec<TokenStream> = docs.iter().map(doc).collect();
     let solve = quote! {
         /// The elimination template's `[rows, cols, pivot columns, first reduced row]`.
-        #[doc(hidden)]
         pub const TEMPLATE_SHAPE: [usize; 4] = [#rows_l, #cols_l, #pivots_l, #first_row];
 
         #(#docs)*

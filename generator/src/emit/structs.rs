@@ -1,6 +1,7 @@
 //! The emitted `Data` and `Solution` structs: one field per problem symbol, the slot
 //! order shared with `solve` and `mingen::instance`, and the slot/unknown conversions.
 
+use super::runtime_api as rt;
 use super::solver::{doc, lit};
 use super::EmitError;
 use crate::problem::{DataKind, DataSymbol, ProblemLayout};
@@ -236,7 +237,9 @@ fn emit_data_slots(layout: &ProblemLayout, idents: &[Ident]) -> Result<TokenStre
         doc(format!("Slot order: {order}.")),
     ];
     let d_to = doc("The flat form of the data (inverse of [`from_slots`](Self::from_slots)).");
+    let flat_impl = flat_values_impl(&quote!(Data), &n, &quote!(from_slots), &quote!(to_slots));
     Ok(quote! {
+        #flat_impl
         impl Data {
             #d_slots
             pub const SLOTS: usize = #n;
@@ -320,13 +323,22 @@ pub(super) fn emit_solution(layout: &ProblemLayout) -> Result<TokenStream, EmitE
 /// unknown order (`ProblemLayout::unknown_names`, eliminated unknowns included).
 fn emit_solution_unknowns(layout: &ProblemLayout, idents: &[Ident]) -> TokenStream {
     let mut values = Vec::new();
+    let mut inits = Vec::new();
     for (u, id) in layout.unknowns.iter().zip(idents) {
         match u.len {
-            None => values.push(quote!(self.#id)),
-            Some(n) => values.extend((0..n).map(|e| {
-                let e = lit(e);
-                quote!(self.#id[#e])
-            })),
+            None => {
+                let k = lit(values.len());
+                values.push(quote!(self.#id));
+                inits.push(quote!(#id: unknowns[#k],));
+            }
+            Some(n) => {
+                let ks: Vec<_> = (values.len()..values.len() + n).map(lit).collect();
+                values.extend((0..n).map(|e| {
+                    let e = lit(e);
+                    quote!(self.#id[#e])
+                }));
+                inits.push(quote!(#id: [#(unknowns[#ks]),*],));
+            }
         }
     }
     let n = lit(values.len());
@@ -335,6 +347,14 @@ fn emit_solution_unknowns(layout: &ProblemLayout, idents: &[Ident]) -> TokenStre
         "The solution as a flat array in the problem's unknown order: {}.",
         layout.unknown_names().join(", ")
     ));
+    let d_from =
+        doc("The solution from its flat form (inverse of [`to_unknowns`](Self::to_unknowns)).");
+    let flat_impl = flat_values_impl(
+        &quote!(Solution),
+        &n,
+        &quote!(from_unknowns),
+        &quote!(to_unknowns),
+    );
     quote! {
         impl Solution {
             #d_n
@@ -343,6 +363,41 @@ fn emit_solution_unknowns(layout: &ProblemLayout, idents: &[Ident]) -> TokenStre
             #[must_use]
             pub fn to_unknowns(&self) -> [f64; #n] {
                 [#(#values),*]
+            }
+            #d_from
+            #[must_use]
+            pub fn from_unknowns(unknowns: &[f64; #n]) -> Solution {
+                Solution { #(#inits)* }
+            }
+        }
+        #flat_impl
+    }
+}
+
+/// `impl FlatValues for TY` through its inherent array conversions `from(&[f64; N]) -> TY`
+/// and `to(&self) -> [f64; N]`.
+fn flat_values_impl(
+    ty: &TokenStream,
+    n: &proc_macro2::Literal,
+    from: &TokenStream,
+    to: &TokenStream,
+) -> TokenStream {
+    let flat = rt::flat_values();
+    quote! {
+        impl #flat for #ty {
+            const LEN: usize = #n;
+            fn from_flat(values: &[f64]) -> Option<Self> {
+                let values: &[f64; #n] = values.try_into().ok()?;
+                Some(#ty::#from(values))
+            }
+            fn write_flat(&self, out: &mut [f64]) -> bool {
+                match out.get_mut(..#n) {
+                    Some(out) => {
+                        out.copy_from_slice(&self.#to());
+                        true
+                    }
+                    None => false,
+                }
             }
         }
     }

@@ -22,7 +22,7 @@ use super::linalg::{gauss_jordan, is_squarefree};
 use super::select::{self, SelectedTemplate};
 use super::shrink::shrink;
 use super::validate::{nf_action_charpoly, validate, ValidationReport};
-use super::{EliminationTemplate, TemplateRow};
+use super::{EliminationTemplate, ShapeError, TemplateRow};
 use crate::algebra::{Fp, Monomial, MonomialOrder, Poly, Ring, P1};
 use crate::groebner::{groebner, GroebnerError};
 use crate::quotient::{analyse, AnalysisError, InstanceSource};
@@ -82,6 +82,9 @@ pub enum TemplateError {
     /// No action variable was given or none works.
     #[error("no usable action variable: {0}")]
     NoAction(String),
+    /// The template cannot be solved by elimination and eigenvectors.
+    #[error(transparent)]
+    Shape(#[from] ShapeError),
 }
 
 /// Options of template construction.
@@ -345,6 +348,7 @@ pub fn build_template<const P: u32>(
     };
     let template = assemble::<P>(nvars, &blocks, &kept, &action);
     debug_assert!(blocks.reducible_by::<P>(&kept.iter().collect::<Vec<_>>()));
+    template.check_emittable(&[])?;
     // Distinct eigenvalues of the action matrix on this instance (basis independent).
     let distinct = match groebner(nvars, eqs) {
         Ok(gb) => is_squarefree::<P>(&nf_action_charpoly::<P>(&gb, basis, &action)),
@@ -360,8 +364,10 @@ pub fn build_template<const P: u32>(
 
 /// Orders the final rows and columns into an [`EliminationTemplate`]: columns
 /// `excess (descending grevlex) | reducible (descending grevlex) | basis (given order)`,
-/// rows by their first non-zero column (then equation and multiplier), so that the left
-/// block is close to triangular.
+/// except that excess columns that are not pivot columns of the excess block on this
+/// instance (linear combinations of earlier ones) move to the end of the excess block as
+/// its dependent columns; rows by their first non-zero column (then equation and
+/// multiplier), so that the left block is close to triangular.
 pub(crate) fn assemble<const P: u32>(
     nvars: usize,
     blocks: &Blocks,
@@ -369,6 +375,21 @@ pub(crate) fn assemble<const P: u32>(
     action: &Monomial,
 ) -> EliminationTemplate {
     let excess = blocks.excess_of(kept.iter());
+    let refs: Vec<&Candidate> = kept.iter().collect();
+    let mut dense = blocks.dense_er(&refs, &excess);
+    let pivots: BTreeSet<usize> = gauss_jordan::<P>(&mut dense, excess.len(), false)
+        .into_iter()
+        .collect();
+    let (independent, dependent): (Vec<_>, Vec<_>) = excess
+        .into_iter()
+        .enumerate()
+        .partition(|(i, _)| pivots.contains(i));
+    let n_dependent = dependent.len();
+    let excess: Vec<Monomial> = independent
+        .into_iter()
+        .chain(dependent)
+        .map(|(_, m)| m)
+        .collect();
     let columns: Vec<Monomial> = excess
         .iter()
         .chain(blocks.reducible.iter())
@@ -398,6 +419,7 @@ pub(crate) fn assemble<const P: u32>(
         rows: rows.into_iter().map(|(_, c)| c.row.clone()).collect(),
         n_excess: excess.len(),
         n_reducible: blocks.reducible.len(),
+        n_dependent,
         columns,
         basis: blocks.basis.clone(),
         action: action.clone(),
@@ -460,7 +482,7 @@ pub fn best_template<const P: u32>(
         })
         .collect();
     let score = |b: &BuiltTemplate| {
-        let (r, c) = b.template.size();
+        let (r, c) = b.template.eliminated_size();
         r * c
     };
     let pick = |need_distinct: bool| {
@@ -517,6 +539,7 @@ pub fn generate<S: InstanceSource>(
     let analysis = analyse(src, opts.seed)?;
     let t1 = Instant::now();
     let (built, all) = best_template::<P1>(&analysis.equations, &analysis.basis, opts)?;
+    built.template.check_emittable(&src.var_names())?;
     let t2 = Instant::now();
     let validation = if opts.validate_instances > 0 {
         Some(validate(
@@ -535,7 +558,7 @@ pub fn generate<S: InstanceSource>(
         built,
         per_action: all
             .into_iter()
-            .map(|(v, r)| (v, r.ok().map(|b| b.template.size())))
+            .map(|(v, r)| (v, r.ok().map(|b| b.template.eliminated_size())))
             .collect(),
         validation,
         seconds: (

@@ -9,7 +9,10 @@
 //!   [`EliminationTemplate::basis`];
 //! - `reducible` (the `n_reducible` columns before) are the monomials `action * b`, b in B,
 //!   that are not in B;
-//! - `excess` (the first `n_excess` columns) are all other monomials the rows contain.
+//! - `excess` (the first `n_excess` columns) are all other monomials the rows contain;
+//!   the last `n_dependent` of them are linear combinations of the other excess columns
+//!   (on generic instances: the excess block may be rank-deficient) and are left out of the
+//!   elimination (see [`shape`]).
 //!
 //! Gauss-Jordan elimination of the template with this column order leaves, for each
 //! reducible monomial r, a row `r + sum_k T[r,k] b_k` (zero on excess and other reducible
@@ -27,8 +30,11 @@ use crate::algebra::Monomial;
 pub mod build;
 mod linalg;
 pub mod select;
+mod shape;
 pub mod shrink;
 pub mod validate;
+
+pub use shape::ShapeError;
 
 pub use build::{
     best_template, build_template, generate, BuiltTemplate, Generated, ShrinkStep, TemplateError,
@@ -61,6 +67,11 @@ pub struct EliminationTemplate {
     pub n_excess: usize,
     /// Number of reducible columns (second block).
     pub n_reducible: usize,
+    /// Number of dependent excess columns: the last `n_dependent` columns of the excess
+    /// block are, on generic instances, linear combinations of the excess columns before
+    /// them. Elimination leaves them out (after eliminating the other columns they are zero
+    /// in every row that is not a pivot row), so only `rows >= pivot_columns()` is needed.
+    pub n_dependent: usize,
     /// The quotient basis B (the last block of columns, same order).
     pub basis: Vec<Monomial>,
     /// The action monomial (usually a single unknown).

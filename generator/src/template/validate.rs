@@ -49,7 +49,9 @@ pub fn check_readoff(t: &EliminationTemplate) -> Result<(), TemplateError> {
 }
 
 /// The action matrix (|B| x |B|, raw residues) of the template on an instance mod P, or
-/// the first reducible monomial that the instance's template does not reduce.
+/// the first column that the elimination does not turn into a pivot. The matrix is
+/// eliminated as the emitted solvers eliminate it: without the dependent excess columns,
+/// every other excess and every reducible column a pivot, in order.
 pub fn template_action_matrix<const P: u32>(
     t: &EliminationTemplate,
     eqs: &[Poly<Fp<P>>],
@@ -57,17 +59,33 @@ pub fn template_action_matrix<const P: u32>(
     let filled = t.fill(eqs)?;
     let mut m: Vec<Vec<u32>> = filled
         .into_iter()
-        .map(|r| r.into_iter().map(|c| c.0).collect())
+        .map(|r| {
+            r.into_iter()
+                .enumerate()
+                .filter(|(j, _)| t.eliminated_column(*j).is_some())
+                .map(|(_, c)| c.0)
+                .collect()
+        })
         .collect();
-    let nc = t.columns.len();
-    let piv = gauss_jordan::<P>(&mut m, nc, true);
+    let (_, nc) = t.eliminated_size();
+    let npiv = t.pivot_columns();
+    let piv = gauss_jordan::<P>(&mut m, npiv, true);
+    if let Some(j) = (0..npiv).find(|&j| piv.get(j) != Some(&j)) {
+        let col = (0..t.columns.len())
+            .find(|&c| t.eliminated_column(c) == Some(j))
+            .unwrap_or(j);
+        return Err(TemplateError::Singular {
+            instance: 0,
+            monomial: show(&t.columns[col]),
+        });
+    }
     let nb = t.basis.len();
-    let red0 = t.n_excess;
-    // Row of each reducible column's pivot.
+    let red0 = t.n_excess - t.n_dependent;
+    // Row of each reducible column's pivot (template column numbering).
     let mut red_row: BTreeMap<usize, usize> = BTreeMap::new();
     for (r, &c) in piv.iter().enumerate() {
-        if c >= red0 && c < red0 + t.n_reducible {
-            red_row.insert(c, r);
+        if c >= red0 && c < npiv {
+            red_row.insert(c + t.n_dependent, r);
         }
     }
     let col_of: BTreeMap<&Monomial, usize> =

@@ -2,11 +2,15 @@
 //! Minimal solvers emitted by `mingen generate --all`, one module per problem file
 //! `templates/<name>.mp`. Regenerate with `cargo run --release -p mingen -- generate --all`.
 
+/// The solver of `templates/grsrp.mp` (its [`Solver`](grsrp::Solver) type implements `mingen_runtime::MinimalSolver`).
 #[rustfmt::skip]
 pub mod grsrp;
+/// The solver of `templates/grsrp10.mp` (its [`Solver`](grsrp10::Solver) type implements `mingen_runtime::MinimalSolver`).
 #[rustfmt::skip]
 pub mod grsrp10;
+/// The solver of `templates/grsrp_gravity.mp` (its [`Solver`](grsrp_gravity::Solver) type implements `mingen_runtime::MinimalSolver`).
 #[rustfmt::skip]
 pub mod grsrp_gravity;
+/// The solver of `templates/gs5pt.mp` (its [`Solver`](gs5pt::Solver) type implements `mingen_runtime::MinimalSolver`).
 #[rustfmt::skip]
 pub mod gs5pt;

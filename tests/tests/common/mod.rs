@@ -2,55 +2,58 @@
 //! and the shipped problem files.
 #![allow(dead_code)]
 
+use mingen_runtime::{FlatValues, MinimalSolver};
 use std::path::{Path, PathBuf};
 
-/// One emitted solver (`rspose::generated::<name>`) seen through its flat forms:
-/// `Data::from_slots` in, `Solution::to_unknowns` out.
+/// One emitted solver (`rspose::generated::<name>::Solver`) seen through its flat forms
+/// (`mingen_runtime::FlatValues`): data slots in, unknowns out.
 pub struct Emitted {
     /// Module name = problem name.
     pub name: &'static str,
-    /// `Data::SLOTS`.
+    /// Number of data slots.
     pub slots: usize,
-    /// `Solution::UNKNOWNS`.
+    /// Number of scalar unknowns.
     pub unknowns: usize,
     /// `MAX_SOLUTIONS`.
     pub max_solutions: usize,
-    /// `solve(&Data::from_slots(d))`, each solution as `to_unknowns()`.
+    /// The solutions of the data with these slots, each as its unknowns.
     pub solve: fn(&[f64]) -> Vec<Vec<f64>>,
-    /// `Data::from_slots(d).to_slots()`.
+    /// The data from these slots, back in flat form.
     pub round_trip: fn(&[f64]) -> Vec<f64>,
 }
 
-macro_rules! emitted {
-    ($($m:ident),* $(,)?) => {
-        vec![$({
-            use rspose::generated::$m as m;
-            Emitted {
-                name: stringify!($m),
-                slots: m::Data::SLOTS,
-                unknowns: m::Solution::UNKNOWNS,
-                max_solutions: m::MAX_SOLUTIONS,
-                solve: |d: &[f64]| {
-                    let slots: [f64; m::Data::SLOTS] =
-                        d.try_into().expect("one value per data slot");
-                    m::solve(&m::Data::from_slots(&slots))
-                        .iter()
-                        .map(|s| s.to_unknowns().to_vec())
-                        .collect()
-                },
-                round_trip: |d: &[f64]| {
-                    let slots: [f64; m::Data::SLOTS] =
-                        d.try_into().expect("one value per data slot");
-                    m::Data::from_slots(&slots).to_slots().to_vec()
-                },
-            }
-        }),*]
-    };
+/// The flat view of the solver type `S`.
+fn flat<S: MinimalSolver>() -> Emitted {
+    Emitted {
+        name: S::NAME,
+        slots: <S::Data as FlatValues>::LEN,
+        unknowns: <S::Solution as FlatValues>::LEN,
+        max_solutions: S::MAX_SOLUTIONS,
+        solve: |d: &[f64]| {
+            let data = S::Data::from_flat(d).expect("one value per data slot");
+            S::solve(&data)
+                .as_ref()
+                .iter()
+                .map(FlatValues::to_flat_vec)
+                .collect()
+        },
+        round_trip: |d: &[f64]| {
+            S::Data::from_flat(d)
+                .expect("one value per data slot")
+                .to_flat_vec()
+        },
+    }
 }
 
 /// Every module of `rspose::generated`, in name order.
 pub fn emitted_solvers() -> Vec<Emitted> {
-    emitted!(grsrp, grsrp10, grsrp_gravity, gs5pt)
+    use rspose::generated::{grsrp, grsrp10, grsrp_gravity, gs5pt};
+    vec![
+        flat::<grsrp::Solver>(),
+        flat::<grsrp10::Solver>(),
+        flat::<grsrp_gravity::Solver>(),
+        flat::<gs5pt::Solver>(),
+    ]
 }
 
 /// The emitted solver of problem `name`.

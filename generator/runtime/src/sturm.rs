@@ -639,8 +639,8 @@ fn root_bound<const N: usize>(p: &[f64; N]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::runtime::hessenberg::hessenberg;
-    use crate::runtime::real_eigenpairs;
+    use crate::hessenberg::hessenberg;
+    use crate::real_eigenpairs;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
@@ -793,7 +793,3 @@ mod tests {
         }
     }
 }
-
-#[cfg(test)]
-#[path = "sturm_timing.rs"]
-mod piece_timing;

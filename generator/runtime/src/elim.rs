@@ -4,13 +4,9 @@
 //! columns are to be eliminated (the template's `excess | reducible` blocks) and whose
 //! remaining `cols - pivot_cols` columns are the right-hand side (the basis block).
 //!
-//! Measured (2-core shared VM, Xeon ~2.6 GHz, x86-64 baseline SSE2; minimum of
-//! interleaved batches from `tests/runtime_timing.rs`, copy of the input included):
-//! 10x20 dense: `gauss_jordan` ~0.85-0.93 µs, `lu_solve_template(first_row = 4)`
-//! ~0.66-0.72 µs. 100x120 (15 % dense + diagonal, fills in), criterion medians under
-//! load: `gauss_jordan` ~550-630 µs, `lu_solve_template(first_row = 80)` ~300-340 µs.
-//! `lu_solve_template` does less work because it back-substitutes only the rows the
-//! action matrix needs; prefer it in emitted code.
+//! `lu_solve_template` does less work than `gauss_jordan` because it back-substitutes only
+//! the rows the action matrix needs; emitted solvers use its fixed-size form
+//! (`benches/runtime.rs` compares them).
 
 /// Relative pivot tolerance: a pivot whose magnitude is at most `PIVOT_TOL * max|m_ij|`
 /// (over the whole input) makes the elimination fail.

@@ -127,6 +127,13 @@ impl<T: Copy + PartialEq, const N: usize> PartialEq for SolutionSet<T, N> {
     }
 }
 
+impl<T: Copy, const N: usize> AsRef<[T]> for SolutionSet<T, N> {
+    #[inline]
+    fn as_ref(&self) -> &[T] {
+        self.as_slice()
+    }
+}
+
 impl<T: Copy, const N: usize> Index<usize> for SolutionSet<T, N> {
     type Output = T;
     /// Panics if `i >= len()`, like slice indexing.

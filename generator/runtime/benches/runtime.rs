@@ -1,14 +1,18 @@
-//! Timings of the numeric runtime used by emitted solvers.
-//! `cargo bench -p rspose --bench runtime`
+//! Timings of the numeric runtime used by emitted solvers: the elimination routines and
+//! the eigen back ends side by side on the same matrices.
+//! `cargo bench -p mingen-runtime --bench runtime`
 //!
 //! Each elimination iteration includes copying the template into the work buffer
 //! (10x20: 200 f64, ~20 ns), since emitted solvers fill a fresh matrix every call.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use mingen_runtime::{
+    gauss_jordan, lu_solve_template, lu_solve_template_fixed, real_eigenpairs, real_eigenpairs_hqr,
+    real_eigenpairs_sturm,
+};
 use nalgebra::SMatrix;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rspose::runtime::{gauss_jordan, lu_solve_template, real_eigenpairs};
 
 /// A random template: dense left block for small sizes; for big ones a sparse-ish block
 /// (density `d`) plus a strong diagonal so that it is non-singular.
@@ -44,6 +48,13 @@ fn bench_elimination(c: &mut Criterion) {
             m
         })
     });
+    c.bench_function("lu_solve_template_fixed 10x20 (first_row 4)", |b| {
+        b.iter(|| {
+            let mut m = black_box(small_arr);
+            black_box(lu_solve_template_fixed::<10, 20, 10, 4>(&mut m));
+            m
+        })
+    });
     let big = template(&mut rng, 100, 120, 0.15);
     let mut buf = big.clone();
     c.bench_function("gauss_jordan 100x120 (15% dense)", |b| {
@@ -69,6 +80,18 @@ fn bench_eigen(c: &mut Criterion) {
     });
     c.bench_function("real_eigenpairs 20x20", |b| {
         b.iter(|| real_eigenpairs(black_box(&m20)))
+    });
+    c.bench_function("real_eigenpairs_sturm 10x10", |b| {
+        b.iter(|| real_eigenpairs_sturm(black_box(&m10)))
+    });
+    c.bench_function("real_eigenpairs_sturm 20x20", |b| {
+        b.iter(|| real_eigenpairs_sturm(black_box(&m20)))
+    });
+    c.bench_function("real_eigenpairs_hqr 10x10", |b| {
+        b.iter(|| real_eigenpairs_hqr(black_box(&m10)))
+    });
+    c.bench_function("real_eigenpairs_hqr 20x20", |b| {
+        b.iter(|| real_eigenpairs_hqr(black_box(&m20)))
     });
     c.bench_function("nalgebra Schur::try_new only 10x10", |b| {
         b.iter(|| nalgebra::Schur::try_new(black_box(m10), f64::EPSILON, 310))

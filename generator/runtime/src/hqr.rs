@@ -308,7 +308,7 @@ pub fn real_eigenpairs_hqr<const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::runtime::real_eigenpairs;
+    use crate::real_eigenpairs;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 

@@ -7,7 +7,7 @@
 ///
 /// Timing `solve_staged` with an observer that stops after a stage gives the cumulative
 /// cost up to that stage (coefficients, elimination, action matrix); see
-/// `solver/tests/solver_stages.rs`.
+/// `benches/stages.rs` of `rspose`.
 pub trait Stages {
     /// The filled `rows x cols` template (row-major), before elimination.
     #[inline(always)]

@@ -1,4 +1,12 @@
-//! Numeric runtime shared by every emitted solver (`solver/src/generated/*.rs`).
+//! # mingen-runtime — the numeric back end of the solvers `mingen` emits
+//!
+//! A crate that uses generated solvers depends on this crate only (the generator, `mingen`,
+//! is at most a build-dependency). Emitted code refers to items of this crate as
+//! `mingen_runtime::…` and to nalgebra through the re-export [`nalgebra`], so the crate
+//! that includes it needs no other dependency.
+//!
+//! - [`MinimalSolver`]: the trait every emitted solver type implements; [`FlatValues`]:
+//!   the flat forms of its data and solutions.
 //!
 //! Everything here is allocation-free for fixed sizes and never panics on any input
 //! (finite or not): degenerate or non-finite data yields `false`, `None` or an empty set.
@@ -22,12 +30,11 @@
 //! - [`null_vector3`]: unit null vector of an n x 3 matrix (recovery of eliminated
 //!   unknowns such as a translation direction).
 //!
-//! Measured on the action matrices the shipped solvers build (`tests/solver_stages.rs`,
-//! medians of interleaved rounds on a shared 2-core VM; absolute figures drift by up to 2x
-//! with the machine's load, ratios within a run do not): Sturm / QR / Schur at 10x10
-//! about 3.5 / 10 / 12 µs, 12x12 9 / 16 / 290 µs, 20x20 28 / 54 / 650 µs. Elimination:
-//! `lu_solve_template_fixed` is emitted (10x20: ~0.75 µs vs `gauss_jordan` ~1.0 µs; 90x102:
-//! 38 vs 69 µs; 80x100: 39 vs 76 µs).
+//! The back ends are compared side by side in `benches/runtime.rs` (`cargo bench -p
+//! mingen-runtime`) and, on the action matrices of the shipped solvers, in `rspose`'s
+//! `benches/stages.rs`.
+
+pub use nalgebra;
 
 mod eigen;
 mod elim;
@@ -35,6 +42,7 @@ mod hessenberg;
 mod hqr;
 mod null;
 mod solution_set;
+mod solver;
 mod stages;
 mod sturm;
 
@@ -43,5 +51,6 @@ pub use elim::{gauss_jordan, lu_solve_template, lu_solve_template_fixed, PIVOT_T
 pub use hqr::real_eigenpairs_hqr;
 pub use null::null_vector3;
 pub use solution_set::SolutionSet;
+pub use solver::{FlatValues, MinimalSolver};
 pub use stages::Stages;
 pub use sturm::real_eigenpairs_sturm;

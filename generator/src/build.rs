@@ -1,0 +1,250 @@
+//! Build-script API: turn a crate's problem files into solvers in `$OUT_DIR`, in the
+//! manner of `prost-build`.
+//!
+//! ```no_run
+//! // build.rs of a crate with `mingen` as build-dependency and `mingen-runtime` as
+//! // dependency:
+//! fn main() -> Result<(), Box<dyn std::error::Error>> {
+//!     mingen::build::Config::new()
+//!         .problems(&["solvers/mine.mp"])
+//!         .compile()?;
+//!     Ok(())
+//! }
+//! ```
+//!
+//! and in the crate, for the problem named `mine` (its `problem` line):
+//!
+//! ```text
+//! mod mine {
+//!     include!(concat!(env!("OUT_DIR"), "/mine.rs"));
+//! }
+//! // mine::solve(&mine::Data { .. }), or generically through mine::Solver, which
+//! // implements mingen_runtime::MinimalSolver.
+//! ```
+//!
+//! Each problem file becomes `<out_dir>/<name>.rs` (written only when its content
+//! changes), and `cargo:rerun-if-changed=<file>` is printed for it, so the build script
+//! reruns when a problem file changes and not otherwise.
+
+use crate::emit::{is_fresh, write_atomic};
+use crate::generate::{emit_plan_from, plan_file, GenerateError};
+use crate::template::TemplateOptions;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// Why [`Config::compile`] failed.
+#[derive(Debug, Error)]
+pub enum BuildError {
+    /// No output directory was set and `OUT_DIR` is not in the environment (not run by
+    /// cargo as a build script).
+    #[error("no output directory: set Config::out_dir or run from a build script (OUT_DIR)")]
+    NoOutDir,
+    /// [`Config::compile`] was called without problem files.
+    #[error("no problem files given to mingen::build::Config")]
+    NoProblems,
+    /// A problem file could not be read, parsed, analysed or emitted.
+    #[error("{file}: {source}")]
+    Generate {
+        /// The problem file.
+        file: PathBuf,
+        /// What went wrong.
+        source: GenerateError,
+    },
+    /// Two problem files declare the same problem name (they would write the same file).
+    #[error("problem `{name}` is declared by both {first} and {second}")]
+    DuplicateName {
+        /// The problem name.
+        name: String,
+        /// The first file declaring it.
+        first: PathBuf,
+        /// The second file declaring it.
+        second: PathBuf,
+    },
+    /// Writing a generated file failed.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong.
+        source: std::io::Error,
+    },
+}
+
+/// One solver written by [`Config::compile`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Compiled {
+    /// The problem name (the module to declare).
+    pub name: String,
+    /// The problem file.
+    pub problem: PathBuf,
+    /// The generated file, `<out_dir>/<name>.rs`.
+    pub path: PathBuf,
+    /// Whether the file already had this content (nothing was written).
+    pub unchanged: bool,
+}
+
+/// Which problem files to turn into solvers, and where to write them.
+#[derive(Clone, Debug)]
+pub struct Config {
+    problems: Vec<PathBuf>,
+    out_dir: Option<PathBuf>,
+    cargo_metadata: bool,
+    options: TemplateOptions,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Config {
+    /// No problem files yet; output to `$OUT_DIR`; prints `cargo:` lines.
+    pub fn new() -> Self {
+        Config {
+            problems: Vec::new(),
+            out_dir: None,
+            cargo_metadata: true,
+            options: TemplateOptions::default(),
+        }
+    }
+
+    /// Adds problem files (paths relative to the crate root in a build script). The
+    /// generated header names each file as given.
+    pub fn problems<P: AsRef<Path>>(&mut self, files: &[P]) -> &mut Self {
+        self.problems
+            .extend(files.iter().map(|f| f.as_ref().to_path_buf()));
+        self
+    }
+
+    /// Writes into `dir` instead of `$OUT_DIR`.
+    pub fn out_dir(&mut self, dir: impl Into<PathBuf>) -> &mut Self {
+        self.out_dir = Some(dir.into());
+        self
+    }
+
+    /// Whether to print `cargo:rerun-if-changed` lines (on by default; off outside build
+    /// scripts).
+    pub fn cargo_metadata(&mut self, on: bool) -> &mut Self {
+        self.cargo_metadata = on;
+        self
+    }
+
+    /// Template construction options (the defaults are those of `mingen generate`).
+    pub fn template_options(&mut self, options: TemplateOptions) -> &mut Self {
+        self.options = options;
+        self
+    }
+
+    /// Generates every problem's solver into `<out_dir>/<name>.rs`. Stops at the first
+    /// problem that fails; files of earlier problems are kept (each write is atomic).
+    pub fn compile(&self) -> Result<Vec<Compiled>, BuildError> {
+        if self.problems.is_empty() {
+            return Err(BuildError::NoProblems);
+        }
+        let out_dir = match &self.out_dir {
+            Some(d) => d.clone(),
+            None => std::env::var_os("OUT_DIR")
+                .map(PathBuf::from)
+                .ok_or(BuildError::NoOutDir)?,
+        };
+        if self.cargo_metadata {
+            // Printed first, so that a failing problem file is watched too.
+            for f in &self.problems {
+                println!("cargo:rerun-if-changed={}", f.display());
+            }
+        }
+        let mut seen: BTreeMap<String, PathBuf> = BTreeMap::new();
+        let mut compiled = Vec::new();
+        for file in &self.problems {
+            let generate = |source| BuildError::Generate {
+                file: file.clone(),
+                source,
+            };
+            let plan = plan_file(file, &self.options).map_err(generate)?;
+            let name = plan.problem.layout.name.clone();
+            if let Some(first) = seen.insert(name.clone(), file.clone()) {
+                return Err(BuildError::DuplicateName {
+                    name,
+                    first,
+                    second: file.clone(),
+                });
+            }
+            let source = emit_plan_from(&plan, &file.display().to_string()).map_err(generate)?;
+            let path = out_dir.join(format!("{name}.rs"));
+            let io = |source| BuildError::Io {
+                path: path.clone(),
+                source,
+            };
+            let unchanged = is_fresh(&path, &source).map_err(io)?;
+            if !unchanged {
+                std::fs::create_dir_all(&out_dir).map_err(io)?;
+                write_atomic(&path, &source).map_err(io)?;
+            }
+            compiled.push(Compiled {
+                name,
+                problem: file.clone(),
+                path,
+                unchanged,
+            });
+        }
+        Ok(compiled)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn root() -> &'static Path {
+        Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+    }
+
+    #[test]
+    fn writes_named_files_and_reports_errors() {
+        let dir = std::env::temp_dir().join(format!("mingen-build-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let five = root().join("templates/gs5pt.mp");
+        let out = Config::new()
+            .problems(&[&five])
+            .out_dir(&dir)
+            .cargo_metadata(false)
+            .compile()
+            .unwrap();
+        assert_eq!(out.len(), 1);
+        assert_eq!(out[0].name, "gs5pt");
+        assert!(!out[0].unchanged);
+        let text = std::fs::read_to_string(dir.join("gs5pt.rs")).unwrap();
+        assert!(text.contains("impl mingen_runtime::MinimalSolver for Solver"));
+        assert!(!text.contains("crate::"), "self-contained");
+        assert!(
+            !text.contains("//!"),
+            "no inner doc comments (include! rejects them)"
+        );
+        let again = Config::new()
+            .problems(&[&five])
+            .out_dir(&dir)
+            .cargo_metadata(false)
+            .compile()
+            .unwrap();
+        assert!(again[0].unchanged);
+        let dup = Config::new()
+            .problems(&[&five, &five])
+            .out_dir(&dir)
+            .cargo_metadata(false)
+            .compile();
+        assert!(matches!(dup, Err(BuildError::DuplicateName { .. })));
+        let missing = Config::new()
+            .problems(&[dir.join("missing.mp")])
+            .out_dir(&dir)
+            .cargo_metadata(false)
+            .compile();
+        assert!(matches!(missing, Err(BuildError::Generate { .. })));
+        assert!(matches!(
+            Config::new().out_dir(&dir).compile(),
+            Err(BuildError::NoProblems)
+        ));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

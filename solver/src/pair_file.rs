@@ -343,14 +343,22 @@ impl PairFile {
         Ok(pair)
     }
 
-    /// Read, parse and validate a pair file.
+    /// Read, parse and validate a pair file, streaming from the file into the typed
+    /// structure (no copy of the whole text in memory).
     pub fn load(path: impl AsRef<Path>) -> Result<Self, PairFileError> {
         let path = path.as_ref();
-        let s = std::fs::read_to_string(path).map_err(|source| PairFileError::Io {
+        let file = std::fs::File::open(path).map_err(|source| PairFileError::Io {
             path: path.to_path_buf(),
             source,
         })?;
-        Self::from_json_str(&s, path)
+        let reader = std::io::BufReader::with_capacity(1 << 16, file);
+        let pair: PairFile =
+            serde_json::from_reader(reader).map_err(|source| PairFileError::Parse {
+                path: path.to_path_buf(),
+                source,
+            })?;
+        pair.validate()?;
+        Ok(pair)
     }
 
     /// Compact JSON text of this file (one line).

@@ -295,3 +295,18 @@ fn implausible_finite_values_are_bad_input_naming_the_field() {
     let p = edited_pair(&d, |v| v["gyro"][0][0] = serde_json::Value::from(1.7e308));
     assert_bad_input(&rspose(&["estimate", p.to_str().unwrap()]), "gyro[0]");
 }
+
+#[test]
+fn simulate_refuses_point_counts_above_the_cap() {
+    let d = scratch("cap");
+    let out = d.join("huge.json");
+    let o = rspose(&[
+        "simulate",
+        "--points",
+        "1000000000",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_bad_input(&o, "points");
+    assert!(!out.exists());
+}

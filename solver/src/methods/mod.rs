@@ -17,6 +17,7 @@ pub mod nrsrp;
 mod pose_ransac;
 pub mod quality;
 pub mod rectified;
+mod subset;
 
 use crate::camera::{CameraError, View};
 use crate::minimal::{EssentialSolver, GrsrpSolver};
@@ -155,6 +156,9 @@ pub struct RobustOptions {
     pub final_refinement: bool,
     /// Sampler seed.
     pub seed: u64,
+    /// RANSAC and refinement use at most this many matches, a random subset; every match
+    /// is then classified against the final pose (default 20,000; see `methods::subset`).
+    pub max_points: usize,
 }
 
 /// Where `grsrp`/`grsrp+` take their initial rotation `R_0` from.
@@ -212,6 +216,7 @@ impl EstimateOptions {
                 local_optimisation: false,
                 final_refinement: false,
                 seed: 0,
+                max_points: 20_000,
             },
             ..Self::default()
         }
@@ -247,6 +252,7 @@ impl Default for EstimateOptions {
                 local_optimisation: true,
                 final_refinement: true,
                 seed: 0,
+                max_points: 20_000,
             },
             refinement: LmOptions::default(),
             essential_solver: EssentialSolver::FivePoint,
@@ -390,6 +396,9 @@ fn validate_options(o: &EstimateOptions) -> Result<(), EstimateError> {
     if o.robust.max_iterations == 0 {
         return bad("robust.max_iterations", "must be at least 1");
     }
+    if o.robust.max_points < 20 {
+        return bad("robust.max_points", "must be at least 20");
+    }
     if !(o.nrsrp_cauchy_px.is_finite() && o.nrsrp_cauchy_px > 0.0) {
         return bad("nrsrp_cauchy_px", "must be finite and positive");
     }
@@ -461,14 +470,29 @@ pub fn estimate_relative_pose(
     options: &EstimateOptions,
 ) -> Result<Estimate, EstimateError> {
     validate_input(view1, view2, matches, options)?;
-    let est = match options.method {
-        Method::Gsrp => gsrp::estimate(view1, view2, matches, options),
-        Method::Rectified => rectified::estimate(view1, view2, matches, options),
-        Method::Grsrp => grsrp::estimate(view1, view2, matches, options, false),
-        Method::GrsrpPlus => grsrp::estimate(view1, view2, matches, options, true),
-        Method::Nrsrp => nrsrp::estimate(view1, view2, matches, options),
+    let large = matches.len() > options.robust.max_points;
+    let subset: Vec<Match>;
+    let working = if large {
+        let idx = subset::subset_indices(
+            matches.len(),
+            options.robust.max_points,
+            options.robust.seed,
+        );
+        subset = idx.iter().map(|&i| matches[i]).collect();
+        &subset[..]
+    } else {
+        matches
+    };
+    let mut est = match options.method {
+        Method::Gsrp => gsrp::estimate(view1, view2, working, options),
+        Method::Rectified => rectified::estimate(view1, view2, working, options),
+        Method::Grsrp => grsrp::estimate(view1, view2, working, options, false),
+        Method::GrsrpPlus => grsrp::estimate(view1, view2, working, options, true),
+        Method::Nrsrp => nrsrp::estimate(view1, view2, working, options),
     }?;
-    let mut est = est;
+    if large {
+        est.inliers = subset::classify_all(view1, view2, matches, &est, options);
+    }
     // The bearings each method works on: gyro-undistorted, undistorted with `nrsrp`'s own
     // rotation estimates, or raw.
     let (b1, b2) = match (options.method, est.angular_velocity) {

@@ -447,3 +447,37 @@ fn a_global_shutter_camera_makes_the_gyro_methods_agree_with_gsrp() {
         assert!(d < 0.2, "{m} differs from gsrp by {d} deg");
     }
 }
+
+/// Above `max_points` matches the estimate comes from a random subset and every match is
+/// classified against it: the mask covers all matches, keeps most true inliers and
+/// rejects the outliers, and the pose is as accurate as from all matches.
+#[test]
+fn large_inputs_estimate_on_a_subset_and_classify_every_match() {
+    let p = pair(SimulationOptions {
+        points: 1500,
+        outlier_fraction: 0.3,
+        angular_velocity: 1.5,
+        seed: 6,
+        ..Default::default()
+    });
+    let gt = p.ground_truth.as_ref().unwrap();
+    for m in Method::ALL {
+        let mut o = EstimateOptions::for_method(m);
+        o.robust.max_points = 300;
+        let e = run(&p, &o).unwrap();
+        assert_eq!(e.inliers.len(), p.matches.len());
+        let kept_true = (0..p.matches.len())
+            .filter(|&i| gt.inliers[i] && e.inliers[i])
+            .count();
+        let kept_false = (0..p.matches.len())
+            .filter(|&i| !gt.inliers[i] && e.inliers[i])
+            .count();
+        assert!(kept_true > 600, "{m}: {kept_true} true inliers kept");
+        assert!(kept_false < 30, "{m}: {kept_false} outliers accepted");
+        // The global-shutter methods are inaccurate at 1.5 rad/s with or without a subset.
+        if !matches!(m, Method::Nrsrp | Method::Gsrp) {
+            let err = pose_errors(&e, gt);
+            assert!(err.rotation_error_deg < 1.0, "{m}: {err:?}");
+        }
+    }
+}

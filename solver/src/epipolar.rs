@@ -67,6 +67,22 @@ pub struct PointData {
     pub b2: Vec<Vector3<f64>>,
     /// Linearised undistortion `(I - v1 [w1]×) m1` of the paper's model.
     pub l1: Vec<Vector3<f64>>,
+    /// Per-point weights `σ_px / σ_i` of the Sampson residuals of the rolling-shutter models
+    /// (`[exact angular, paper]`; empty: all 1), from [`RowNoise`] (see
+    /// [`PointData::set_row_noise`]).
+    pub scale: [Vec<f64>; 2],
+}
+
+/// The noise of a match's epipolar residual, growing with its rows: pixel noise `σ_px`
+/// plus the displacement a gyro-rate error `σ_ω` causes at row `v`, `f λ v σ_ω`, in each
+/// image; for the paper's linearised model also its truncation error, `f (v λ |ω|)² / 2`.
+/// All in normalised image units (pixels over the focal length).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RowNoise {
+    /// Pixel noise, normalised units.
+    pub pixel: f64,
+    /// Gyro-rate noise times the readout of a row, `λ σ_ω` (rad/row).
+    pub rate_per_row: f64,
 }
 
 impl PointData {
@@ -85,6 +101,7 @@ impl PointData {
             b1: Vec::with_capacity(n),
             b2: Vec::with_capacity(n),
             l1: Vec::with_capacity(n),
+            scale: [Vec::new(), Vec::new()],
         };
         for m in matches {
             let m1 = view1.camera.bearing(m[0][0], m[0][1]);
@@ -102,6 +119,43 @@ impl PointData {
             d.v2.push(m[1][1]);
         }
         d
+    }
+
+    /// Weights the Sampson residuals of the rolling-shutter models by `σ_px / σ_i`, with
+    /// `σ_i² = σ_px² + (λ σ_ω)² (v1² + v2²)` (plus, for the paper's model, the squared
+    /// truncation error `((v1 |w1|)⁴ + (v2 |w2|)⁴) / 4`), so that a single threshold in
+    /// pixels keeps rows read late, which a gyro error moves further, as well as row 0.
+    pub fn set_row_noise(&mut self, noise: RowNoise) {
+        let px2 = noise.pixel * noise.pixel;
+        if !(px2 > 0.0) {
+            self.scale = [Vec::new(), Vec::new()];
+            return;
+        }
+        let g2 = noise.rate_per_row * noise.rate_per_row;
+        let (a1, a2) = (self.w1.norm_squared(), self.w2.norm_squared());
+        let (mut exact, mut paper) = (
+            Vec::with_capacity(self.len()),
+            Vec::with_capacity(self.len()),
+        );
+        for i in 0..self.len() {
+            let (v1, v2) = (self.v1[i] * self.v1[i], self.v2[i] * self.v2[i]);
+            let gyro = g2 * (v1 + v2);
+            let lin = 0.25 * (a1 * a1 * v1 * v1 + a2 * a2 * v2 * v2);
+            exact.push((px2 / (px2 + gyro)).sqrt());
+            paper.push((px2 / (px2 + gyro + lin)).sqrt());
+        }
+        self.scale = [exact, paper];
+    }
+
+    /// The weight of point `i`'s Sampson residual under `model` (1 without a noise model).
+    #[inline(always)]
+    pub fn weight(&self, model: PoseModel, i: usize) -> f64 {
+        let s = match model {
+            PoseModel::GlobalShutter => return 1.0,
+            PoseModel::ExactAngular => &self.scale[0],
+            PoseModel::PaperLinear => &self.scale[1],
+        };
+        s.get(i).copied().unwrap_or(1.0)
     }
 
     /// Number of points.
@@ -200,7 +254,8 @@ impl PointData {
                     let x = self.b2[i].dot(&u);
                     let g2 = self.omega2[i] * u;
                     let g1 = self.omega1[i] * e.tr_mul(&self.b2[i]);
-                    x * x / sq2(&g1, &g2)
+                    let w = self.weight(PoseModel::ExactAngular, i);
+                    w * w * x * x / sq2(&g1, &g2)
                 })
             }
             (PoseModel::PaperLinear, _) => {
@@ -220,7 +275,8 @@ impl PointData {
                         let h = e.tr_mul(m2) + f.tr_mul(m2) * v2;
                         let g1 = h + (self.w1 * self.v1[i]).cross(&h);
                         let x = m2.dot(&g2);
-                        x * x / sq2(&g1, &g2)
+                        let w = self.weight(PoseModel::PaperLinear, i);
+                        w * w * x * x / sq2(&g1, &g2)
                     })
                 }
             }
@@ -246,7 +302,8 @@ impl PointData {
         (sum, inliers)
     }
 
-    /// Signed residual of point `i` (algebraic `r` or Sampson `r / |∇r|`).
+    /// Signed residual of point `i` (algebraic `r`, or Sampson `r / |∇r|` times the point's
+    /// [`weight`](Self::weight)).
     #[inline]
     pub fn residual(
         &self,
@@ -262,7 +319,7 @@ impl PointData {
             ResidualKind::Algebraic => res,
             ResidualKind::Sampson => {
                 if g > 0.0 {
-                    res / g.sqrt()
+                    self.weight(model, i) * res / g.sqrt()
                 } else {
                     f64::INFINITY
                 }

@@ -359,13 +359,18 @@ impl LmProblem<5> for PoseProblem<'_> {
             let g2 = p2(&u);
             let ss = g1.x * g1.x + g1.y * g1.y + g2.x * g2.x + g2.y * g2.y;
             let sn = ss.sqrt();
-            *o = if ss > 0.0 { res / sn } else { f64::INFINITY };
+            let wt = d.weight(model, i);
+            *o = if ss > 0.0 {
+                wt * res / sn
+            } else {
+                f64::INFINITY
+            };
             let k = res / (ss * sn);
             for q in 0..5 {
                 let a = p1(&dw[q]);
                 let b = p2(&du[q]);
                 let dss = g1.x * a.x + g1.y * a.y + g2.x * b.x + g2.y * b.y; // half of ∂|g|²
-                j[q] = jr[q] / sn - k * dss;
+                j[q] = wt * (jr[q] / sn - k * dss);
             }
         }
         true

@@ -7,10 +7,10 @@
 //! `grsrp+` then refines `(R, t)` by LM with unit-quaternion tangent steps and unit `t` on
 //! the paper's algebraic cost over the RANSAC inliers.
 
-use super::pose_ransac::{indices, orient, run, threshold, GrsrpRansac, Hypothesis};
+use super::pose_ransac::{indices, orient, point_data, run, threshold, GrsrpRansac, Hypothesis};
 use super::{gsrp, rectified, Estimate, EstimateError, EstimateOptions, Method, R0Source};
 use crate::camera::View;
-use crate::epipolar::{PointData, PoseModel, ResidualKind};
+use crate::epipolar::{PoseModel, ResidualKind};
 use crate::pair_file::Match;
 use crate::refine::{refine_pose, Loss};
 
@@ -23,7 +23,7 @@ pub fn estimate(
     options: &EstimateOptions,
     plus: bool,
 ) -> Result<Estimate, EstimateError> {
-    let data = PointData::new(view1, view2, matches);
+    let data = point_data(view1, view2, matches, &options.robust);
     let r0 = match options.r0_source {
         R0Source::Gsrp => gsrp::run_on(&data, view1, view2, options)?.rotation,
         R0Source::Rectified => rectified::run_on(&data, view1, view2, options)?.rotation,

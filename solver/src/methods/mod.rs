@@ -109,8 +109,9 @@ pub enum Threshold {
 }
 
 /// Robust-estimation settings shared by the methods (in the spirit of PoseLib's
-/// `RansacOptions`). Defaults ([`EstimateOptions::default`]): Sampson threshold 1.5 px for the
-/// rolling-shutter-aware models, 2 px plus a gyro-rate allowance for the global-shutter
+/// `RansacOptions`). Defaults ([`EstimateOptions::default`]): Sampson threshold 2.5 px for the
+/// rolling-shutter-aware models, on residuals scaled by each match's row noise (1 px
+/// matching noise, 0.1 rad/s gyro noise), 2 px plus a gyro-rate allowance for the global-shutter
 /// model, adaptive iteration
 /// count with success probability 0.9999 within 50..1000 iterations, local optimisation,
 /// final refinement. The paper preset ([`EstimateOptions::paper`]): algebraic threshold 0.01
@@ -118,13 +119,14 @@ pub enum Threshold {
 #[derive(Debug, Clone, PartialEq)]
 pub struct RobustOptions {
     /// Inlier threshold of the rolling-shutter-aware models (`rectified`: exact angular
-    /// model; `grsrp`/`grsrp+`: the paper's model). Default `SampsonPixels(1.5)`: the Sampson
-    /// error is the first-order geometric (point-to-epipolar-curve) distance, distributed
-    /// about like the matching noise along one direction, so 1.5 px keeps ~87 % of the
-    /// inliers at 1 px matching noise and the adaptive rule stops after ~50 iterations.
-    /// PoseLib uses 1 px for sub-pixel matches; at 1 px noise that keeps only ~60 % of the
-    /// inliers (measured: 3-7x more iterations), while wider thresholds (2-3 px) admit more
-    /// of the paper model's linearisation error and made `grsrp+` less accurate.
+    /// model; `grsrp`/`grsrp+`: the paper's model). Default `SampsonPixels(2.5)`. The
+    /// Sampson error is the first-order distance to the epipolar curve; with a pixel
+    /// threshold it is scaled per match by `σ_px / σ_i`, `σ_i` its expected noise from
+    /// [`pixel_noise`](Self::pixel_noise), [`gyro_noise`](Self::gyro_noise) and its rows
+    /// (a gyro-rate error moves late rows further; see `epipolar::PointData::set_row_noise`),
+    /// so the threshold is 2.5 standard deviations for every match: about 99 % of true
+    /// matches pass whatever their row, where one fixed threshold either drops the late
+    /// rows of a fast-turning camera or admits outliers near row 0.
     pub threshold: Threshold,
     /// Inlier threshold of the global-shutter model (`gsrp`, the initialisation of `nrsrp`
     /// and `R_0` from `gsrp`). Default `SampsonPixels(2.0)`, widened by
@@ -156,6 +158,13 @@ pub struct RobustOptions {
     pub final_refinement: bool,
     /// Sampler seed.
     pub seed: u64,
+    /// Pixel noise of the matches, px (default 1): with
+    /// [`gyro_noise`](Self::gyro_noise), sizes the per-point noise that scales the Sampson
+    /// residuals of the rolling-shutter models (see `epipolar::RowNoise`).
+    pub pixel_noise: f64,
+    /// Gyro-rate noise per axis, rad/s (default 0.1): a rate error moves row `v` by about
+    /// `f λ v σ_ω` px, so late rows get a proportionally wider threshold.
+    pub gyro_noise: f64,
     /// RANSAC and refinement use at most this many matches, a random subset; every match
     /// is then classified against the final pose (default 20,000; see `methods::subset`).
     pub max_points: usize,
@@ -217,6 +226,8 @@ impl EstimateOptions {
                 final_refinement: false,
                 seed: 0,
                 max_points: 20_000,
+                pixel_noise: 1.0,
+                gyro_noise: 0.0,
             },
             ..Self::default()
         }
@@ -233,7 +244,8 @@ impl EstimateOptions {
 
 impl Default for EstimateOptions {
     /// Library defaults: method `grsrp+`; adaptive RANSAC (success probability 0.9999,
-    /// 50..1000 iterations), Sampson threshold 1.5 px for the rolling-shutter-aware models and
+    /// 50..1000 iterations), Sampson threshold 2.5 px (scaled per match by its row noise, 1 px
+    /// and 0.1 rad/s) for the rolling-shutter-aware models and
     /// 2 px plus 0.15 of the gyro-predicted rolling-shutter displacement for the
     /// global-shutter model (see [`RobustOptions`]), local optimisation on
     /// improvement, final Sampson refinement for `gsrp`; LM defaults; 5-point and
@@ -242,7 +254,7 @@ impl Default for EstimateOptions {
         EstimateOptions {
             method: Method::GrsrpPlus,
             robust: RobustOptions {
-                threshold: Threshold::SampsonPixels(1.5),
+                threshold: Threshold::SampsonPixels(2.5),
                 global_shutter_threshold: Threshold::SampsonPixels(2.0),
                 rolling_shutter_allowance: 0.15,
                 adaptive: true,
@@ -253,6 +265,8 @@ impl Default for EstimateOptions {
                 final_refinement: true,
                 seed: 0,
                 max_points: 20_000,
+                pixel_noise: 1.0,
+                gyro_noise: 0.1,
             },
             refinement: LmOptions::default(),
             essential_solver: EssentialSolver::FivePoint,
@@ -395,6 +409,14 @@ fn validate_options(o: &EstimateOptions) -> Result<(), EstimateError> {
     }
     if o.robust.max_iterations == 0 {
         return bad("robust.max_iterations", "must be at least 1");
+    }
+    for (name, x) in [
+        ("robust.pixel_noise", o.robust.pixel_noise),
+        ("robust.gyro_noise", o.robust.gyro_noise),
+    ] {
+        if !(x.is_finite() && x >= 0.0) {
+            return bad(name, "must be finite and non-negative");
+        }
     }
     if o.robust.max_points < 20 {
         return bad("robust.max_points", "must be at least 20");

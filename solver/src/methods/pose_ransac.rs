@@ -4,7 +4,7 @@
 
 use super::{EstimateError, EstimateOptions, RobustOptions, Threshold};
 use crate::camera::View;
-use crate::epipolar::{PointData, PoseModel, ResidualKind};
+use crate::epipolar::{PointData, PoseModel, ResidualKind, RowNoise};
 use crate::geometry::{fix_translation_sign, pose_from_essential, skew};
 use crate::minimal::{EssentialSolver, GrsrpSample, GrsrpSolver};
 use crate::ransac::{ransac, RansacEstimator, RansacOptions, RansacResult, Score};
@@ -59,6 +59,25 @@ pub(crate) fn gs_threshold(view1: &View, view2: &View, o: &RobustOptions) -> (Re
         }
         t => threshold(view1, view2, t),
     }
+}
+
+/// Bearings and row data of the matches, with the per-point noise model of the options
+/// (only for pixel thresholds: the paper's algebraic threshold is unweighted).
+pub(crate) fn point_data(
+    view1: &View,
+    view2: &View,
+    matches: &[crate::pair_file::Match],
+    o: &RobustOptions,
+) -> PointData {
+    let mut data = PointData::new(view1, view2, matches);
+    if matches!(o.threshold, Threshold::SampsonPixels(_)) {
+        let f = 0.5 * (view1.camera.mean_focal() + view2.camera.mean_focal());
+        data.set_row_noise(RowNoise {
+            pixel: o.pixel_noise / f,
+            rate_per_row: o.gyro_noise * view1.camera.readout.max(view2.camera.readout),
+        });
+    }
+    data
 }
 
 pub(crate) fn ransac_options(r: &RobustOptions, thr_sq: f64) -> RansacOptions {

@@ -4,7 +4,9 @@
 //! (algebraic `b2^T E b1` or Sampson of `m2^T Ω2 E Ω1^T m1`); then refine `(R, t)` by LM on
 //! the Sampson error of the exact angular model over the inliers.
 
-use super::pose_ransac::{indices, orient, run, threshold, EssentialRansac, Hypothesis};
+use super::pose_ransac::{
+    indices, orient, point_data, run, threshold, EssentialRansac, Hypothesis,
+};
 use super::{Estimate, EstimateError, EstimateOptions, Method};
 use crate::camera::View;
 use crate::epipolar::{PointData, PoseModel, ResidualKind};
@@ -68,6 +70,6 @@ pub fn estimate(
     matches: &[Match],
     options: &EstimateOptions,
 ) -> Result<Estimate, EstimateError> {
-    let data = PointData::new(view1, view2, matches);
+    let data = point_data(view1, view2, matches, &options.robust);
     run_on(&data, view1, view2, options)
 }

@@ -4,10 +4,10 @@
 //! method's own model and threshold, in chunks so that no per-match table of the whole input
 //! is built.
 
-use super::pose_ransac::{gs_threshold, threshold};
+use super::pose_ransac::{gs_threshold, point_data, threshold};
 use super::{Estimate, EstimateOptions, Method};
 use crate::camera::View;
-use crate::epipolar::{PointData, PoseModel};
+use crate::epipolar::PoseModel;
 use crate::geometry::skew;
 use crate::pair_file::Match;
 use nalgebra::Vector3;
@@ -69,7 +69,7 @@ pub(crate) fn classify_all(
     let e = skew(&t) * r;
     let mut inliers = Vec::with_capacity(matches.len());
     for chunk in matches.chunks(CHUNK) {
-        let data = PointData::new(&v1, &v2, chunk);
+        let data = point_data(&v1, &v2, chunk, robust);
         inliers.extend((0..chunk.len()).map(|i| {
             let x = data.residual(model, kind, i, &r, &t, &e);
             x * x < thr_sq

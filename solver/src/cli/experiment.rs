@@ -3,7 +3,7 @@
 use super::{CliError, Preset, ALL_METHODS};
 use indicatif::{ProgressBar, ProgressStyle};
 use rspose::experiment::{
-    render_svg, run_sweep, scene_trial, to_csv, write_atomic, ExperimentOptions, Sweep,
+    render_svg, run_sweep, scene_trial, to_csv, trials_csv, write_atomic, ExperimentOptions, Sweep,
 };
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -65,7 +65,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         None
     };
     let preset = a.preset;
-    let rows = run_sweep(
+    let result = run_sweep(
         sweep,
         &options,
         |level, seed| scene_trial(level, seed, &ALL_METHODS, |m| preset.options(m, seed)),
@@ -78,11 +78,14 @@ pub fn run(a: Args) -> Result<(), CliError> {
     if let Some(b) = bar {
         b.finish_and_clear();
     }
-    let csv = to_csv(&rows);
-    let svg =
-        render_svg(sweep, &rows).map_err(|e| CliError::failed(format!("plotting failed: {e}")))?;
+    let csv = to_csv(&result.rows);
+    let svg = render_svg(sweep, &result.rows)
+        .map_err(|e| CliError::failed(format!("plotting failed: {e}")))?;
     let csv_path = a.out.join(format!("{}.csv", sweep.name()));
     let svg_path = a.out.join(format!("{}.svg", sweep.name()));
+    let trials_path = a.out.join(format!("{}-trials.csv", sweep.name()));
+    write_atomic(&trials_path, trials_csv(&result).as_bytes())
+        .map_err(|e| CliError::input(format!("{}: {e}", trials_path.display())))?;
     write_atomic(&csv_path, csv.as_bytes())
         .map_err(|e| CliError::input(format!("{}: {e}", csv_path.display())))?;
     write_atomic(&svg_path, svg.as_bytes())

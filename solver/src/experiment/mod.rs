@@ -175,6 +175,19 @@ pub fn trial_seed(seed: u64, level: usize, trial: usize) -> u64 {
     z ^ (z >> 31)
 }
 
+/// Every trial's outcomes of a sweep and their summary.
+#[derive(Debug, Clone)]
+pub struct SweepResult {
+    /// The sweep's levels.
+    pub levels: Vec<Level>,
+    /// Trials per level.
+    pub trials: usize,
+    /// Outcomes stored level-major: `outcomes[level * trials + trial]`.
+    pub outcomes: Vec<Vec<MethodOutcome>>,
+    /// Summary per level and method.
+    pub rows: Vec<SummaryRow>,
+}
+
 /// Runs `trial(level, seed)` for every level of `sweep` and every trial index, on
 /// `options.threads` threads, and summarises per level and method (in the order methods
 /// appear in the first trial's outcomes). `progress(done, total)` is called after each trial.
@@ -183,7 +196,7 @@ pub fn run_sweep<T, P>(
     options: &ExperimentOptions,
     trial: T,
     progress: P,
-) -> Vec<SummaryRow>
+) -> SweepResult
 where
     T: Fn(&Level, u64) -> Vec<MethodOutcome> + Sync,
     P: Fn(usize, usize) + Sync,
@@ -216,7 +229,43 @@ where
                 .unwrap_or_default()
         })
         .collect();
-    summarize_levels(&levels, options.trials, &results)
+    let rows = summarize_levels(&levels, options.trials, &results);
+    SweepResult {
+        levels,
+        trials: options.trials,
+        outcomes: results,
+        rows,
+    }
+}
+
+/// The header of the per-trial CSV ([`trials_csv`]).
+pub const TRIALS_CSV_HEADER: &str = "level,trial,method,rot_err,trans_err,inliers";
+
+/// One line per trial and method: the errors (degrees, empty for a failure) and inliers.
+/// No timings, so the file depends only on the numerics and the seed.
+pub fn trials_csv(result: &SweepResult) -> String {
+    let mut s = String::from(TRIALS_CSV_HEADER);
+    s.push('\n');
+    for (k, outcomes) in result.outcomes.iter().enumerate() {
+        let (li, ti) = (k / result.trials, k % result.trials);
+        for o in outcomes {
+            s.push_str(&trial_line(result.levels[li].value, ti, o));
+        }
+    }
+    s
+}
+
+/// One line of [`trials_csv`].
+pub fn trial_line(level: f64, trial: usize, o: &MethodOutcome) -> String {
+    // Shortest round-trip form: the summary recomputed from the file is exact.
+    let f = |x: Option<f64>| x.map(|v| format!("{v}")).unwrap_or_default();
+    let n = o.inliers.map(|n| n.to_string()).unwrap_or_default();
+    format!(
+        "{level},{trial},{},{},{},{n}\n",
+        o.method,
+        f(o.rotation_error_deg),
+        f(o.translation_error_deg)
+    )
 }
 
 /// Summarises trial outcomes stored level-major (`results[level * trials + trial]`).
@@ -328,9 +377,12 @@ mod tests {
             };
             run_sweep(Sweep::Angular, &opts, fake_trial, |_, _| {})
         };
-        let one = run(1);
-        assert_eq!(one, run(2));
-        assert_eq!(one, run(5));
+        let result = run(1);
+        let one = result.rows.clone();
+        assert_eq!(one, run(2).rows);
+        assert_eq!(one, run(5).rows);
+        assert_eq!(trials_csv(&result), trials_csv(&run(2)));
+        assert_eq!(trials_csv(&result).lines().count(), 1 + 5 * 23 * 2);
         assert_eq!(one.len(), 10);
         let csv = to_csv(&one);
         assert_eq!(csv.lines().count(), 11);

@@ -4,11 +4,14 @@
 //! [`crate::minimal::GrsrpSolver`]) runs on 5-point samples in RANSAC, each solution
 //! `R = R_0 exp([a]×)`, `t` (sign by cheirality on the sample), scored with the paper's model
 //! `m2^T [t]× (I + v2 [w2]×) R (I - v1 [w1]×) m1` with `w = −λω` (algebraic or Sampson).
-//! `grsrp+` then refines `(R, t)` by LM with unit-quaternion tangent steps and unit `t` on
-//! the paper's algebraic cost over the RANSAC inliers.
+//! `grsrp+` then refines `(R, t)` by LM with unit-quaternion tangent steps and unit `t` over
+//! the RANSAC inliers: on the paper's algebraic cost with the paper's algebraic threshold,
+//! on the row-noise-weighted Sampson residual of the same model with a pixel threshold.
 
 use super::pose_ransac::{indices, orient, point_data, run, threshold, GrsrpRansac, Hypothesis};
-use super::{gsrp, rectified, Estimate, EstimateError, EstimateOptions, Method, R0Source};
+use super::{
+    gsrp, rectified, Estimate, EstimateError, EstimateOptions, Method, R0Source, Threshold,
+};
 use crate::camera::View;
 use crate::epipolar::{PoseModel, ResidualKind};
 use crate::pair_file::Match;
@@ -44,11 +47,18 @@ pub fn estimate(
     let mut refinement_cost = None;
     if plus {
         let idx = indices(&inliers);
+        // The paper refines the algebraic residual; with a pixel threshold the inliers
+        // reach rows a gyro error moves further, and the row-noise-weighted Sampson residual
+        // (the same the inliers were chosen with) keeps those from pulling the pose.
+        let refine_kind = match options.robust.threshold {
+            Threshold::Algebraic(_) => ResidualKind::Algebraic,
+            Threshold::SampsonPixels(_) => ResidualKind::Sampson,
+        };
         let r = refine_pose(
             &data,
             &idx,
             PoseModel::PaperLinear,
-            ResidualKind::Algebraic,
+            refine_kind,
             Loss::Trivial,
             h.pose(),
             &options.refinement,

@@ -1,0 +1,121 @@
+//! The committed experiment results (`results/`, paper preset, and `results/default/`,
+//! library defaults) were produced by the current numerics: for every sweep, two trials of
+//! every level are re-run and must reproduce their lines of `SWEEP-trials.csv` exactly, and
+//! `SWEEP.csv` must be the summary of `SWEEP-trials.csv` (all but the timing column).
+//! After a change to the numerics, regenerate with
+//! `rspose experiment SWEEP --trials 100 --out results` and
+//! `rspose experiment SWEEP --trials 100 --out results/default --preset default`.
+
+use rspose::experiment::{
+    scene_trial, summarize_levels, to_csv, trial_line, trial_seed, MethodOutcome, Sweep,
+};
+use rspose::{EstimateOptions, Method};
+use std::path::Path;
+
+const SEED: u64 = 2024;
+const TRIALS: usize = 100;
+const SWEEPS: [Sweep; 4] = [
+    Sweep::Angular,
+    Sweep::AngularLinear,
+    Sweep::GyroNoise,
+    Sweep::PixelNoise,
+];
+
+fn read(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+fn options(paper: bool, m: Method, seed: u64) -> EstimateOptions {
+    let mut o = if paper {
+        EstimateOptions::paper(m)
+    } else {
+        EstimateOptions::for_method(m)
+    };
+    o.robust.seed = seed;
+    o
+}
+
+fn without_timing(csv: &str) -> Vec<String> {
+    csv.lines()
+        .map(|l| {
+            let mut f: Vec<&str> = l.split(',').collect();
+            f.remove(8);
+            f.join(",")
+        })
+        .collect()
+}
+
+fn parse_outcome(line: &str) -> (usize, MethodOutcome) {
+    let f: Vec<&str> = line.split(',').collect();
+    let num = |s: &str| (!s.is_empty()).then(|| s.parse::<f64>().unwrap());
+    (
+        f[1].parse().unwrap(),
+        MethodOutcome {
+            method: f[2].to_string(),
+            rotation_error_deg: num(f[3]),
+            translation_error_deg: num(f[4]),
+            seconds: 0.0,
+            inliers: (!f[5].is_empty()).then(|| f[5].parse().unwrap()),
+        },
+    )
+}
+
+fn check(dir: &Path, paper: bool) {
+    let methods = Method::ALL;
+    for sweep in SWEEPS {
+        let trials = read(&dir.join(format!("{}-trials.csv", sweep.name())));
+        let lines: Vec<&str> = trials.lines().skip(1).collect();
+        let levels = sweep.levels();
+        assert_eq!(
+            lines.len(),
+            levels.len() * TRIALS * methods.len(),
+            "{sweep:?}"
+        );
+        // Re-run two trials of every level.
+        for (li, level) in levels.iter().enumerate() {
+            for ti in [0, TRIALS - 1] {
+                let seed = trial_seed(SEED, li, ti);
+                let outcomes = scene_trial(level, seed, &methods, |m| options(paper, m, seed));
+                for (k, o) in outcomes.iter().enumerate() {
+                    let at = (li * TRIALS + ti) * methods.len() + k;
+                    assert_eq!(
+                        trial_line(level.value, ti, o).trim_end(),
+                        lines[at],
+                        "{}: {sweep:?} level {li} trial {ti} is stale",
+                        dir.display()
+                    );
+                }
+            }
+        }
+        // The summary is the summary of those trials.
+        let mut outcomes: Vec<Vec<MethodOutcome>> = vec![Vec::new(); levels.len() * TRIALS];
+        for (i, line) in lines.iter().enumerate() {
+            let (trial, o) = parse_outcome(line);
+            outcomes[(i / (TRIALS * methods.len())) * TRIALS + trial].push(o);
+        }
+        let summary = to_csv(&summarize_levels(&levels, TRIALS, &outcomes));
+        assert_eq!(
+            without_timing(&summary),
+            without_timing(&read(&dir.join(format!("{}.csv", sweep.name())))),
+            "{}: {}.csv is not the summary of its trials",
+            dir.display(),
+            sweep.name()
+        );
+    }
+}
+
+#[test]
+fn committed_paper_preset_results_are_fresh() {
+    check(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("../results"),
+        true,
+    );
+}
+
+#[test]
+fn committed_default_preset_results_are_fresh() {
+    check(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("../results/default"),
+        false,
+    );
+}

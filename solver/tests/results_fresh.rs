@@ -119,3 +119,42 @@ fn committed_default_preset_results_are_fresh() {
         false,
     );
 }
+
+/// The README's experiment tables are those the committed summaries give (as
+/// `tools/readme_tables.py` prints them).
+#[test]
+fn readme_tables_come_from_the_committed_results() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let readme = read(&root.join("README.md"));
+    for dir in ["results", "results/default"] {
+        for sweep in SWEEPS {
+            let csv = read(&root.join(dir).join(format!("{}.csv", sweep.name())));
+            let rows: Vec<Vec<&str>> = csv.lines().skip(1).map(|l| l.split(',').collect()).collect();
+            let mut levels: Vec<&str> = Vec::new();
+            for r in &rows {
+                if !levels.contains(&r[0]) {
+                    levels.push(r[0]);
+                }
+            }
+            for level in levels {
+                let cells: Vec<String> = Method::ALL
+                    .iter()
+                    .map(|m| {
+                        let r = rows
+                            .iter()
+                            .find(|r| r[0] == level && r[1] == m.name())
+                            .unwrap();
+                        let f = |s: &str| s.parse::<f64>().unwrap();
+                        format!("{:.2} / {:.2}", f(r[2]), f(r[5]))
+                    })
+                    .collect();
+                let line = format!("| {level} | {} |", cells.join(" | "));
+                assert!(
+                    readme.contains(&line),
+                    "README lacks `{line}` ({dir}/{}.csv); run tools/readme_tables.py {dir}",
+                    sweep.name()
+                );
+            }
+        }
+    }
+}

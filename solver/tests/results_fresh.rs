@@ -129,7 +129,11 @@ fn readme_tables_come_from_the_committed_results() {
     for dir in ["results", "results/default"] {
         for sweep in SWEEPS {
             let csv = read(&root.join(dir).join(format!("{}.csv", sweep.name())));
-            let rows: Vec<Vec<&str>> = csv.lines().skip(1).map(|l| l.split(',').collect()).collect();
+            let rows: Vec<Vec<&str>> = csv
+                .lines()
+                .skip(1)
+                .map(|l| l.split(',').collect())
+                .collect();
             let mut levels: Vec<&str> = Vec::new();
             for r in &rows {
                 if !levels.contains(&r[0]) {

@@ -1,6 +1,6 @@
 //! Pinhole rolling-shutter camera and a gyro-equipped view.
 //!
-//! Conventions (DESIGN §4): pixel `(u, v)` with `v` the image row, row 0 read first.
+//! Conventions (ARCHITECTURE §4): pixel `(u, v)` with `v` the image row, row 0 read first.
 //! The calibration matrix is `K = [[fx, 0, cx], [0, fy, cy], [0, 0, 1]]` and the bearing of a
 //! pixel is `m = K^-1 [u, v, 1]^T` (so `m.z == 1`, "normalised image coordinates").
 //! `readout` is the readout time per row `λ` in seconds per row. A [`View`] adds the gyroscope

@@ -1,4 +1,4 @@
-//! Accuracy of an estimate against ground truth (DESIGN §4 metrics, degrees):
+//! Accuracy of an estimate against ground truth (ARCHITECTURE §4 metrics, degrees):
 //! rotation `acos((tr(R_gt^T R) - 1) / 2)`, translation `acos(t_gt · t)` for unit vectors
 //! (the estimate's sign was already chosen by cheirality; it is not folded here).
 

@@ -1,10 +1,11 @@
 //! # rspose — gyro-aided relative pose of rolling-shutter cameras
 //!
 //! Matches between two rolling-shutter (RS) images plus the gyroscope reading of each view
-//! in; relative pose out. Conventions (DESIGN §4): pixel (u, v) with v the image row;
-//! bearing m = K⁻¹[u, v, 1]ᵀ; gyro ω = the camera's angular velocity in its own axes as a gyroscope
-//! reports it, so row rotation Ω(v) = exp(−[v λ ω]×) (row-0 to row-v camera frame); relative pose refers to
-//! row 0 of each image, R = R₂R₁ᵀ, t = R₂(C₁ − C₂), |t| = 1.
+//! in; relative pose out. Conventions (`docs/ARCHITECTURE.md` §4): pixel (u, v) with v the
+//! image row; bearing m = K⁻¹[u, v, 1]ᵀ; the gyro ω is what a gyroscope reports, the
+//! camera's angular velocity in its own axes (`Ṙ_wc = R_wc [ω]×`), so the row rotation is
+//! Ω(v) = exp(−[v λ ω]×) (row-0 to row-v camera frame); the relative pose refers to row 0
+//! of each image, R = R₂R₁ᵀ, t = R₂(C₁ − C₂), |t| = 1.
 //!
 //! - Minimal solvers: [`generated`] (emitted by `mingen` from `templates/*.mp`) on the
 //!   numeric back end of the `mingen-runtime` crate, adapted for the estimator in

@@ -3,7 +3,7 @@
 //! Scene: camera 1 at the world origin with identity orientation at row 0
 //! (`R1 = I, C1 = 0`); camera 2 with orientation `R2 = exp([r]×)`, `r ~ N(0, σ_R²)` per axis
 //! (σ_R = 10° by default) and centre `C2 ~ N(0, σ_t²)` per axis (σ_t = 2 m). Relative pose
-//! (DESIGN §4): `R = R2 R1^T = R2`, `t = R2 (C1 - C2) / |.|`.
+//! (ARCHITECTURE §4): `R = R2 R1^T = R2`, `t = R2 (C1 - C2) / |.|`.
 //! Each camera gets an angular velocity of magnitude `angular_velocity` (rad/s, camera frame)
 //! and a linear velocity of magnitude `linear_velocity` (m/s, world frame), each in an
 //! independent uniformly random direction. Points are drawn along random pixels of image 1 at

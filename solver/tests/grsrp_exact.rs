@@ -1,4 +1,4 @@
-//! G-RSRP on data that satisfies its own linearised model exactly (DESIGN §4):
+//! G-RSRP on data that satisfies its own linearised model exactly (ARCHITECTURE §4):
 //! m2ᵀ [t]× (I + v2 [w2]×) R0 (I + [a]×) (I − v1 [w1]×) m1 = 0 with R0 a few degrees off the
 //! truth and a known a ≠ 0: both generated solvers (10 and 20 solutions) recover a and t
 //! to 1e-9.

@@ -316,7 +316,7 @@ pub fn summarize_levels(
     rows
 }
 
-/// The CSV header (DESIGN §6 columns, then `failures`).
+/// The CSV header (the columns `rspose experiment` documents, then `failures`).
 pub const CSV_HEADER: &str =
     "level,method,rot_mean,rot_std,rot_median,trans_mean,trans_std,trans_median,seconds_median,failures";
 

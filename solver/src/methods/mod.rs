@@ -1,6 +1,6 @@
-//! The relative-pose methods (DESIGN §5) and the public entry [`estimate_relative_pose`].
+//! The relative-pose methods (ARCHITECTURE §3) and the public entry [`estimate_relative_pose`].
 //!
-//! Output convention (DESIGN §4): `R = R2 R1^T`, `t = R2 (C1 - C2) / |.|` between the row-0
+//! Output convention (ARCHITECTURE §4): `R = R2 R1^T`, `t = R2 (C1 - C2) / |.|` between the row-0
 //! poses of the two images, so `x2 = R x1 + t`; the sign of `t` is chosen by cheirality
 //! (most inliers triangulating in front of both cameras).
 //!
@@ -45,7 +45,7 @@ pub enum Method {
 }
 
 impl Method {
-    /// All methods, in the order of DESIGN §5.
+    /// All methods, in the order the README lists them.
     pub const ALL: [Method; 5] = [
         Method::Gsrp,
         Method::Nrsrp,

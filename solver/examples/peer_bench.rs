@@ -70,13 +70,25 @@ fn write(dir: &Path) -> Result<(), String> {
         .map_err(|e| e.to_string())?;
         let gt = p.ground_truth.ok_or("no ground truth")?;
         let c = p.camera;
-        let _ = write!(pairs, "{} {} {} {} {}", p.matches.len(), c.fx, c.fy, c.cx, c.cy);
+        let _ = write!(
+            pairs,
+            "{} {} {} {} {}",
+            p.matches.len(),
+            c.fx,
+            c.fy,
+            c.cx,
+            c.cy
+        );
         for x in gt.rotation.iter().flatten().chain(&gt.translation) {
             let _ = write!(pairs, " {x:e}");
         }
         pairs.push('\n');
         for m in &p.matches {
-            let _ = writeln!(pairs, "{:e} {:e} {:e} {:e}", m[0][0], m[0][1], m[1][0], m[1][1]);
+            let _ = writeln!(
+                pairs,
+                "{:e} {:e} {:e} {:e}",
+                m[0][0], m[0][1], m[1][0], m[1][1]
+            );
         }
     }
     std::fs::write(dir.join("pairs.txt"), pairs).map_err(|e| e.to_string())
@@ -89,9 +101,8 @@ fn numbers(line: &str) -> Result<Vec<f64>, String> {
 }
 
 fn read(dir: &Path) -> Result<(Vec<Five>, Vec<Pair>), String> {
-    let load = |name: &str| {
-        std::fs::read_to_string(dir.join(name)).map_err(|e| format!("{name}: {e}"))
-    };
+    let load =
+        |name: &str| std::fs::read_to_string(dir.join(name)).map_err(|e| format!("{name}: {e}"));
     let mut five = Vec::new();
     for l in load("five_point.txt")?.lines() {
         let v = numbers(l)?;

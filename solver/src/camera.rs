@@ -109,7 +109,7 @@ impl Camera {
             }
         }
         for (name, value) in [("cx", self.cx), ("cy", self.cy)] {
-            if !(value.abs() <= MAX_PIXELS) {
+            if value.is_nan() || value.abs() > MAX_PIXELS {
                 return Err(CameraError::InvalidPrincipalPoint { name, value });
             }
         }
@@ -196,7 +196,8 @@ impl View {
     /// Validate the camera and that `ω` is finite and at most `MAX_ANGULAR_VELOCITY`.
     pub fn validate(&self) -> Result<(), CameraError> {
         self.camera.validate()?;
-        if !(self.omega.norm() <= MAX_ANGULAR_VELOCITY) {
+        let speed = self.omega.norm();
+        if speed.is_nan() || speed > MAX_ANGULAR_VELOCITY {
             return Err(CameraError::InvalidGyro(
                 self.omega.x,
                 self.omega.y,

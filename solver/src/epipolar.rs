@@ -127,7 +127,7 @@ impl PointData {
     /// pixels keeps rows read late, which a gyro error moves further, as well as row 0.
     pub fn set_row_noise(&mut self, noise: RowNoise) {
         let px2 = noise.pixel * noise.pixel;
-        if !(px2 > 0.0) {
+        if px2.is_nan() || px2 <= 0.0 {
             self.scale = [Vec::new(), Vec::new()];
             return;
         }

@@ -275,7 +275,8 @@ impl PairFile {
         })?;
         if let Some(g) = &self.gyro {
             for (i, w) in g.iter().enumerate() {
-                if !(Vector3::from(*w).norm() <= crate::camera::MAX_ANGULAR_VELOCITY) {
+                let speed = Vector3::from(*w).norm();
+                if speed.is_nan() || speed > crate::camera::MAX_ANGULAR_VELOCITY {
                     return Err(invalid(
                         format!("gyro[{i}]"),
                         "angular velocity must be finite and at most 100 rad/s",

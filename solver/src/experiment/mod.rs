@@ -5,11 +5,13 @@
 //! derived from `(seed, i, j)`, and trials are collected by index, so the number of worker
 //! threads changes the wall time, never the numbers (except the timing columns).
 
+#[cfg(feature = "plot")]
 mod plot;
 pub mod real;
 mod stats;
 mod sweep;
 
+#[cfg(feature = "plot")]
 pub use plot::{render_svg, write_svg};
 pub use stats::{median, summarize};
 pub use sweep::{Level, Sweep, UnknownSweep};

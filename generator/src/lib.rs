@@ -20,6 +20,7 @@ pub mod groebner;
 pub mod interpret;
 pub mod problem;
 pub mod quotient;
+pub mod report;
 pub mod template;
 
 // Problem language and its symbolic expansion.

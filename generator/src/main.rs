@@ -43,6 +43,25 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// One table row per problem: unknowns, solutions, template against the published
+    /// size, action, audit median / p99 / failures, generation seconds.
+    Report {
+        /// Problem files or directories (their *.mp files).
+        #[arg(required = true)]
+        paths: Vec<PathBuf>,
+        /// Print a Markdown table (the default).
+        #[arg(long, conflicts_with = "json")]
+        markdown: bool,
+        /// Print one JSON array, one object per problem.
+        #[arg(long)]
+        json: bool,
+        /// Random instances of each audit.
+        #[arg(long, default_value_t = 1000)]
+        instances: usize,
+        /// Seed of the audit instances.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+    },
     /// Emit solver/src/generated/<name>.rs for problem files (or all of templates/*.mp),
     /// or, with --out, one problem's solver as a module for any crate that depends on
     /// mingen-runtime.
@@ -130,6 +149,13 @@ fn main() -> ExitCode {
             seed,
             json,
         } => audit(&file, instances, seed, json),
+        Command::Report {
+            paths,
+            markdown: _,
+            json,
+            instances,
+            seed,
+        } => report(&paths, instances, seed, json),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -326,6 +352,21 @@ fn audit(file: &Path, instances: usize, seed: u64, as_json: bool) -> Result<(), 
         plan.problem.name(),
         plan.generated.count
     ))
+}
+
+fn report(paths: &[PathBuf], instances: usize, seed: u64, as_json: bool) -> Result<(), CliError> {
+    let options = mingen::audit::AuditOptions { instances, seed };
+    let rows = mingen::report::report(paths, &options).map_err(|e| CliError {
+        message: e.to_string(),
+        code: 2,
+    })?;
+    if as_json {
+        let text = serde_json::to_string_pretty(&mingen::report::to_json(&rows))
+            .unwrap_or_else(|_| "[]".into());
+        emit(&format!("{text}\n"))
+    } else {
+        emit(&mingen::report::to_markdown(&rows))
+    }
 }
 
 fn generate_out(files: &[PathBuf], all: bool, out: &Path, check: bool) -> Result<(), CliError> {

@@ -41,6 +41,16 @@ pub enum PipelineError {
     },
 }
 
+impl PipelineError {
+    /// The number of solutions, if the failure came after counting them.
+    pub fn solution_count(&self) -> Option<usize> {
+        match self {
+            PipelineError::Template { source, .. } => source.solution_count(),
+            PipelineError::Eliminate { .. } => None,
+        }
+    }
+}
+
 /// A problem viewed as a family of polynomial systems (after elimination, if any).
 pub struct ProblemSource<'a> {
     problem: &'a Problem,

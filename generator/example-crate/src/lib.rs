@@ -6,8 +6,9 @@
 //! build-dependency).
 //!
 //! - [`gs5pt`]: the 5-point relative pose problem (`templates/gs5pt.mp`), 10 solutions.
-//! - [`relpose_6pt_focal`]: 6-point relative pose with a shared unknown focal length
-//!   (`templates/classic/relpose_6pt_focal.mp`), 15 solutions.
+//! - one module per problem of the classic corpus, `templates/classic/NAME.mp` (build.rs
+//!   compiles the whole directory), e.g. [`relpose_6pt_focal`]: 6-point relative pose with
+//!   a shared unknown focal length, 15 solutions.
 //!
 //! Each module has the emitted `Data`, `Solution`, `solve` and a `Solver` type that
 //! implements [`mingen_runtime::MinimalSolver`].
@@ -18,7 +19,4 @@ pub mod gs5pt {
     include!(concat!(env!("OUT_DIR"), "/gs5pt.rs"));
 }
 
-/// The 6-point shared-focal solver: `F = x F1 + y F2 + F3` and `w = 1 / f^2`.
-pub mod relpose_6pt_focal {
-    include!(concat!(env!("OUT_DIR"), "/relpose_6pt_focal.rs"));
-}
+include!(concat!(env!("OUT_DIR"), "/corpus.rs"));

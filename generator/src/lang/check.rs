@@ -6,6 +6,7 @@
 
 use super::ast::{AddOp, Decl, Expr, ExprKind, MulOp, Name, Postfix, Stmt};
 use super::lexer::Pos;
+use super::names::{check_problem_name, FieldNames};
 use super::LangError;
 use crate::algebra::Q;
 use crate::problem::{DataKind, DataSymbol, ProblemLayout, UnknownSymbol};
@@ -164,6 +165,7 @@ struct Checker {
     intern: HashMap<Op, NodeId>,
     equations: Vec<ScalarEquation>,
     iterations: usize,
+    fields: FieldNames,
 }
 
 /// Checks parsed statements.
@@ -175,7 +177,10 @@ pub fn check(stmts: &[(Pos, Stmt)]) -> Result<Checked, LangError> {
         ));
     };
     let (problem_pos, name) = match first {
-        Stmt::Problem { pos, name } => (*pos, name.name.clone()),
+        Stmt::Problem { pos, name } => {
+            check_problem_name(name)?;
+            (*pos, name.name.clone())
+        }
         _ => {
             return Err(LangError::new(
                 *first_pos,
@@ -196,6 +201,7 @@ pub fn check(stmts: &[(Pos, Stmt)]) -> Result<Checked, LangError> {
         intern: HashMap::new(),
         equations: Vec::new(),
         iterations: 0,
+        fields: FieldNames::default(),
     };
     for (pos, s) in stmts.iter().skip(1) {
         c.statement(*pos, s, true)?;
@@ -384,6 +390,7 @@ impl Checker {
             }
             other => other.map(|(n, _)| n),
         };
+        self.fields.unknown(&d.name, len)?;
         let first_var = self.layout.unknown_count();
         self.symbols.insert(
             d.name.name.clone(),
@@ -408,6 +415,7 @@ impl Checker {
             }
             other => other.map(|(n, _)| n),
         };
+        self.fields.data(&d.name)?;
         let Some(k) = &d.kind else {
             return Err(self.err(d.name.pos, "missing kind"));
         };

@@ -8,6 +8,7 @@
 pub mod ast;
 pub mod check;
 pub mod lexer;
+pub mod names;
 pub mod parser;
 
 pub use lexer::Pos;

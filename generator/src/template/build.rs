@@ -41,7 +41,7 @@ pub enum TemplateError {
     Groebner(#[from] GroebnerError),
     /// No candidate set up to the degree bound makes every reducible monomial reducible.
     #[error(
-        "action {action}: reducible monomials still not reducible with all multiples up to degree {max_degree}"
+        "reducible monomials still not reducible with all multiples up to degree {max_degree}"
     )]
     NotReducible {
         /// The action monomial (rendered).
@@ -85,6 +85,25 @@ pub enum TemplateError {
     /// The template cannot be solved by elimination and eigenvectors.
     #[error(transparent)]
     Shape(#[from] ShapeError),
+    /// The solutions were counted, but no solver could be made: the count is kept so
+    /// that every report can still state it.
+    #[error("{count} solutions, but no template: {source}")]
+    Counted {
+        /// The number of solutions (confirmed on two primes).
+        count: usize,
+        /// Why no template was found or accepted.
+        source: Box<TemplateError>,
+    },
+}
+
+impl TemplateError {
+    /// The number of solutions, if it was found before the failure.
+    pub fn solution_count(&self) -> Option<usize> {
+        match self {
+            TemplateError::Counted { count, .. } => Some(*count),
+            _ => None,
+        }
+    }
 }
 
 /// Options of template construction.
@@ -113,6 +132,9 @@ pub struct TemplateOptions {
     pub basis_selection: bool,
     /// Seed of all random choices (instances).
     pub seed: u64,
+    /// Names of the unknowns, in variable order, for messages; empty renders them as
+    /// `x0, x1, ...`. [`generate`] fills them from its source.
+    pub var_names: Vec<String>,
 }
 
 impl Default for TemplateOptions {
@@ -125,6 +147,7 @@ impl Default for TemplateOptions {
             exponent_caps: 0,
             basis_selection: true,
             seed: 2024,
+            var_names: Vec::new(),
         }
     }
 }
@@ -249,11 +272,6 @@ pub(crate) fn candidates<const P: u32>(eqs: &[Poly<Fp<P>>], d: u32) -> Vec<Candi
     out
 }
 
-/// Renders a monomial with default names.
-pub(crate) fn show(m: &Monomial) -> String {
-    m.display_with(&[])
-}
-
 /// The shrunk elimination template for action variable `action_var` from the equations of
 /// one random instance mod P and the quotient basis `basis` (descending grevlex, as from
 /// [`crate::quotient::standard_monomials`]).
@@ -327,7 +345,9 @@ pub fn build_template<const P: u32>(
     });
     if opts.basis_selection {
         let maxeq = eqs.iter().filter_map(|f| f.degree()).max().unwrap_or(0);
-        if let Some(sel) = select::best_selected::<P>(eqs, nvars, &action, basis.len(), maxeq) {
+        if let Some(sel) =
+            select::best_selected::<P>(eqs, nvars, &action, basis.len(), maxeq, &opts.var_names)
+        {
             if best.as_ref().map_or(true, |b| sel.score < b.score) {
                 best = Some(sel);
             }
@@ -342,13 +362,13 @@ pub fn build_template<const P: u32>(
     }) = best
     else {
         return Err(TemplateError::NotReducible {
-            action: show(&action),
+            action: action.display_with(&opts.var_names),
             max_degree: d0 + opts.max_extra_degree,
         });
     };
     let template = assemble::<P>(nvars, &blocks, &kept, &action);
     debug_assert!(blocks.reducible_by::<P>(&kept.iter().collect::<Vec<_>>()));
-    template.check_emittable(&[])?;
+    template.check_emittable(&opts.var_names)?;
     // Distinct eigenvalues of the action matrix on this instance (basis independent).
     let distinct = match groebner(nvars, eqs) {
         Ok(gb) => is_squarefree::<P>(&nf_action_charpoly::<P>(&gb, basis, &action)),
@@ -499,12 +519,26 @@ pub fn best_template<const P: u32>(
     };
     match best {
         Some(b) => Ok((b, all)),
-        None => Err(TemplateError::NoAction(
-            all.iter()
-                .filter_map(|(_, r)| r.as_ref().err().map(|e| e.to_string()))
-                .collect::<Vec<_>>()
-                .join("; "),
-        )),
+        None => {
+            // One clause per distinct reason, naming the actions that failed for it.
+            let mut reasons: Vec<(String, Vec<String>)> = Vec::new();
+            for (v, r) in &all {
+                let Err(e) = r else { continue };
+                let name = Monomial::var(nvars, *v).display_with(&opts.var_names);
+                let reason = e.to_string();
+                match reasons.iter_mut().find(|(r, _)| *r == reason) {
+                    Some((_, names)) => names.push(name),
+                    None => reasons.push((reason, vec![name])),
+                }
+            }
+            Err(TemplateError::NoAction(
+                reasons
+                    .iter()
+                    .map(|(r, names)| format!("action {}: {r}", names.join(", ")))
+                    .collect::<Vec<_>>()
+                    .join("; "),
+            ))
+        }
     }
 }
 
@@ -538,16 +572,31 @@ pub fn generate<S: InstanceSource>(
     let t0 = Instant::now();
     let analysis = analyse(src, opts.seed)?;
     let t1 = Instant::now();
-    let (built, all) = best_template::<P1>(&analysis.equations, &analysis.basis, opts)?;
-    built.template.check_emittable(&src.var_names())?;
+    let opts = &TemplateOptions {
+        var_names: src.var_names(),
+        ..opts.clone()
+    };
+    let counted = |source: TemplateError| TemplateError::Counted {
+        count: analysis.count,
+        source: Box::new(source),
+    };
+    let (built, all) =
+        best_template::<P1>(&analysis.equations, &analysis.basis, opts).map_err(counted)?;
+    built
+        .template
+        .check_emittable(&opts.var_names)
+        .map_err(|e| counted(e.into()))?;
     let t2 = Instant::now();
     let validation = if opts.validate_instances > 0 {
-        Some(validate(
-            &built.template,
-            src,
-            opts.validate_instances,
-            opts.seed ^ 0x7A11_DA7E,
-        )?)
+        Some(
+            validate(
+                &built.template,
+                src,
+                opts.validate_instances,
+                opts.seed ^ 0x7A11_DA7E,
+            )
+            .map_err(counted)?,
+        )
     } else {
         None
     };
@@ -576,7 +625,12 @@ impl EliminationTemplate {
     ///
     /// Errors with [`TemplateError::MissingColumn`] if a product has a monomial that is not
     /// a column (the instance is not of the family the template was built for).
-    pub fn fill<C: Ring>(&self, eqs: &[Poly<C>]) -> Result<Vec<Vec<C>>, TemplateError> {
+    /// `names` renders the unknowns in the error (template variables in order).
+    pub fn fill<C: Ring>(
+        &self,
+        eqs: &[Poly<C>],
+        names: &[String],
+    ) -> Result<Vec<Vec<C>>, TemplateError> {
         let idx: BTreeMap<&Monomial, usize> = self
             .columns
             .iter()
@@ -594,8 +648,8 @@ impl EliminationTemplate {
                         None => {
                             return Err(TemplateError::MissingColumn {
                                 equation: r.equation,
-                                multiplier: show(&r.multiplier),
-                                monomial: show(&p),
+                                multiplier: r.multiplier.display_with(names),
+                                monomial: p.display_with(names),
                             })
                         }
                     }

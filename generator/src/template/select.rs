@@ -140,13 +140,14 @@ pub fn basis_orders(nvars: usize) -> Vec<BasisOrder> {
 }
 
 impl BasisOrder {
-    /// A human-readable description (variables as `x0, x1, ...`).
-    pub fn describe(&self) -> String {
+    /// A human-readable description, the variables named by `names` (`x0, x1, ...` where
+    /// a name is missing).
+    pub fn describe(&self, names: &[String]) -> String {
         match self {
             BasisOrder::Grevlex(perm) => format!(
                 "grevlex with {}",
                 perm.iter()
-                    .map(|i| format!("x{i}"))
+                    .map(|&i| names.get(i).cloned().unwrap_or_else(|| format!("x{i}")))
                     .collect::<Vec<_>>()
                     .join(" > ")
             ),
@@ -183,6 +184,7 @@ pub(crate) fn best_selected<const P: u32>(
     action: &Monomial,
     count: usize,
     maxeq: u32,
+    names: &[String],
 ) -> Option<SelectedTemplate> {
     let orders = basis_orders(nvars);
     for d in maxeq + 1..=maxeq + 3 {
@@ -225,7 +227,7 @@ pub(crate) fn best_selected<const P: u32>(
                 history,
                 label: format!(
                     "selected by elimination of all multiples up to degree {d}, columns in {}",
-                    o.describe()
+                    o.describe(names)
                 ),
             });
         }

@@ -9,7 +9,7 @@
 //!   action matrices have the same characteristic polynomial, after [`check_readoff`]
 //!   (the basis must contain 1 and every unknown).
 
-use super::build::{show, TemplateError};
+use super::build::TemplateError;
 use super::linalg::{charpoly, gauss_jordan};
 use super::EliminationTemplate;
 use crate::algebra::{Fp, Monomial, Poly, Ring, P1, P2};
@@ -28,7 +28,8 @@ pub struct ValidationReport {
 
 /// Checks that the template's basis contains 1 and every unknown (needed to read the
 /// solutions off the eigenvectors).
-pub fn check_readoff(t: &EliminationTemplate) -> Result<(), TemplateError> {
+/// `names` renders the unknowns in the message (template variables in order).
+pub fn check_readoff(t: &EliminationTemplate, names: &[String]) -> Result<(), TemplateError> {
     let mut missing = Vec::new();
     if !t.basis.contains(&Monomial::one(t.nvars)) {
         missing.push("1".to_string());
@@ -36,7 +37,7 @@ pub fn check_readoff(t: &EliminationTemplate) -> Result<(), TemplateError> {
     for v in 0..t.nvars {
         let m = Monomial::var(t.nvars, v);
         if !t.basis.contains(&m) {
-            missing.push(show(&m));
+            missing.push(m.display_with(names));
         }
     }
     if missing.is_empty() {
@@ -52,11 +53,14 @@ pub fn check_readoff(t: &EliminationTemplate) -> Result<(), TemplateError> {
 /// the first column that the elimination does not turn into a pivot. The matrix is
 /// eliminated as the emitted solvers eliminate it: without the dependent excess columns,
 /// every other excess and every reducible column a pivot, in order.
+/// `names` renders the unknowns in errors (template variables in order).
 pub fn template_action_matrix<const P: u32>(
     t: &EliminationTemplate,
     eqs: &[Poly<Fp<P>>],
+    names: &[String],
 ) -> Result<Vec<Vec<u32>>, TemplateError> {
-    let filled = t.fill(eqs)?;
+    let show = |m: &Monomial| m.display_with(names);
+    let filled = t.fill(eqs, names)?;
     let mut m: Vec<Vec<u32>> = filled
         .into_iter()
         .map(|r| {
@@ -153,7 +157,7 @@ fn check_one<const P: u32, S: InstanceSource>(
     instance: usize,
 ) -> Result<(), TemplateError> {
     let eqs = src.instance::<P>(rng);
-    let tm = template_action_matrix::<P>(t, &eqs).map_err(|e| match e {
+    let tm = template_action_matrix::<P>(t, &eqs, &src.var_names()).map_err(|e| match e {
         TemplateError::Singular { monomial, .. } => TemplateError::Singular { instance, monomial },
         e => e,
     })?;
@@ -175,7 +179,7 @@ pub fn validate<S: InstanceSource>(
     n: usize,
     seed: u64,
 ) -> Result<ValidationReport, TemplateError> {
-    check_readoff(t)?;
+    check_readoff(t, &src.var_names())?;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     for i in 0..n {
         if i % 2 == 0 {

@@ -1,0 +1,268 @@
+//! `mingen report`: one table row per problem file (unknowns, solutions, template size
+//! against the published one, action, audit figures, generation time), as Markdown or
+//! JSON. Everything but the seconds is deterministic (seeded instances, fixed pipeline).
+//!
+//! Two header comments of a problem file are read: `# published: TEXT` (the best
+//! published template or solver, e.g. `31x46 (PoseLib relpose_6pt_focal)`) and
+//! `# Macaulay2: N ...` (an independent count).
+
+use crate::audit::{audit_plan, AuditOptions, AuditReport};
+use crate::generate::GenerateError;
+use crate::pipeline::{plan, SolverPlan};
+use crate::template::TemplateOptions;
+use crate::Problem;
+use serde_json::{json, Value};
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// Why a report could not be made at all (a failing problem is a row, not an error).
+#[derive(Debug, Error)]
+pub enum ReportError {
+    /// A path given is neither a readable problem file nor a readable directory.
+    #[error("{path}: {source}")]
+    Io {
+        /// The path.
+        path: String,
+        /// What went wrong.
+        source: std::io::Error,
+    },
+    /// A directory holds no `*.mp` file.
+    #[error("{0}: no problem files (*.mp)")]
+    Empty(String),
+}
+
+/// One row of the report.
+#[derive(Clone, Debug)]
+pub struct ReportRow {
+    /// The problem file as given.
+    pub file: String,
+    /// The problem name (the file stem if the file does not parse).
+    pub problem: String,
+    /// Unknown scalars of the template, and the eliminated ones.
+    pub unknowns: Vec<String>,
+    /// Eliminated unknowns (recovered as a null vector).
+    pub eliminated: Vec<String>,
+    /// Number of solutions, when it was found (also when no template was).
+    pub solutions: Option<usize>,
+    /// The independent count from the `# Macaulay2:` header line.
+    pub macaulay2: Option<String>,
+    /// Template size as eliminated by the solver (rows, columns).
+    pub template: Option<(usize, usize)>,
+    /// The `# published:` header line.
+    pub published: Option<String>,
+    /// The action monomial.
+    pub action: Option<String>,
+    /// The audit on random instances.
+    pub audit: Option<AuditReport>,
+    /// Wall-clock seconds of the generation (the algebra pipeline).
+    pub seconds: f64,
+    /// Why there is no solver, if there is none.
+    pub error: Option<String>,
+}
+
+/// The problem files named by `paths`: files as given, directories by their `*.mp` files
+/// (not recursively), sorted.
+pub fn problem_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, ReportError> {
+    let mut out = Vec::new();
+    for p in paths {
+        let io = |source| ReportError::Io {
+            path: p.display().to_string(),
+            source,
+        };
+        if p.is_dir() {
+            let mut files: Vec<PathBuf> = std::fs::read_dir(p)
+                .map_err(io)?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|f| f.is_file() && f.extension().is_some_and(|x| x == "mp"))
+                .collect();
+            if files.is_empty() {
+                return Err(ReportError::Empty(p.display().to_string()));
+            }
+            files.sort();
+            out.extend(files);
+        } else {
+            std::fs::metadata(p).map_err(io)?;
+            out.push(p.clone());
+        }
+    }
+    Ok(out)
+}
+
+/// The text after `# KEY:` on the first comment line that has it.
+fn header_value(source: &str, key: &str) -> Option<String> {
+    source.lines().find_map(|l| {
+        let rest = l.trim_start().strip_prefix('#')?.trim_start();
+        let value = rest.strip_prefix(key)?.strip_prefix(':')?;
+        Some(value.trim().to_string())
+    })
+}
+
+/// The report row of one problem file: plan (count, template), then audit with `audit`.
+pub fn report_row(file: &Path, audit: &AuditOptions) -> ReportRow {
+    let shown = file.display().to_string();
+    let source = std::fs::read_to_string(file).unwrap_or_default();
+    let mut row = ReportRow {
+        file: shown.clone(),
+        problem: file
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default(),
+        unknowns: Vec::new(),
+        eliminated: Vec::new(),
+        solutions: None,
+        macaulay2: header_value(&source, "Macaulay2")
+            .and_then(|v| v.split_whitespace().next().map(str::to_string)),
+        template: None,
+        published: header_value(&source, "published"),
+        action: None,
+        audit: None,
+        seconds: 0.0,
+        error: None,
+    };
+    let problem = match Problem::from_file(file) {
+        Ok(p) => p,
+        Err(e) => {
+            row.error = Some(GenerateError::from(e).to_string());
+            return row;
+        }
+    };
+    row.problem = problem.layout.name.clone();
+    let start = std::time::Instant::now();
+    let planned: Result<SolverPlan, _> = plan(problem, &shown, &TemplateOptions::default());
+    row.seconds = start.elapsed().as_secs_f64();
+    match planned {
+        Ok(p) => {
+            let names = p.variable_names();
+            let t = &p.generated.built.template;
+            row.unknowns = names.clone();
+            row.eliminated = p.eliminated_names();
+            row.solutions = Some(p.generated.count);
+            row.template = Some(t.eliminated_size());
+            row.action = Some(t.action.display_with(&names));
+            row.audit = Some(audit_plan(&p, audit));
+        }
+        Err(e) => {
+            row.solutions = e.solution_count();
+            row.error = Some(e.to_string());
+        }
+    }
+    row
+}
+
+/// The report of every problem file named by `paths` (see [`problem_files`]).
+pub fn report(paths: &[PathBuf], audit: &AuditOptions) -> Result<Vec<ReportRow>, ReportError> {
+    Ok(problem_files(paths)?
+        .iter()
+        .map(|f| report_row(f, audit))
+        .collect())
+}
+
+impl ReportRow {
+    /// The row as a JSON object.
+    pub fn to_json(&self) -> Value {
+        json!({
+            "file": self.file,
+            "problem": self.problem,
+            "unknowns": self.unknowns,
+            "eliminated": self.eliminated,
+            "solutions": self.solutions,
+            "macaulay2": self.macaulay2,
+            "template": self.template.map(|(r, c)| json!({"rows": r, "cols": c})),
+            "published": self.published,
+            "action": self.action,
+            "audit": self.audit.as_ref().map(|a| json!({
+                "instances": a.instances,
+                "median_log10_residual": a.median_log10_residual,
+                "p99_log10_residual": a.p99_log10_residual,
+                "failures": a.failures,
+            })),
+            "seconds": self.seconds,
+            "error": self.error,
+        })
+    }
+
+    fn markdown_cells(&self) -> Vec<String> {
+        let dash = || "—".to_string();
+        let mut unknowns = self.unknowns.join(", ");
+        if !self.eliminated.is_empty() {
+            unknowns.push_str(&format!(" ({} eliminated)", self.eliminated.join(", ")));
+        }
+        vec![
+            format!("`{}`", self.problem),
+            if unknowns.is_empty() {
+                dash()
+            } else {
+                unknowns
+            },
+            self.solutions.map_or_else(dash, |n| n.to_string()),
+            self.macaulay2.clone().unwrap_or_else(dash),
+            match (self.template, &self.error) {
+                (Some((r, c)), _) => format!("{r}x{c}"),
+                (None, Some(_)) => "none".to_string(),
+                (None, None) => dash(),
+            },
+            self.published.clone().unwrap_or_else(dash),
+            self.action.clone().unwrap_or_else(dash),
+            self.audit.as_ref().map_or_else(dash, |a| {
+                format!(
+                    "{:.2} / {:.2} / {} of {}",
+                    a.median_log10_residual, a.p99_log10_residual, a.failures, a.instances
+                )
+            }),
+            format!("{:.2}", self.seconds),
+        ]
+    }
+}
+
+/// The rows as one JSON array.
+pub fn to_json(rows: &[ReportRow]) -> Value {
+    Value::Array(rows.iter().map(ReportRow::to_json).collect())
+}
+
+/// The rows as a Markdown table, followed by the reasons of rows without a solver.
+pub fn to_markdown(rows: &[ReportRow]) -> String {
+    let header = [
+        "problem",
+        "unknowns",
+        "solutions",
+        "Macaulay2",
+        "template",
+        "published",
+        "action",
+        "audit: median / p99 log10 residual / failures",
+        "seconds",
+    ];
+    let mut out = format!("| {} |\n", header.join(" | "));
+    out.push_str(&format!("|{}\n", "---|".repeat(header.len())));
+    for r in rows {
+        let cells: Vec<String> = r
+            .markdown_cells()
+            .into_iter()
+            .map(|c| c.replace('|', "\\|"))
+            .collect();
+        out.push_str(&format!("| {} |\n", cells.join(" | ")));
+    }
+    for r in rows {
+        if let Some(e) = &r.error {
+            out.push_str(&format!("\n`{}`: {e}\n", r.problem));
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn header_values_are_read_from_comment_lines_only() {
+        let src = "# Title\n#  published: 31x46 (PoseLib)\nproblem p\n# Macaulay2: 15 (x)\n";
+        assert_eq!(
+            header_value(src, "published").as_deref(),
+            Some("31x46 (PoseLib)")
+        );
+        assert_eq!(header_value(src, "Macaulay2").as_deref(), Some("15 (x)"));
+        assert_eq!(header_value("published: 3\n", "published"), None);
+        assert_eq!(header_value("# publishedx: 3\n", "published"), None);
+    }
+}

@@ -1,0 +1,119 @@
+//! `mingen report`: one row per corpus file with the right solution counts, and a failing
+//! problem is a row that still states its count.
+
+use serde_json::Value;
+use std::path::Path;
+use std::process::Command;
+
+fn mingen(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_mingen"))
+        .args(args)
+        .output()
+        .expect("mingen runs")
+}
+
+fn root() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// The first number of the `# Macaulay2:` header line of a problem file.
+fn macaulay2_count(file: &Path) -> usize {
+    let text = std::fs::read_to_string(file).unwrap();
+    let line = text
+        .lines()
+        .find_map(|l| l.strip_prefix("# Macaulay2:"))
+        .unwrap_or_else(|| panic!("{} has no Macaulay2 line", file.display()));
+    line.split_whitespace().next().unwrap().parse().unwrap()
+}
+
+#[test]
+fn report_on_the_corpus_has_one_row_per_file_with_the_independent_counts() {
+    let dir = root().join("templates/classic");
+    let run = mingen(&[
+        "report",
+        dir.to_str().unwrap(),
+        "--json",
+        "--instances",
+        "50",
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let rows: Vec<Value> = serde_json::from_slice::<Value>(&run.stdout)
+        .unwrap()
+        .as_array()
+        .unwrap()
+        .clone();
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "mp"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 12, "the corpus has at least 12 problems");
+    assert_eq!(rows.len(), files.len());
+    for (row, file) in rows.iter().zip(&files) {
+        let stem = file.file_stem().unwrap().to_str().unwrap();
+        assert_eq!(row["problem"], stem, "{row}");
+        assert_eq!(row["solutions"], macaulay2_count(file), "{stem}");
+        assert!(row["error"].is_null(), "{stem}: {}", row["error"]);
+        assert!(row["template"]["rows"].as_u64().unwrap() >= 1, "{stem}");
+        assert!(row["published"].is_string(), "{stem} has a published line");
+        assert_eq!(row["audit"]["instances"], 50, "{stem}");
+    }
+}
+
+#[test]
+fn a_problem_without_a_template_is_a_row_with_its_count_and_the_reason() {
+    let dir = std::env::temp_dir().join(format!("mingen-report-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // Two solutions, but only one of the two unknowns can be in the quotient basis {1, x}:
+    // y is not read off the eigenvectors.
+    let file = dir.join("line_circle.mp");
+    std::fs::write(
+        &file,
+        "problem line_circle\nunknown x, y\ndata a: scalar, b: scalar\nx*x + y*y = a\nx + y = b\n",
+    )
+    .unwrap();
+    let run = mingen(&["report", file.to_str().unwrap(), "--markdown"]);
+    assert!(run.status.success());
+    let text = String::from_utf8(run.stdout).unwrap();
+    let row = text.lines().find(|l| l.contains("`line_circle`")).unwrap();
+    let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+    assert_eq!(cells[3], "2", "{row}");
+    assert_eq!(cells[5], "none", "{row}");
+    assert!(text.contains("2 solutions, but no template"), "{text}");
+    assert!(!text.contains("x0") && !text.contains("x1"), "{text}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn generate_reports_the_count_and_names_when_no_template_is_found() {
+    let dir = std::env::temp_dir().join(format!("mingen-nocount-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("line_circle.mp");
+    std::fs::write(
+        &file,
+        "problem line_circle\nunknown u, v\ndata a: scalar, b: scalar\nu*u + v*v = a\nu + v = b\n",
+    )
+    .unwrap();
+    let out = dir.join("out.rs");
+    let run = mingen(&[
+        "generate",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(run.status.code(), Some(2));
+    let err = String::from_utf8(run.stderr).unwrap();
+    assert!(err.contains("2 solutions, but no template"), "{err}");
+    assert!(
+        err.contains("does not contain u") || err.contains("does not contain v"),
+        "{err}"
+    );
+    assert!(!err.contains("x0") && !err.contains("x1"), "{err}");
+    assert!(!out.exists());
+    std::fs::remove_dir_all(&dir).ok();
+}

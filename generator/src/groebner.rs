@@ -4,7 +4,7 @@
 //! ## Public API
 //! - [`groebner`]`(nvars, &[Poly<Fp<P>>]) -> Result<GroebnerBasis<P>, GroebnerError>`: the
 //!   reduced, monic Gröbner basis in grevlex with `x_0 > x_1 > ...` (the
-//!   [`MonomialOrder::Grevlex`] convention of [`crate::algebra`]). An inconsistent system
+//!   [`crate::algebra::MonomialOrder::Grevlex`] convention of [`crate::algebra`]). An inconsistent system
 //!   (the basis is `{1}`) is the error [`GroebnerError::Inconsistent`].
 //! - [`GroebnerBasis::normal_form`]: the remainder of any polynomial on division by the basis
 //!   (the unique representative supported on standard monomials).

@@ -1,6 +1,6 @@
 //! From traced coefficients to straight-line code.
 //!
-//! A [`Program`] is the part of a [`Tracer`](super::traced::Tracer)'s DAG needed by a list
+//! A [`Program`] is the part of a [`Tracer`]'s DAG needed by a list
 //! of outputs (dead nodes dropped), as a sequence of `let cK = <expr>;` statements plus one
 //! expression per output. A node becomes a named statement when it is used more than once
 //! (the shared subexpressions), when it is an output that must be computed up front, or

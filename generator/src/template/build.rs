@@ -279,7 +279,7 @@ pub(crate) fn candidates<const P: u32>(eqs: &[Poly<Fp<P>>], d: u32) -> Vec<Candi
 /// Candidate rows are all multiples of the equations up to total degree `d`, for `d` from
 /// the largest degree among the equations and the reducible monomials upward (at most
 /// `opts.max_extra_degree` more), until every reducible monomial is reducible; then
-/// [`shrink`] removes rows and columns. Deterministic.
+/// Shrinking (`shrink.rs`) removes rows and columns. Deterministic.
 pub fn build_template<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     basis: &[Monomial],

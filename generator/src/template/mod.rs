@@ -12,7 +12,7 @@
 //! - `excess` (the first `n_excess` columns) are all other monomials the rows contain;
 //!   the last `n_dependent` of them are linear combinations of the other excess columns
 //!   (on generic instances: the excess block may be rank-deficient) and are left out of the
-//!   elimination (see [`shape`]).
+//!   elimination (see `shape.rs`).
 //!
 //! Gauss-Jordan elimination of the template with this column order leaves, for each
 //! reducible monomial r, a row `r + sum_k T[r,k] b_k` (zero on excess and other reducible

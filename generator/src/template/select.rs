@@ -113,7 +113,7 @@ pub(crate) fn select_basis<const P: u32>(
     Some(b)
 }
 
-/// The column orders tried by [`best_selected`]: grevlex under the cyclic rotations of
+/// The column orders tried by `best_selected`: grevlex under the cyclic rotations of
 /// the variables and of their reversal (2n orders for n variables, the identity first),
 /// without duplicates.
 pub fn basis_orders(nvars: usize) -> Vec<BasisOrder> {

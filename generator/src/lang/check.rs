@@ -5,6 +5,8 @@
 //! once) plus the list of scalar equations, each an entry of a node.
 
 use super::ast::{AddOp, Decl, Expr, ExprKind, MulOp, Name, Postfix, Stmt};
+use super::ir::Tape;
+pub use super::ir::{Checked, Node, NodeId, Op, ScalarEquation, Shape, MAX_DEGREE};
 use super::lexer::Pos;
 use super::names::{check_problem_name, FieldNames};
 use super::LangError;
@@ -21,122 +23,6 @@ const MAX_ARRAY_LEN: usize = 100_000;
 const MAX_NODES: usize = 2_000_000;
 const MAX_ITERATIONS: usize = 1_000_000;
 const MAX_EQUATIONS: usize = 100_000;
-/// Bound on the total degree (unknowns and data) of an equation, far above any minimal
-/// problem and far below the exponent range of [`crate::algebra::Exponent`].
-pub const MAX_DEGREE: u32 = 255;
-
-/// Index of a node in [`Checked::nodes`].
-pub type NodeId = usize;
-
-/// A shape: 1x1 (scalar), 3x1 (column vector), 1x3 (row vector) or 3x3 (matrix).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct Shape {
-    /// Number of rows.
-    pub rows: usize,
-    /// Number of columns.
-    pub cols: usize,
-}
-
-impl Shape {
-    /// 1x1.
-    pub const SCALAR: Shape = Shape { rows: 1, cols: 1 };
-    /// 3x1.
-    pub const COL: Shape = Shape { rows: 3, cols: 1 };
-    /// 1x3.
-    pub const ROW: Shape = Shape { rows: 1, cols: 3 };
-    /// 3x3.
-    pub const MAT: Shape = Shape { rows: 3, cols: 3 };
-    /// Whether 1x1.
-    pub fn is_scalar(self) -> bool {
-        self == Shape::SCALAR
-    }
-    /// Number of entries.
-    pub fn len(self) -> usize {
-        self.rows * self.cols
-    }
-    /// Always false (shapes have at least one entry); for clippy's `len` convention.
-    pub fn is_empty(self) -> bool {
-        false
-    }
-    fn describe(self) -> String {
-        match (self.rows, self.cols) {
-            (1, 1) => "a scalar".into(),
-            (3, 1) => "a 3x1 column vector".into(),
-            (1, 3) => "a 1x3 row vector".into(),
-            (3, 3) => "a 3x3 matrix".into(),
-            (r, c) => format!("a {r}x{c} matrix"),
-        }
-    }
-}
-
-/// One operation of the tape; operands are earlier nodes.
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
-pub enum Op {
-    /// A rational constant (1x1).
-    Const(Q),
-    /// Unknown scalar number i (1x1).
-    Unknown(usize),
-    /// Data slot number s (1x1).
-    Data(usize),
-    /// A matrix from 1x1 nodes, row-major.
-    Build(Shape, Vec<NodeId>),
-    /// The 3x3 identity.
-    Identity,
-    /// Entrywise sum of equal shapes.
-    Add(NodeId, NodeId),
-    /// Entrywise difference of equal shapes.
-    Sub(NodeId, NodeId),
-    /// Negation.
-    Neg(NodeId),
-    /// Matrix product, or scaling when one side is 1x1.
-    Mul(NodeId, NodeId),
-    /// Transpose.
-    Transpose(NodeId),
-    /// The cross-product matrix of a 3-vector.
-    Skew(NodeId),
-    /// Determinant of a 3x3 matrix.
-    Det(NodeId),
-    /// Trace of a 3x3 matrix.
-    Trace(NodeId),
-    /// Entry (row, col) of a node (1x1).
-    Entry(NodeId, usize, usize),
-}
-
-/// A tape node: operation and result shape.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Node {
-    /// The operation.
-    pub op: Op,
-    /// The shape of its value.
-    pub shape: Shape,
-    /// An upper bound on the total degree of its entries in unknowns and data together.
-    pub degree: u32,
-}
-
-/// One scalar equation: entry (row, col) of node `node`, which is `lhs - rhs`.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ScalarEquation {
-    /// The node holding `lhs - rhs`.
-    pub node: NodeId,
-    /// Row of the entry.
-    pub row: usize,
-    /// Column of the entry.
-    pub col: usize,
-    /// Source line of the equation.
-    pub line: usize,
-}
-
-/// A checked problem: layout, tape and scalar equations.
-#[derive(Clone, Debug)]
-pub struct Checked {
-    /// Symbols of the problem.
-    pub layout: ProblemLayout,
-    /// The tape, operands before users.
-    pub nodes: Vec<Node>,
-    /// The scalar equations, in source order (matrix equations row-major).
-    pub equations: Vec<ScalarEquation>,
-}
-
 #[derive(Clone, Copy, Debug)]
 enum Sym {
     Unknown(usize),
@@ -161,8 +47,7 @@ struct Checker {
     layout: ProblemLayout,
     symbols: HashMap<String, Sym>,
     scopes: Vec<HashMap<String, Binding>>,
-    nodes: Vec<Node>,
-    intern: HashMap<Op, NodeId>,
+    tape: Tape,
     equations: Vec<ScalarEquation>,
     iterations: usize,
     fields: FieldNames,
@@ -197,8 +82,7 @@ pub fn check(stmts: &[(Pos, Stmt)]) -> Result<Checked, LangError> {
         },
         symbols: HashMap::new(),
         scopes: vec![HashMap::new()],
-        nodes: Vec::new(),
-        intern: HashMap::new(),
+        tape: Tape::default(),
         equations: Vec::new(),
         iterations: 0,
         fields: FieldNames::default(),
@@ -220,7 +104,7 @@ pub fn check(stmts: &[(Pos, Stmt)]) -> Result<Checked, LangError> {
     }
     Ok(Checked {
         layout: c.layout,
-        nodes: c.nodes,
+        nodes: c.tape.nodes,
         equations: c.equations,
     })
 }
@@ -472,12 +356,12 @@ impl Checker {
     fn equation(&mut self, lhs: &Expr, eq: Pos, rhs: &Expr) -> Result<(), LangError> {
         let l = self.value(lhs)?;
         let r = self.value(rhs)?;
-        let (ls, rs) = (self.shape(l), self.shape(r));
+        let (ls, rs) = (self.tape.shape(l), self.tape.shape(r));
         let diff = if ls == rs {
-            self.mk(Op::Sub(l, r), ls)
-        } else if rs.is_scalar() && self.is_const_zero(r) {
+            self.tape.mk(Op::Sub(l, r), ls)
+        } else if rs.is_scalar() && self.tape.is_const_zero(r) {
             l
-        } else if ls.is_scalar() && self.is_const_zero(l) {
+        } else if ls.is_scalar() && self.tape.is_const_zero(l) {
             r
         } else {
             return Err(self.err(
@@ -489,8 +373,8 @@ impl Checker {
                 ),
             ));
         };
-        let shape = self.shape(diff);
-        let degree = self.nodes.get(diff).map_or(0, |n| n.degree);
+        let shape = self.tape.shape(diff);
+        let degree = self.tape.nodes.get(diff).map_or(0, |n| n.degree);
         if degree > MAX_DEGREE {
             return Err(self.err(
                 eq,
@@ -516,101 +400,14 @@ impl Checker {
         Ok(())
     }
 
-    fn shape(&self, n: NodeId) -> Shape {
-        self.nodes.get(n).map(|n| n.shape).unwrap_or(Shape::SCALAR)
-    }
-
-    fn op(&self, n: NodeId) -> Option<&Op> {
-        self.nodes.get(n).map(|n| &n.op)
-    }
-
-    fn constant(&self, n: NodeId) -> Option<&Q> {
-        match self.op(n) {
-            Some(Op::Const(q)) => Some(q),
-            _ => None,
-        }
-    }
-
-    fn is_const_zero(&self, n: NodeId) -> bool {
-        self.constant(n).is_some_and(|q| q.is_zero())
-    }
-
-    /// Adds a node (or finds the identical one), folding constants.
-    fn mk(&mut self, op: Op, shape: Shape) -> NodeId {
-        let folded = match &op {
-            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) => {
-                match (self.constant(*a), self.constant(*b)) {
-                    (Some(x), Some(y)) => Some(Op::Const(match op {
-                        Op::Add(..) => x + y,
-                        Op::Sub(..) => x - y,
-                        _ => x * y,
-                    })),
-                    (_, Some(y)) if y.is_zero() && !matches!(op, Op::Mul(..)) => {
-                        return *a;
-                    }
-                    (Some(x), _) if x.is_zero() && matches!(op, Op::Add(..)) => return *b,
-                    (Some(x), _) if x.is_one() && matches!(op, Op::Mul(..)) => return *b,
-                    (_, Some(y)) if y.is_one() && matches!(op, Op::Mul(..)) => return *a,
-                    _ => None,
-                }
-            }
-            Op::Neg(a) => self.constant(*a).map(|x| Op::Const(-x)),
-            Op::Transpose(a) => {
-                if self.shape(*a).is_scalar() {
-                    return *a;
-                }
-                if let Some(Op::Transpose(inner)) = self.op(*a) {
-                    return *inner;
-                }
-                None
-            }
-            Op::Entry(a, i, j) => {
-                if let Some(Op::Build(s, entries)) = self.op(*a) {
-                    if let Some(e) = entries.get(i * s.cols + j) {
-                        return *e;
-                    }
-                }
-                if self.shape(*a).is_scalar() {
-                    return *a;
-                }
-                None
-            }
-            _ => None,
-        };
-        let op = folded.unwrap_or(op);
-        if let Some(&id) = self.intern.get(&op) {
-            return id;
-        }
-        let deg = |n: &NodeId| self.nodes.get(*n).map_or(0, |n| n.degree);
-        let degree = match &op {
-            Op::Const(_) | Op::Identity => 0,
-            Op::Unknown(_) | Op::Data(_) => 1,
-            Op::Build(_, e) => e.iter().map(deg).max().unwrap_or(0),
-            Op::Add(a, b) | Op::Sub(a, b) => deg(a).max(deg(b)),
-            Op::Mul(a, b) => deg(a).saturating_add(deg(b)),
-            Op::Det(a) => deg(a).saturating_mul(3),
-            Op::Neg(a) | Op::Transpose(a) | Op::Skew(a) | Op::Trace(a) | Op::Entry(a, _, _) => {
-                deg(a)
-            }
-        };
-        let id = self.nodes.len();
-        self.intern.insert(op.clone(), id);
-        self.nodes.push(Node { op, shape, degree });
-        id
-    }
-
     fn budget(&self, pos: Pos) -> Result<(), LangError> {
-        if self.nodes.len() > MAX_NODES {
+        if self.tape.nodes.len() > MAX_NODES {
             return Err(self.err(
                 pos,
                 format!("problem too large (more than {MAX_NODES} expression nodes)"),
             ));
         }
         Ok(())
-    }
-
-    fn konst(&mut self, q: Q) -> NodeId {
-        self.mk(Op::Const(q), Shape::SCALAR)
     }
 
     /// The node of a value, or an error for an unindexed array.
@@ -644,12 +441,12 @@ impl Checker {
                     return Err(self.err(pos, "internal error: bad unknown symbol"));
                 };
                 match u.len {
-                    None => Ok(self.mk(Op::Unknown(u.first_var), Shape::SCALAR)),
+                    None => Ok(self.tape.mk(Op::Unknown(u.first_var), Shape::SCALAR)),
                     Some(3) => {
                         let e: Vec<NodeId> = (0..3)
-                            .map(|k| self.mk(Op::Unknown(u.first_var + k), Shape::SCALAR))
+                            .map(|k| self.tape.mk(Op::Unknown(u.first_var + k), Shape::SCALAR))
                             .collect();
-                        Ok(self.mk(Op::Build(Shape::COL, e), Shape::COL))
+                        Ok(self.tape.mk(Op::Build(Shape::COL, e), Shape::COL))
                     }
                     Some(n) => Err(self.err(
                         pos,
@@ -665,19 +462,19 @@ impl Checker {
 
     fn data_element(&mut self, d: &DataSymbol, elem: usize) -> NodeId {
         let base = d.first_slot + elem * d.kind.slots();
-        let slot = |c: &mut Checker, k: usize| c.mk(Op::Data(base + k), Shape::SCALAR);
+        let slot = |c: &mut Checker, k: usize| c.tape.mk(Op::Data(base + k), Shape::SCALAR);
         match d.kind {
             DataKind::Scalar => slot(self, 0),
             DataKind::Vec3 | DataKind::Point => {
                 let mut e: Vec<NodeId> = (0..d.kind.slots()).map(|k| slot(self, k)).collect();
                 if d.kind == DataKind::Point {
-                    e.push(self.konst(Q::one()));
+                    e.push(self.tape.konst(Q::one()));
                 }
-                self.mk(Op::Build(Shape::COL, e), Shape::COL)
+                self.tape.mk(Op::Build(Shape::COL, e), Shape::COL)
             }
             DataKind::Mat3 | DataKind::Rotation => {
                 let e: Vec<NodeId> = (0..9).map(|k| slot(self, k)).collect();
-                self.mk(Op::Build(Shape::MAT, e), Shape::MAT)
+                self.tape.mk(Op::Build(Shape::MAT, e), Shape::MAT)
             }
         }
     }
@@ -685,7 +482,7 @@ impl Checker {
     /// An index expression's value, checked against `len`.
     fn index(&mut self, e: &Expr, len: usize, what: &str) -> Result<usize, LangError> {
         let n = self.value(e)?;
-        let Some(q) = self.constant(n).cloned() else {
+        let Some(q) = self.tape.constant(n).cloned() else {
             return Err(self.err(
                 e.pos,
                 format!("the index of {what} must be an integer constant or loop variable"),
@@ -715,12 +512,12 @@ impl Checker {
         match &e.kind {
             ExprKind::Number(s) => {
                 let q = parse_number(s, e.pos)?;
-                Ok(Val::Node(self.konst(q)))
+                Ok(Val::Node(self.tape.konst(q)))
             }
             ExprKind::Name(name) => match self.lookup(name) {
                 Some(Binding::Value(v)) => Ok(v),
-                Some(Binding::LoopVar(k)) => Ok(Val::Node(self.konst(q_int(k)))),
-                None if name == "I" => Ok(Val::Node(self.mk(Op::Identity, Shape::MAT))),
+                Some(Binding::LoopVar(k)) => Ok(Val::Node(self.tape.konst(q_int(k)))),
+                None if name == "I" => Ok(Val::Node(self.tape.mk(Op::Identity, Shape::MAT))),
                 None if BUILTINS.contains(&name.as_str()) => Err(self.err(
                     e.pos,
                     format!("'{name}' is a function: call it, as in {name}(...)"),
@@ -730,15 +527,15 @@ impl Checker {
             ExprKind::Paren(inner) => self.expr(inner),
             ExprKind::Neg(inner) => {
                 let n = self.value(inner)?;
-                let s = self.shape(n);
-                Ok(Val::Node(self.mk(Op::Neg(n), s)))
+                let s = self.tape.shape(n);
+                Ok(Val::Node(self.tape.mk(Op::Neg(n), s)))
             }
             ExprKind::Call(f, arg) => self.call(f, arg),
             ExprKind::Sum(first, rest) => {
                 let mut acc = self.value(first)?;
                 for (op, pos, t) in rest {
                     let n = self.value(t)?;
-                    let (a, b) = (self.shape(acc), self.shape(n));
+                    let (a, b) = (self.tape.shape(acc), self.tape.shape(n));
                     if a != b {
                         return Err(self.err(
                             *pos,
@@ -751,8 +548,8 @@ impl Checker {
                         ));
                     }
                     acc = match op {
-                        AddOp::Add => self.mk(Op::Add(acc, n), a),
-                        AddOp::Sub => self.mk(Op::Sub(acc, n), a),
+                        AddOp::Add => self.tape.mk(Op::Add(acc, n), a),
+                        AddOp::Sub => self.tape.mk(Op::Sub(acc, n), a),
                     };
                 }
                 Ok(Val::Node(acc))
@@ -761,7 +558,7 @@ impl Checker {
                 let mut acc = self.value(first)?;
                 for (op, pos, t) in rest {
                     let n = self.value(t)?;
-                    let (a, b) = (self.shape(acc), self.shape(n));
+                    let (a, b) = (self.tape.shape(acc), self.tape.shape(n));
                     match op {
                         MulOp::Mul => {
                             let s = if a.is_scalar() {
@@ -785,10 +582,10 @@ impl Checker {
                                     ),
                                 ));
                             };
-                            acc = self.mk(Op::Mul(acc, n), s);
+                            acc = self.tape.mk(Op::Mul(acc, n), s);
                         }
                         MulOp::Div => {
-                            let Some(q) = self.constant(n).cloned() else {
+                            let Some(q) = self.tape.constant(n).cloned() else {
                                 return Err(self.err(
                                     t.pos,
                                     "the divisor must be a constant (numbers and loop variables only)",
@@ -797,8 +594,8 @@ impl Checker {
                             if q.is_zero() {
                                 return Err(self.err(t.pos, "division by zero"));
                             }
-                            let inv = self.konst(q.recip());
-                            acc = self.mk(Op::Mul(acc, inv), a);
+                            let inv = self.tape.konst(q.recip());
+                            acc = self.tape.mk(Op::Mul(acc, inv), a);
                         }
                     }
                 }
@@ -810,8 +607,8 @@ impl Checker {
                     v = match p {
                         Postfix::Transpose(_) => {
                             let n = self.node_of(v, base.pos)?;
-                            let s = self.shape(n);
-                            Val::Node(self.mk(
+                            let s = self.tape.shape(n);
+                            Val::Node(self.tape.mk(
                                 Op::Transpose(n),
                                 Shape {
                                     rows: s.cols,
@@ -852,7 +649,7 @@ impl Checker {
                 };
                 let k = self.index(idx, len, &format!("'{}'", u.name))?;
                 Ok(Val::Node(
-                    self.mk(Op::Unknown(u.first_var + k), Shape::SCALAR),
+                    self.tape.mk(Op::Unknown(u.first_var + k), Shape::SCALAR),
                 ))
             }
             Val::Node(n) => self.index_node(n, idx, "this value"),
@@ -860,26 +657,26 @@ impl Checker {
     }
 
     fn index_node(&mut self, n: NodeId, idx: &Expr, what: &str) -> Result<Val, LangError> {
-        let s = self.shape(n);
+        let s = self.tape.shape(n);
         if s.is_scalar() {
             return Err(self.err(idx.pos, format!("cannot index a scalar ({what})")));
         }
         let len = if s.rows == 1 { s.cols } else { s.rows };
         let k = self.index(idx, len, what)?;
         if s.rows == 1 {
-            Ok(Val::Node(self.mk(Op::Entry(n, 0, k), Shape::SCALAR)))
+            Ok(Val::Node(self.tape.mk(Op::Entry(n, 0, k), Shape::SCALAR)))
         } else if s.cols == 1 {
-            Ok(Val::Node(self.mk(Op::Entry(n, k, 0), Shape::SCALAR)))
+            Ok(Val::Node(self.tape.mk(Op::Entry(n, k, 0), Shape::SCALAR)))
         } else {
             // A matrix row, 1x3.
             let e: Vec<NodeId> = (0..s.cols)
-                .map(|j| self.mk(Op::Entry(n, k, j), Shape::SCALAR))
+                .map(|j| self.tape.mk(Op::Entry(n, k, j), Shape::SCALAR))
                 .collect();
             let row = Shape {
                 rows: 1,
                 cols: s.cols,
             };
-            Ok(Val::Node(self.mk(Op::Build(row, e), row)))
+            Ok(Val::Node(self.tape.mk(Op::Build(row, e), row)))
         }
     }
 
@@ -887,7 +684,7 @@ impl Checker {
         let mut out = Vec::new();
         for it in items {
             let n = self.value(it)?;
-            let s = self.shape(n);
+            let s = self.tape.shape(n);
             if !s.is_scalar() {
                 return Err(self.err(
                     it.pos,
@@ -931,7 +728,7 @@ impl Checker {
                 entries.extend(self.scalar_items(r)?);
             }
             return Ok(Val::Node(
-                self.mk(Op::Build(Shape::MAT, entries), Shape::MAT),
+                self.tape.mk(Op::Build(Shape::MAT, entries), Shape::MAT),
             ));
         }
         if items.len() != 3 {
@@ -941,7 +738,9 @@ impl Checker {
             ));
         }
         let e = self.scalar_items(items)?;
-        Ok(Val::Node(self.mk(Op::Build(Shape::COL, e), Shape::COL)))
+        Ok(Val::Node(
+            self.tape.mk(Op::Build(Shape::COL, e), Shape::COL),
+        ))
     }
 
     fn call(&mut self, f: &Name, arg: &Expr) -> Result<Val, LangError> {
@@ -955,7 +754,7 @@ impl Checker {
             return Err(self.err(f.pos, msg));
         }
         let n = self.value(arg)?;
-        let s = self.shape(n);
+        let s = self.tape.shape(n);
         match fname {
             "skew" => {
                 if s != Shape::COL && s != Shape::ROW {
@@ -964,7 +763,7 @@ impl Checker {
                         format!("skew() takes a 3-vector, found {}", s.describe()),
                     ));
                 }
-                Ok(Val::Node(self.mk(Op::Skew(n), Shape::MAT)))
+                Ok(Val::Node(self.tape.mk(Op::Skew(n), Shape::MAT)))
             }
             _ => {
                 if s != Shape::MAT {
@@ -978,7 +777,7 @@ impl Checker {
                 } else {
                     Op::Trace(n)
                 };
-                Ok(Val::Node(self.mk(op, Shape::SCALAR)))
+                Ok(Val::Node(self.tape.mk(op, Shape::SCALAR)))
             }
         }
     }

@@ -7,6 +7,7 @@
 
 pub mod ast;
 pub mod check;
+pub mod ir;
 pub mod lexer;
 pub mod names;
 pub mod parser;

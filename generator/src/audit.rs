@@ -1,12 +1,13 @@
-//! Numerical-stability audit of an elimination template over many random instances
-//! (`mingen audit`, DESIGN §6), through the interpreted solver of [`crate::interpret`].
+//! Numerical-stability audit of an elimination template over many instances (`mingen
+//! audit`, DESIGN §6; random ones, or read from a file by [`crate::instances_file`]),
+//! through the interpreted solver of [`crate::interpret`], which runs the emitted solvers'
+//! numeric code: the audit measures the real solutions a generated solver returns.
 
 use crate::algebra::Poly;
 use crate::instance::random_data_f64;
 use crate::interpret::{normalized_residual, recover_eliminated, solve_template};
 use crate::pipeline::SolverPlan;
 use crate::template::EliminationTemplate;
-use nalgebra::Complex;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::fmt;
@@ -67,28 +68,32 @@ pub struct AuditInstance {
 pub struct AuditReport {
     /// Number of instances run.
     pub instances: usize,
-    /// Median over instances of the log10 of the worst normalised residual.
+    /// Median over instances (those with a real solution, and the unsolved ones) of the
+    /// log10 of the worst normalised residual of the real solutions.
     pub median_log10_residual: f64,
     /// 99th percentile (nearest rank) of the same.
     pub p99_log10_residual: f64,
-    /// Instances with a residual above [`FAILURE_RESIDUAL`], fewer solutions than
-    /// expected, or no solution at all (the interpreter failed).
+    /// Instances with a residual above [`FAILURE_RESIDUAL`], a missed real solution, or
+    /// not solved at all (singular template).
     pub failures: usize,
     /// Unit-width bins of log10 residual: `(lower_edge, count)`, contiguous from the lowest
     /// to the highest occupied bin.
     pub histogram: Vec<(f64, usize)>,
-    /// Number of solutions (real and complex) expected per instance.
+    /// Number of solutions (real and complex) of the problem.
     pub solutions_expected: usize,
     /// Instances where the interpreter returned an error (counted in `failures`).
     pub solve_errors: usize,
-    /// Instances with fewer finite solutions than expected (counted in `failures`).
+    /// Instances where a real eigenvector of the action matrix gave no solution (counted in
+    /// `failures`).
     pub missed_solutions: usize,
+    /// Solved instances without a real solution (not in the residual statistics).
+    pub no_real_solutions: usize,
     /// Mean number of real solutions per solved instance.
     pub mean_real_solutions: f64,
 }
 
 /// Worst normalised residual of a solution over the equations.
-fn worst_residual(equations: &[Poly<f64>], s: &[Complex<f64>]) -> f64 {
+fn worst_residual(equations: &[Poly<f64>], s: &[f64]) -> f64 {
     equations
         .iter()
         .map(|e| normalized_residual(e, s))
@@ -101,20 +106,23 @@ fn worst_residual(equations: &[Poly<f64>], s: &[Complex<f64>]) -> f64 {
         })
 }
 
-/// Outcome of one instance: (log10 worst residual, finite solutions, real solutions), or
-/// `None` if the instance could not be solved.
-fn run_instance(
-    template: &EliminationTemplate,
-    inst: &AuditInstance,
-) -> Option<(f64, usize, usize)> {
-    let sols = solve_template(template, &inst.equations).ok()?;
-    let mut worst: f64 = 0.0;
-    let mut finite = 0;
+/// Outcome of one solved instance.
+struct Outcome {
+    /// log10 of the worst residual over the real solutions (clamped), `None` without any.
+    log10_residual: Option<f64>,
+    /// Real solutions returned.
+    real: usize,
+    /// Real eigenpairs that gave no solution (rejected read-out or no eliminated unknowns).
+    missed: usize,
+}
+
+/// Solves one instance; `None` if it could not be solved (an emitted solver returns
+/// nothing).
+fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<Outcome> {
+    let solved = solve_template(template, &inst.equations).ok()?;
+    let mut worst: Option<f64> = None;
     let mut real = 0;
-    for s in &sols {
-        if !s.iter().all(|z| z.re.is_finite() && z.im.is_finite()) {
-            continue;
-        }
+    for s in &solved.solutions {
         let full = match &inst.eliminated {
             None => s.clone(),
             Some(el) => {
@@ -122,8 +130,8 @@ fn run_instance(
                     continue;
                 };
                 let n = s.len() + e.len();
-                let mut full = Vec::with_capacity(n);
                 let (mut si, mut ei) = (s.iter(), e.iter());
+                let mut full = Vec::with_capacity(n);
                 for pos in 0..n {
                     let next = if el.positions.contains(&pos) {
                         ei.next()
@@ -135,38 +143,36 @@ fn run_instance(
                 full
             }
         };
-        finite += 1;
-        let big = full.iter().map(|z| z.norm()).fold(1.0, f64::max);
-        if full
-            .iter()
-            .all(|z| z.im.abs() <= crate::interpret::REAL_TOL * big)
-        {
-            real += 1;
-        }
+        real += 1;
         let r = worst_residual(&inst.original, &full);
-        worst = if r.is_nan() {
-            f64::INFINITY
-        } else {
-            worst.max(r)
-        };
+        let r = if r.is_nan() { f64::INFINITY } else { r };
+        worst = Some(worst.map_or(r, |w| w.max(r)));
     }
-    let lg = if worst == 0.0 {
-        LOG10_FLOOR
-    } else {
-        worst.log10().clamp(LOG10_FLOOR, LOG10_CEIL)
-    };
-    Some((lg, finite, real))
+    Some(Outcome {
+        log10_residual: worst.map(|w| {
+            if w == 0.0 {
+                LOG10_FLOOR
+            } else {
+                w.log10().clamp(LOG10_FLOOR, LOG10_CEIL)
+            }
+        }),
+        real,
+        missed: solved.eigenpairs - real,
+    })
 }
 
-/// Runs `opts.instances` random instances through the interpreted template.
+/// Runs `opts.instances` instances through the interpreted template.
 ///
 /// `make_instance` draws one instance from the shared generator (seeded with
-/// `opts.seed`). Per solution `s` (complex included; eliminated unknowns recovered and
-/// merged back into the original order), the residual is the maximum over the original
-/// equations of `|f(s)| / sum_terms |c| |m(s)|`; per instance, the log10 of the worst
-/// residual over its solutions (clamped, see [`LOG10_FLOOR`]). An instance fails if that
-/// residual exceeds [`FAILURE_RESIDUAL`], if fewer than `expected_solutions` finite
-/// solutions were found, or if it could not be solved at all.
+/// `opts.seed`). Per real solution `s` (eliminated unknowns recovered and merged back into
+/// the original order), the residual is the maximum over the original equations of
+/// `|f(s)| / sum_terms |c| |m(s)|`; per instance, the log10 of the worst residual over its
+/// real solutions (clamped, see [`LOG10_FLOOR`]). The median and p99 are over the instances
+/// with a real solution plus the unsolved ones (at [`LOG10_CEIL`]). An instance fails if
+/// that residual exceeds [`FAILURE_RESIDUAL`], if a real eigenvector of the action matrix
+/// gave no solution (a missed solution), or if it could not be solved at all.
+/// `expected_solutions` (real and complex) is reported only: an emitted solver returns the
+/// real ones.
 pub fn audit(
     template: &EliminationTemplate,
     expected_solutions: usize,
@@ -175,7 +181,7 @@ pub fn audit(
 ) -> AuditReport {
     let mut rng = ChaCha8Rng::seed_from_u64(opts.seed);
     let mut logs = Vec::with_capacity(opts.instances);
-    let (mut failures, mut solve_errors, mut missed) = (0, 0, 0);
+    let (mut failures, mut solve_errors, mut missed, mut no_real) = (0, 0, 0, 0);
     let (mut real_total, mut solved) = (0usize, 0usize);
     for _ in 0..opts.instances {
         let inst = make_instance(&mut rng);
@@ -185,17 +191,23 @@ pub fn audit(
                 failures += 1;
                 logs.push(LOG10_CEIL);
             }
-            Some((lg, finite, real)) => {
+            Some(o) => {
                 solved += 1;
-                real_total += real;
-                let miss = finite < expected_solutions;
+                real_total += o.real;
+                let miss = o.missed > 0;
                 if miss {
                     missed += 1;
                 }
-                if miss || lg > FAILURE_RESIDUAL.log10() {
+                let bad = o
+                    .log10_residual
+                    .is_some_and(|lg| lg > FAILURE_RESIDUAL.log10());
+                if miss || bad {
                     failures += 1;
                 }
-                logs.push(lg);
+                match o.log10_residual {
+                    Some(lg) => logs.push(lg),
+                    None => no_real += 1,
+                }
             }
         }
     }
@@ -209,6 +221,7 @@ pub fn audit(
         solutions_expected: expected_solutions,
         solve_errors,
         missed_solutions: missed,
+        no_real_solutions: no_real,
         mean_real_solutions: if solved > 0 {
             real_total as f64 / solved as f64
         } else {
@@ -256,7 +269,8 @@ impl AuditReport {
     /// JSON with the DESIGN §6 keys `instances`, `median_log10_residual`,
     /// `p99_log10_residual`, `failures`, `histogram` (a list of
     /// `{"lower_edge": e, "count": n}` for the bins `[e, e + 1)` of log10 residual), plus
-    /// `solutions_expected`, `solve_errors`, `missed_solutions`, `mean_real_solutions`.
+    /// `solutions_expected`, `solve_errors`, `missed_solutions`, `no_real_solutions`,
+    /// `mean_real_solutions`.
     pub fn to_json(&self) -> serde_json::Value {
         serde_json::json!({
             "instances": self.instances,
@@ -271,6 +285,7 @@ impl AuditReport {
             "solutions_expected": self.solutions_expected,
             "solve_errors": self.solve_errors,
             "missed_solutions": self.missed_solutions,
+            "no_real_solutions": self.no_real_solutions,
             "mean_real_solutions": self.mean_real_solutions,
         })
     }
@@ -294,6 +309,7 @@ impl fmt::Display for AuditReport {
         writeln!(f, "instances:              {}", self.instances)?;
         writeln!(f, "solutions expected:     {}", self.solutions_expected)?;
         writeln!(f, "mean real solutions:    {:.2}", self.mean_real_solutions)?;
+        writeln!(f, "without real solution:  {}", self.no_real_solutions)?;
         writeln!(
             f,
             "median log10 residual:  {:.2}",
@@ -333,19 +349,43 @@ pub fn audit_plan(plan: &SolverPlan, options: &AuditOptions) -> AuditReport {
         &plan.generated.built.template,
         plan.generated.count,
         options,
-        |rng| {
-            let data = random_data_f64(layout, rng);
-            let (equations, eliminated) = plan.equations::<f64>(&data);
-            AuditInstance {
-                equations,
-                original: plan.problem.evaluate::<f64>(&data),
-                eliminated: eliminated.map(|e| EliminatedUnknowns {
-                    matrix: e.coefficient_matrix,
-                    positions: e.eliminated,
-                }),
-            }
-        },
+        |rng| plan_instance(plan, &random_data_f64(layout, rng)),
     )
+}
+
+/// [`audit_plan`] on given instances (one data vector per instance, in the problem's slot
+/// order, e.g. from [`crate::instances_file::read_instances`]) instead of random ones.
+/// Panics if an instance does not have the problem's number of data slots.
+pub fn audit_plan_on(plan: &SolverPlan, instances: &[Vec<f64>]) -> AuditReport {
+    let slots = plan.problem.layout.data_slot_count();
+    assert!(
+        instances.iter().all(|d| d.len() == slots),
+        "every instance needs {slots} data values"
+    );
+    let mut next = instances.iter();
+    let options = AuditOptions {
+        instances: instances.len(),
+        seed: 0,
+    };
+    audit(
+        &plan.generated.built.template,
+        plan.generated.count,
+        &options,
+        |_| plan_instance(plan, next.next().expect("one instance per draw")),
+    )
+}
+
+/// The audit instance of one data vector.
+fn plan_instance(plan: &SolverPlan, data: &[f64]) -> AuditInstance {
+    let (equations, eliminated) = plan.equations::<f64>(data);
+    AuditInstance {
+        equations,
+        original: plan.problem.evaluate::<f64>(data),
+        eliminated: eliminated.map(|e| EliminatedUnknowns {
+            matrix: e.coefficient_matrix,
+            positions: e.eliminated,
+        }),
+    }
 }
 
 #[cfg(test)]

@@ -17,6 +17,7 @@ pub mod build;
 pub mod eliminate;
 pub mod emit;
 pub mod groebner;
+pub mod instances_file;
 pub mod interpret;
 pub mod problem;
 pub mod quotient;

@@ -42,6 +42,10 @@ enum Command {
         /// Print one JSON object instead of text.
         #[arg(long)]
         json: bool,
+        /// Read the instances from this file instead: one per line, whitespace-separated
+        /// numbers in the order of the problem's data slots (`mingen inspect` lists them).
+        #[arg(long, value_name = "DATA", conflicts_with_all = ["instances", "seed"])]
+        instances_from: Option<PathBuf>,
     },
     /// One table row per problem: unknowns, solutions, template against the published
     /// size, action, audit median / p99 / failures, generation seconds.
@@ -148,7 +152,8 @@ fn main() -> ExitCode {
             instances,
             seed,
             json,
-        } => audit(&file, instances, seed, json),
+            instances_from,
+        } => audit(&file, instances, seed, instances_from.as_deref(), json),
         Command::Report {
             paths,
             markdown: _,
@@ -186,12 +191,15 @@ fn problem_summary(p: &Problem) -> Map<String, Value> {
                         "kind": d.kind.keyword(),
                         "len": d.len,
                         "slots": d.slot_count(),
+                        "first_slot": d.first_slot,
                     })
                 })
                 .collect(),
         ),
     );
     m.insert("data_slots".into(), json!(p.layout.data_slot_count()));
+    // The order of the numbers on a line of `audit --instances-from`.
+    m.insert("data_slot_names".into(), json!(p.layout.data_slot_names()));
     m.insert("equations".into(), json!(equations.len()));
     m.insert(
         "equation_degrees".into(),
@@ -252,6 +260,11 @@ fn inspect(file: &PathBuf, as_json: bool) -> Result<(), CliError> {
         let len = d.len.map(|n| format!("[{n}]")).unwrap_or_default();
         outln!(out, "  {}{}: {}", d.name, len, d.kind.keyword());
     }
+    outln!(
+        out,
+        "data slot order (a line of audit --instances-from): {}",
+        p.layout.data_slot_names().join(" ")
+    );
     let lines = p.equation_lines();
     let equations = p.expand();
     outln!(out, "equations: {}", equations.len());
@@ -332,7 +345,13 @@ fn print_plan(out: &mut String, plan: &mingen::pipeline::SolverPlan) {
     );
 }
 
-fn audit(file: &Path, instances: usize, seed: u64, as_json: bool) -> Result<(), CliError> {
+fn audit(
+    file: &Path,
+    instances: usize,
+    seed: u64,
+    instances_from: Option<&Path>,
+    as_json: bool,
+) -> Result<(), CliError> {
     if instances == 0 {
         return Err(CliError {
             message: "--instances must be at least 1".into(),
@@ -340,15 +359,37 @@ fn audit(file: &Path, instances: usize, seed: u64, as_json: bool) -> Result<(), 
         });
     }
     let plan = plan_file(file, &TemplateOptions::default())?;
-    let options = mingen::audit::AuditOptions { instances, seed };
-    let report = mingen::audit::audit_plan(&plan, &options);
+    let (report, source) = match instances_from {
+        Some(path) => {
+            let data = mingen::instances_file::read_instances(path, &plan.problem.layout).map_err(
+                |e| CliError {
+                    message: match e {
+                        e @ mingen::instances_file::InstancesError::Io { .. } => e.to_string(),
+                        e => format!("{}: {e}", path.display()),
+                    },
+                    code: 2,
+                },
+            )?;
+            (
+                mingen::audit::audit_plan_on(&plan, &data),
+                format!("instances from {}", path.display()),
+            )
+        }
+        None => {
+            let options = mingen::audit::AuditOptions { instances, seed };
+            (
+                mingen::audit::audit_plan(&plan, &options),
+                format!("uniform random instances, seed {seed}"),
+            )
+        }
+    };
     if as_json {
         let text = serde_json::to_string_pretty(&report.to_json()).unwrap_or_default();
         return emit(&format!("{text}\n"));
     }
     let (rows, cols) = plan.generated.built.template.eliminated_size();
     emit(&format!(
-        "problem {} (template {rows} x {cols}, {} solutions)\n{report}",
+        "problem {} (template {rows} x {cols}, {} solutions; {source})\n{report}",
         plan.problem.name(),
         plan.generated.count
     ))

@@ -161,8 +161,8 @@ fn five_point_solutions_satisfy_the_equations_and_contain_the_truth() {
     for _ in 0..50 {
         let (eqs, truth) = five_point_instance(&mut rng);
         let sols = solve_template(&template, &eqs).unwrap();
-        assert_eq!(sols.len(), 10);
-        for s in &sols {
+        assert_eq!(sols.solutions.len(), sols.eigenpairs);
+        for s in &sols.solutions {
             for e in &eqs {
                 let r = normalized_residual(e, s);
                 assert!(r < 1e-9, "residual {r}");
@@ -216,12 +216,13 @@ fn five_point_audit() {
     );
 }
 
-/// Unknowns (x, y, t1, t2): the three points (1,1), (2,3), (3,-1) in (x, y), then
-/// x t1 - t2 = 0 (t linear, eliminated) and t1^2 + t2^2 = 1 (its normalisation, dropped).
+/// Unknowns (x, y, t1, t2, t3): the three points (1,1), (2,3), (3,-1) in (x, y), then
+/// x t1 - t2 = 0 and y t2 - t3 = 0 (t linear, eliminated: three unknowns, as the emitted
+/// solvers support) and t1^2 + t2^2 + t3^2 = 1 (its normalisation, dropped).
 #[test]
 fn audit_with_eliminated_unknowns() {
     let m2 = |e: [u16; 2]| Monomial(e.to_vec());
-    let m4 = |e: [u16; 4]| Monomial(e.to_vec());
+    let m5 = |e: [u16; 5]| Monomial(e.to_vec());
     let e0 = Poly::from_terms(
         2,
         [
@@ -263,22 +264,32 @@ fn audit_with_eliminated_unknowns() {
         basis: vec![m2([1, 0]), m2([0, 1]), m2([0, 0])],
         action: m2([1, 0]),
     };
-    let widen =
-        |p: &P| Poly::from_terms(4, p.terms().map(|(m, &c)| (m4([m.0[0], m.0[1], 0, 0]), c)));
+    let widen = |p: &P| {
+        Poly::from_terms(
+            5,
+            p.terms().map(|(m, &c)| (m5([m.0[0], m.0[1], 0, 0, 0]), c)),
+        )
+    };
     let original = vec![
         widen(&e0),
         widen(&e1),
-        Poly::from_terms(4, [(m4([1, 0, 1, 0]), 1.0), (m4([0, 0, 0, 1]), -1.0)]),
+        Poly::from_terms(5, [(m5([1, 0, 1, 0, 0]), 1.0), (m5([0, 0, 0, 1, 0]), -1.0)]),
+        Poly::from_terms(5, [(m5([0, 1, 0, 1, 0]), 1.0), (m5([0, 0, 0, 0, 1]), -1.0)]),
         Poly::from_terms(
-            4,
+            5,
             [
-                (m4([0, 0, 2, 0]), 1.0),
-                (m4([0, 0, 0, 2]), 1.0),
-                (m4([0, 0, 0, 0]), -1.0),
+                (m5([0, 0, 2, 0, 0]), 1.0),
+                (m5([0, 0, 0, 2, 0]), 1.0),
+                (m5([0, 0, 0, 0, 2]), 1.0),
+                (m5([0, 0, 0, 0, 0]), -1.0),
             ],
         ),
     ];
-    let matrix = vec![vec![Poly::var(2, 0), Poly::constant(2, -1.0)]];
+    let zero = Poly::constant(2, 0.0);
+    let matrix = vec![
+        vec![Poly::var(2, 0), Poly::constant(2, -1.0), zero.clone()],
+        vec![zero, Poly::var(2, 1), Poly::constant(2, -1.0)],
+    ];
     let opts = AuditOptions {
         instances: 5,
         seed: 3,
@@ -288,7 +299,7 @@ fn audit_with_eliminated_unknowns() {
         original: original.clone(),
         eliminated: Some(EliminatedUnknowns {
             matrix: matrix.clone(),
-            positions: vec![2, 3],
+            positions: vec![2, 3, 4],
         }),
     });
     assert_eq!(report.failures, 0, "{report}");

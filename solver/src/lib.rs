@@ -13,7 +13,8 @@
 //! - Model: [`camera`], [`rolling_shutter`], [`geometry`], [`epipolar`].
 //! - Estimation: [`ransac`], [`refine`], [`methods`] (one file per method) behind
 //!   [`estimate_relative_pose`].
-//! - Data and evaluation: [`pair_file`], [`simulate`], [`evaluate`], [`experiment`].
+//! - Data and evaluation: [`pair_file`], [`simulate`], [`evaluate`], [`experiment`];
+//!   [`instances`] (G-RSRP instances on simulated geometry, for `mingen audit`).
 
 // Minimal solvers (their numeric back end is the mingen-runtime crate).
 pub mod generated;
@@ -36,6 +37,7 @@ pub mod refine;
 pub mod atomic_file;
 pub mod evaluate;
 pub mod experiment;
+pub mod instances;
 pub mod pair_file;
 pub mod simulate;
 

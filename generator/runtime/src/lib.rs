@@ -29,6 +29,10 @@
 //! - [`Stages`]: observer of an emitted solver's stages (`solve_staged`), for timings.
 //! - [`null_vector3`]: unit null vector of an n x 3 matrix (recovery of eliminated
 //!   unknowns such as a translation direction).
+//! - [`read_unknowns`]: the unknowns read off an eigenvector of the action matrix.
+//! - [`real_eigenpairs_dyn`], [`lu_solve_template`], [`null_vector3_rows`]: the same
+//!   code at sizes known only at run time, for `mingen`'s interpreter (`mingen audit`),
+//!   so that it measures exactly what the emitted solvers compute.
 //!
 //! The back ends are compared side by side in `benches/runtime.rs` (`cargo bench -p
 //! mingen-runtime`) and, on the action matrices of the shipped solvers, in `rspose`'s
@@ -36,20 +40,24 @@
 
 pub use nalgebra;
 
+mod dynamic;
 mod eigen;
 mod elim;
 mod hessenberg;
 mod hqr;
 mod null;
+mod readout;
 mod solution_set;
 mod solver;
 mod stages;
 mod sturm;
 
+pub use dynamic::{real_eigenpairs_dyn, DynEigenpair, MAX_DYNAMIC_BASIS, STURM_MAX_BASIS};
 pub use eigen::{real_eigenpairs, NEAR_REAL_TOL};
 pub use elim::{gauss_jordan, lu_solve_template, lu_solve_template_fixed, PIVOT_TOL};
 pub use hqr::real_eigenpairs_hqr;
-pub use null::null_vector3;
+pub use null::{null_vector3, null_vector3_rows};
+pub use readout::{read_unknowns, MIN_UNIT_ENTRY};
 pub use solution_set::SolutionSet;
 pub use solver::{FlatValues, MinimalSolver};
 pub use stages::Stages;

@@ -42,10 +42,22 @@ const CONSISTENT_RESID: f64 = 1e-13;
 /// `None` if `R < 2`, an entry is not finite, or the rank is below 2.
 /// Never panics, never allocates.
 pub fn null_vector3<const R: usize>(rows: &[[f64; 3]; R]) -> Option<[f64; 3]> {
-    let n = R;
-    if n < 2 {
-        return None;
-    }
+    let inv = 1.0 / max_abs(rows)?;
+    // Scaled once: the fast path alone reads every row three times.
+    let scaled_rows: [[f64; 3]; R] = std::array::from_fn(|i| scaled(rows[i], inv));
+    null_vector3_scaled(R, |i| scaled_rows[i])
+}
+
+/// [`null_vector3`] for any number of rows (a slice; the interpreter's entry point, for
+/// matrices whose size is known at run time only): the same algorithm and the same
+/// result, the rows scaled as they are read instead of copied. Never allocates.
+pub fn null_vector3_rows(rows: &[[f64; 3]]) -> Option<[f64; 3]> {
+    let inv = 1.0 / max_abs(rows)?;
+    null_vector3_scaled(rows.len(), |i| scaled(rows[i], inv))
+}
+
+/// Largest `|a_ij|`; `None` if an entry is not finite or every entry is zero.
+fn max_abs(rows: &[[f64; 3]]) -> Option<f64> {
     let mut s = 0.0f64;
     for r in rows {
         for &x in r {
@@ -56,13 +68,16 @@ pub fn null_vector3<const R: usize>(rows: &[[f64; 3]; R]) -> Option<[f64; 3]> {
             s = s.max(a);
         }
     }
-    if s == 0.0 {
+    (s > 0.0).then_some(s)
+}
+
+/// The algorithm of [`null_vector3`] on `n` rows `row(i)`, already scaled so that
+/// `max |a_ij| = 1`.
+#[inline(always)]
+fn null_vector3_scaled(n: usize, row: impl Fn(usize) -> [f64; 3]) -> Option<[f64; 3]> {
+    if n < 2 {
         return None;
     }
-    let inv = 1.0 / s;
-    // Scaled once: the fast path alone reads every row three times.
-    let scaled_rows: [[f64; 3]; R] = std::array::from_fn(|i| scaled(rows[i], inv));
-    let row = |i: usize| scaled_rows[i];
     let resid = |v: [f64; 3]| -> f64 {
         (0..n)
             .map(|i| {

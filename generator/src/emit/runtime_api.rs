@@ -31,6 +31,12 @@ pub(crate) fn real_eigenpairs_sturm() -> TokenStream {
     quote!(mingen_runtime::real_eigenpairs_sturm)
 }
 
+/// `read_unknowns(v: &[f64], one: usize, pairs: &[&[(usize, usize)]], out: &mut [f64])
+/// -> bool`: the unknowns read off an eigenvector.
+pub(crate) fn read_unknowns() -> TokenStream {
+    quote!(mingen_runtime::read_unknowns)
+}
+
 /// The stage-observer trait `Stages` (`filled`, `eliminated`, `action`: `&[f64] -> bool`),
 /// implemented by `()`.
 pub(crate) fn stages() -> TokenStream {

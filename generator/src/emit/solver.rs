@@ -15,23 +15,6 @@ use std::collections::HashMap;
 /// Templates with at most this many rows are kept on the stack; larger ones use a `Vec`.
 pub const SMALL_TEMPLATE_ROWS: usize = 40;
 
-/// Eigenvectors whose entry at the basis monomial 1 is at most this (they are unit
-/// vectors) are solutions at infinity or numerical noise and are skipped.
-const MIN_UNIT_ENTRY_LITERAL: &str = "1e-12";
-
-/// Action matrices up to this size use the characteristic-polynomial / Sturm eigen back end
-/// (`real_eigenpairs_sturm`), larger ones Francis QR with exceptional shifts
-/// (`real_eigenpairs_hqr`; nalgebra's Schur form, which has no exceptional shifts, did not
-/// converge on 20-30 % of the grsrp and grsrp_gravity action matrices at any cap). Sturm is
-/// about twice as fast at every shipped size (10, 12, 20). An earlier version of it was
-/// limited to 10 because at 12 and 20 (spectra symmetric under ±, from the sign of t) it
-/// returned extra, wrong real solutions on 18-26 % of the agreement test's instances; the
-/// current one (balancing, elimination-based Hessenberg form, roots confirmed by inverse
-/// iteration with a residual test, QR when a root is not confirmed) shows 0 % count
-/// differences on grsrp and 0.2 % on grsrp_gravity, as QR does
-/// (`tests/tests/agreement.rs`).
-const STURM_MAX_BASIS: usize = 20;
-
 pub(super) fn lit(n: usize) -> Literal {
     Literal::usize_unsuffixed(n)
 }
@@ -401,29 +384,6 @@ fn entry_tokens(terms: &[(Monomial, Expr)]) -> TokenStream {
     out
 }
 
-/// `let u = ...;` reading one unknown off the eigenvector `v` through its read-out pairs,
-/// as `mingen::interpret::read_unknown` does: `v[k] / v[j]` for a single pair (`w` is
-/// `v[one]`), otherwise `sum v[j] v[k] / sum v[j]^2` over the pairs, in their order.
-fn readout_tokens(u: &Ident, pairs: &[(usize, usize)], one: usize) -> TokenStream {
-    if let [(j, k)] = pairs {
-        let kl = lit(*k);
-        if *j == one {
-            return quote!(let #u = v[#kl] / w;);
-        }
-        let jl = lit(*j);
-        return quote!(let #u = v[#kl] / v[#jl];);
-    }
-    let num = pairs.iter().map(|&(j, k)| {
-        let (jl, kl) = (lit(j), lit(k));
-        quote!(v[#jl] * v[#kl])
-    });
-    let den = pairs.iter().map(|&(j, _)| {
-        let jl = lit(j);
-        quote!(v[#jl] * v[#jl])
-    });
-    quote!(let #u = (#(#num)+*) / (#(#den)+*);)
-}
-
 fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let spec = plan.spec;
     let t = &spec.template;
@@ -558,15 +518,23 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         }
     };
 
-    // Read-out.
+    // Read-out: the runtime's `read_unknowns` with the read-out pairs as a constant.
     let one_l = lit(plan.basis_one);
-    let mut reads = Vec::new();
-    let mut finite = Vec::new();
-    for (k, pairs) in plan.readout.iter().enumerate() {
-        let u = format_ident!("u{}", k);
-        reads.push(readout_tokens(&u, pairs, plan.basis_one));
-        finite.push(quote!(!#u.is_finite()));
-    }
+    let nvars_l = lit(plan.readout.len());
+    let readout_pairs: Vec<TokenStream> = plan
+        .readout
+        .iter()
+        .map(|pairs| {
+            let ps = pairs.iter().map(|&(j, k)| {
+                let (jl, kl) = (lit(j), lit(k));
+                quote!((#jl, #kl))
+            });
+            quote!(&[#(#ps),*])
+        })
+        .collect();
+    let unknown_idents: Vec<Ident> = (0..plan.readout.len())
+        .map(|k| format_ident!("u{}", k))
+        .collect();
     let elim_block = if let Some(el) = &spec.elimination {
         let mut outs = program.outputs[fill_vals.len()..].iter();
         let mut row_tokens = Vec::new();
@@ -619,14 +587,14 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
 
     let lu = rt::lu_solve_template();
     let first_row = lit(t.n_excess - t.n_dependent);
-    let eig = if nb <= STURM_MAX_BASIS {
+    let eig = if nb <= mingen_runtime::STURM_MAX_BASIS {
         rt::real_eigenpairs_sturm()
     } else {
         rt::real_eigenpairs_hqr()
     };
     let stages = rt::stages();
     let smat = rt::smatrix();
-    let eps: Literal = MIN_UNIT_ENTRY_LITERAL.parse().expect("a float literal");
+    let read = rt::read_unknowns();
     let basis: Vec<String> = t.basis.iter().map(|b| plan.mono(b)).collect();
     let docs = [
         format!(
@@ -694,15 +662,13 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
                 return out;
             }
             let pairs = #eig::<#nb_l>(&a);
+            const READOUT: [&[(usize, usize)]; #nvars_l] = [#(#readout_pairs),*];
             for (_, v) in pairs.iter() {
-                let w = v[#one_l];
-                if !w.is_finite() || w.abs() <= #eps {
+                let mut u = [0.0f64; #nvars_l];
+                if !#read(v.as_slice(), #one_l, &READOUT, &mut u) {
                     continue;
                 }
-                #(#reads)*
-                if #(#finite)||* {
-                    continue;
-                }
+                let [#(#unknown_idents),*] = u;
                 #elim_block
                 if !out.push(Solution { #(#field_inits)* }) {
                     break;

@@ -3,6 +3,7 @@
 mod calibrate;
 mod compare;
 mod demo;
+mod dump_instances;
 mod estimate;
 mod experiment;
 mod make_pair;
@@ -36,6 +37,8 @@ enum Command {
     Calibrate(calibrate::Args),
     /// Make a pair file from a real recording: gyro CSV, frame times, calibration, matches.
     MakePair(make_pair::Args),
+    /// Write G-RSRP instances from simulated scenes for `mingen audit --instances-from`.
+    DumpInstances(dump_instances::Args),
 }
 
 /// RANSAC/refinement settings to use.
@@ -104,6 +107,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::MakePair(a) => make_pair::run(a),
         Command::Compare(a) => compare::run(a),
         Command::Calibrate(a) => calibrate::run(a),
+        Command::DumpInstances(a) => dump_instances::run(a),
     }
 }
 

@@ -1056,26 +1056,19 @@ pub fn solve_staged<S: mingen_runtime::Stages>(
         return out;
     }
     let pairs = mingen_runtime::real_eigenpairs_sturm::<12>(&a);
+    const READOUT: [&[(usize, usize)]; 5] = [
+        &[(11, 6), (10, 1)],
+        &[(11, 7), (9, 0), (10, 2)],
+        &[(11, 8), (10, 3)],
+        &[(11, 9), (7, 0), (10, 4)],
+        &[(11, 10), (6, 1), (7, 2), (8, 3), (9, 4), (10, 5)],
+    ];
     for (_, v) in pairs.iter() {
-        let w = v[11];
-        if !w.is_finite() || w.abs() <= 1e-12 {
+        let mut u = [0.0f64; 5];
+        if !mingen_runtime::read_unknowns(v.as_slice(), 11, &READOUT, &mut u) {
             continue;
         }
-        let u0 = (v[11] * v[6] + v[10] * v[1]) / (v[11] * v[11] + v[10] * v[10]);
-        let u1 = (v[11] * v[7] + v[9] * v[0] + v[10] * v[2])
-            / (v[11] * v[11] + v[9] * v[9] + v[10] * v[10]);
-        let u2 = (v[11] * v[8] + v[10] * v[3]) / (v[11] * v[11] + v[10] * v[10]);
-        let u3 = (v[11] * v[9] + v[7] * v[0] + v[10] * v[4])
-            / (v[11] * v[11] + v[7] * v[7] + v[10] * v[10]);
-        let u4 = (v[11] * v[10] + v[6] * v[1] + v[7] * v[2] + v[8] * v[3] + v[9] * v[4]
-            + v[10] * v[5])
-            / (v[11] * v[11] + v[6] * v[6] + v[7] * v[7] + v[8] * v[8] + v[9] * v[9]
-                + v[10] * v[10]);
-        if !u0.is_finite() || !u1.is_finite() || !u2.is_finite() || !u3.is_finite()
-            || !u4.is_finite()
-        {
-            continue;
-        }
+        let [u0, u1, u2, u3, u4] = u;
         if !out
             .push(Solution {
                 c: u0,

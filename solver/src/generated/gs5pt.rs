@@ -980,20 +980,17 @@ pub fn solve_staged<S: mingen_runtime::Stages>(
         return out;
     }
     let pairs = mingen_runtime::real_eigenpairs_sturm::<10>(&a);
+    const READOUT: [&[(usize, usize)]; 3] = [
+        &[(9, 6), (6, 0), (7, 1), (8, 3)],
+        &[(9, 7), (6, 1), (7, 2), (8, 4)],
+        &[(9, 8), (6, 3), (7, 4), (8, 5)],
+    ];
     for (_, v) in pairs.iter() {
-        let w = v[9];
-        if !w.is_finite() || w.abs() <= 1e-12 {
+        let mut u = [0.0f64; 3];
+        if !mingen_runtime::read_unknowns(v.as_slice(), 9, &READOUT, &mut u) {
             continue;
         }
-        let u0 = (v[9] * v[6] + v[6] * v[0] + v[7] * v[1] + v[8] * v[3])
-            / (v[9] * v[9] + v[6] * v[6] + v[7] * v[7] + v[8] * v[8]);
-        let u1 = (v[9] * v[7] + v[6] * v[1] + v[7] * v[2] + v[8] * v[4])
-            / (v[9] * v[9] + v[6] * v[6] + v[7] * v[7] + v[8] * v[8]);
-        let u2 = (v[9] * v[8] + v[6] * v[3] + v[7] * v[4] + v[8] * v[5])
-            / (v[9] * v[9] + v[6] * v[6] + v[7] * v[7] + v[8] * v[8]);
-        if !u0.is_finite() || !u1.is_finite() || !u2.is_finite() {
-            continue;
-        }
+        let [u0, u1, u2] = u;
         if !out.push(Solution { x: u0, y: u1, z: u2 }) {
             break;
         }

@@ -1,0 +1,111 @@
+//! Reading the unknowns off an eigenvector of the action matrix.
+
+/// Eigenvectors (unit vectors) whose entry at the basis monomial 1 is at most this in
+/// magnitude are solutions at infinity or numerical noise and are skipped.
+pub const MIN_UNIT_ENTRY: f64 = 1e-12;
+
+/// Reads every unknown off the unit eigenvector `v ∝ (b_0(s), ..., b_{n-1}(s))` of the
+/// action matrix into `out` (one entry per element of `pairs`); `false` (skip this
+/// eigenvector) if `v[one]` (the basis monomial 1) is not finite or at most
+/// [`MIN_UNIT_ENTRY`], or if an unknown is not finite.
+///
+/// `pairs[i]` lists the read-out pairs `(j, k)` of unknown `x_i`: `b_k = x_i * b_j`. One
+/// pair gives the plain ratio `v[k] / v[j]`; several give the least-squares combination
+/// `sum_p v[j_p] v[k_p] / sum_p v[j_p]^2`, which weights each ratio by `v[j]^2`. An
+/// eigenvector accurate to `e` gives `x` from one pair to about `e / |v[j]|`, so the plain
+/// `v[x] / v[1]` loses the accuracy of large solutions (where `v[1]` is tiny next to the
+/// higher-degree monomials); the combination is dominated by the largest denominators.
+///
+/// The emitted solvers call it with constant pairs (inlined and unrolled), the interpreter
+/// with the template's. Never panics: out-of-range indices make it return `false`.
+#[inline]
+pub fn read_unknowns(v: &[f64], one: usize, pairs: &[&[(usize, usize)]], out: &mut [f64]) -> bool {
+    let Some(&w) = v.get(one) else {
+        return false;
+    };
+    if !w.is_finite() || w.abs() <= MIN_UNIT_ENTRY || out.len() != pairs.len() {
+        return false;
+    }
+    for (x, p) in out.iter_mut().zip(pairs) {
+        let value = match **p {
+            [(j, k)] => match (v.get(j), v.get(k)) {
+                (Some(a), Some(b)) => b / a,
+                _ => return false,
+            },
+            _ => {
+                let (mut num, mut den) = (0.0, 0.0);
+                for &(j, k) in p.iter() {
+                    let (Some(a), Some(b)) = (v.get(j), v.get(k)) else {
+                        return false;
+                    };
+                    num += a * b;
+                    den += a * a;
+                }
+                num / den
+            }
+        };
+        if !value.is_finite() {
+            return false;
+        }
+        *x = value;
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uses_the_large_entries() {
+        // Basis (x^2, x, 1) at x = 1e6, unit vector, entries perturbed by 1e-13 absolute:
+        // v[x] / v[1] is off by ~10 %, the combination with v[x^2] / v[x] by ~1e-7.
+        let x = 1e6;
+        let n = (x * x * x * x + x * x + 1.0f64).sqrt();
+        let v = [x * x / n + 1e-13, x / n - 1e-13, 1.0 / n + 1e-13];
+        let mut plain = [0.0];
+        let mut both = [0.0];
+        assert!(read_unknowns(&v, 2, &[&[(2, 1)]], &mut plain));
+        assert!(read_unknowns(&v, 2, &[&[(2, 1), (1, 0)]], &mut both));
+        assert!((plain[0] - x).abs() > 0.05 * x, "{plain:?}");
+        assert!((both[0] - x).abs() < 1e-6 * x, "{both:?}");
+    }
+
+    #[test]
+    fn rejects_points_at_infinity_and_bad_input() {
+        let mut out = [0.0; 2];
+        assert!(read_unknowns(
+            &[0.5, 1.0],
+            1,
+            &[&[(1, 0)], &[(1, 1)]],
+            &mut out
+        ));
+        assert_eq!(out, [0.5, 1.0]);
+        assert!(!read_unknowns(
+            &[1.0, 1e-13],
+            1,
+            &[&[(1, 0)], &[(1, 1)]],
+            &mut out
+        ));
+        assert!(!read_unknowns(
+            &[1.0, f64::NAN],
+            1,
+            &[&[(1, 0)], &[(1, 1)]],
+            &mut out
+        ));
+        assert!(!read_unknowns(
+            &[1.0, 0.5],
+            1,
+            &[&[(1, 7)], &[(1, 1)]],
+            &mut out
+        ));
+        assert!(!read_unknowns(&[1.0, 0.5], 1, &[&[(1, 0)]], &mut out));
+        // 0 / 0 in a combination whose denominators all vanish.
+        assert!(!read_unknowns(
+            &[0.0, 0.5],
+            1,
+            &[&[(0, 0), (0, 0)], &[(1, 1)]],
+            &mut out
+        ));
+    }
+}

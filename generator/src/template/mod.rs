@@ -22,7 +22,7 @@
 //! `v = (b_0(s), ..., b_{n-1}(s))` satisfies `M v = action(s) v`: solutions are the
 //! eigenvectors of M, and each unknown `x_i` is read off as `v[x_i] / v[1]`, or better as the
 //! least-squares combination of the ratios `v[x_i b] / v[b]` over every b in B with
-//! `x_i b` in B (`interpret::read_unknown`; B contains 1 and every unknown for all shipped
+//! `x_i b` in B (`mingen_runtime::read_unknowns`; B contains 1 and every unknown for all shipped
 //! problems; the builder reports an error otherwise).
 
 use crate::algebra::Monomial;

@@ -6,8 +6,11 @@ use rspose::camera::{Camera, View};
 use rspose::simulate::{simulate, SimulationOptions};
 use rspose::{estimate_relative_pose, EstimateOptions, Method};
 
+/// Pixel matches and the two views' gyroscope readings.
+type Recording = (Vec<[[f64; 2]; 2]>, [[f64; 3]; 2]);
+
 /// A simulated pair at 2.5 rad/s: its matches and the two gyroscope readings.
-fn load() -> Result<(Vec<[[f64; 2]; 2]>, [[f64; 3]; 2]), Box<dyn std::error::Error>> {
+fn load() -> Result<Recording, Box<dyn std::error::Error>> {
     let pair = simulate(&SimulationOptions::default())?;
     Ok((pair.matches, pair.gyro.ok_or("no gyro")?))
 }

@@ -5,7 +5,7 @@ the summary CSVs of `rspose experiment`. Usage: python3 tools/readme_tables.py [
 import csv
 import sys
 
-METHODS = ["gsrp", "nrsrp", "grsrp", "grsrp+", "rectified"]
+METHODS = ["gsrp", "nrsrp", "grsrp", "grsrp+", "rectified", "rectified+v"]
 HEADERS = {
     "angular": "angular velocity (rad/s)",
     "angular-linear": "level (0.5 rad/s + 4 m/s each)",
@@ -20,7 +20,7 @@ def table(directory, sweep):
     for r in rows:
         if r["level"] not in levels:
             levels.append(r["level"])
-    out = [f"| {HEADERS[sweep]} | " + " | ".join(METHODS) + " |", "|---" * 6 + "|"]
+    out = [f"| {HEADERS[sweep]} | " + " | ".join(METHODS) + " |", "|---" * (len(METHODS) + 1) + "|"]
     for level in levels:
         cells = []
         for m in METHODS:

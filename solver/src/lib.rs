@@ -11,7 +11,8 @@
 //!   numeric back end of the `mingen-runtime` crate, adapted for the estimator in
 //!   [`minimal`].
 //! - Model: [`camera`], [`rolling_shutter`], [`geometry`], [`epipolar`].
-//! - Estimation: [`ransac`], [`refine`], [`methods`] (one file per method) behind
+//! - Estimation: [`ransac`], [`refine`], [`velocity`] (linear velocity with the gyro's
+//!   rotations), [`methods`] (one file per method) behind
 //!   [`estimate_relative_pose`].
 //! - Data and evaluation: [`pair_file`], [`simulate`], [`evaluate`], [`experiment`];
 //!   [`instances`] (G-RSRP instances on simulated geometry, for `mingen audit`).
@@ -32,6 +33,7 @@ pub mod rolling_shutter;
 pub mod methods;
 pub mod ransac;
 pub mod refine;
+pub mod velocity;
 
 // Data, simulation, evaluation and the paper's experiments.
 pub mod atomic_file;

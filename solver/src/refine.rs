@@ -15,7 +15,9 @@
 //! - [`refine_pose`] with [`PoseModel::ExactAngular`] + [`ResidualKind::Sampson`]: Sampson
 //!   error of the exact angular model (`rectified`), or the global-shutter model (`gsrp`);
 //! - [`refine_nrsrp`]: Dai et al.'s generalized epipolar constraint for the uniform RS model,
-//!   unknowns `R, t, ω1, d1, ω2, d2`, Cauchy loss over all points.
+//!   unknowns `R, t, ω1, d1, ω2, d2`, Cauchy loss over all points;
+//! - [`crate::velocity`]: the same constraint with the gyro's row rotations, unknowns
+//!   `R, t, d1, d2` (`rectified+v`).
 
 use crate::epipolar::{PointData, PoseModel, ResidualKind};
 use crate::geometry::{skew, tangent_basis};
@@ -84,6 +86,11 @@ pub trait LmProblem<const N: usize> {
     fn retract(&self, state: &Self::State, delta: &SVector<f64, N>) -> Self::State;
     /// The robust loss.
     fn loss(&self) -> Loss;
+    /// The loss applies to residuals `0..robust_residuals()`; the rest are plain squares
+    /// (prior terms, which a robust loss must not discount). Default: all residuals.
+    fn robust_residuals(&self) -> usize {
+        self.num_residuals()
+    }
     /// Residuals of `state` into `out` and their analytic Jacobian into `jac` (`jac[i]` is
     /// the gradient of residual `i` with respect to the tangent step `δ` at `δ = 0`, i.e.
     /// of `residuals(retract(state, δ))`). Return `false` (the default) to have
@@ -111,8 +118,9 @@ pub struct LmResult<S> {
     pub iterations: usize,
 }
 
-fn robust_cost(loss: Loss, r: &[f64]) -> f64 {
-    r.iter().map(|x| loss.rho(x * x)).sum()
+fn robust_cost(loss: Loss, robust: usize, r: &[f64]) -> f64 {
+    let (a, b) = r.split_at(robust.min(r.len()));
+    a.iter().map(|x| loss.rho(x * x)).sum::<f64>() + b.iter().map(|x| x * x).sum::<f64>()
 }
 
 /// Minimise `Σ ρ(r_i²)` from `state` (see the module documentation). Never returns a state
@@ -124,12 +132,13 @@ pub fn levenberg_marquardt<const N: usize, P: LmProblem<N>>(
 ) -> LmResult<P::State> {
     let n = problem.num_residuals();
     let loss = problem.loss();
+    let robust = problem.robust_residuals();
     let mut r = vec![0.0; n];
     let mut rp = vec![0.0; n];
     let mut rm = vec![0.0; n];
     let mut jac = vec![SVector::<f64, N>::zeros(); n];
     problem.residuals(&state, &mut r);
-    let mut cost = robust_cost(loss, &r);
+    let mut cost = robust_cost(loss, robust, &r);
     let mut result = LmResult {
         state,
         initial_cost: cost,
@@ -162,7 +171,11 @@ pub fn levenberg_marquardt<const N: usize, P: LmProblem<N>>(
             hess.fill(0.0);
             grad.fill(0.0);
             for i in 0..n {
-                let w = loss.weight(r[i] * r[i]);
+                let w = if i < robust {
+                    loss.weight(r[i] * r[i])
+                } else {
+                    1.0
+                };
                 if !(w.is_finite() && jac[i].iter().all(|x| x.is_finite()) && r[i].is_finite()) {
                     continue;
                 }
@@ -188,7 +201,7 @@ pub fn levenberg_marquardt<const N: usize, P: LmProblem<N>>(
         }
         let candidate = problem.retract(&result.state, &step);
         problem.residuals(&candidate, &mut rp);
-        let new_cost = robust_cost(loss, &rp);
+        let new_cost = robust_cost(loss, robust, &rp);
         if new_cost.is_finite() && new_cost < cost {
             let decrease = (cost - new_cost) / cost.max(1e-300);
             result.state = candidate;
@@ -563,7 +576,7 @@ pub fn refine_nrsrp(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::geometry::{exp_so3, rotation_error_deg, translation_error_deg};
     use crate::simulate::{simulate, SimulationOptions};
@@ -576,7 +589,11 @@ mod tests {
     }
 
     /// Analytic Jacobian of `p` at `state` against central finite differences.
-    fn check_jacobian<const N: usize, P: LmProblem<N>>(p: &P, state: &P::State, tol: f64) {
+    pub(crate) fn check_jacobian<const N: usize, P: LmProblem<N>>(
+        p: &P,
+        state: &P::State,
+        tol: f64,
+    ) {
         let n = p.num_residuals();
         let mut r = vec![0.0; n];
         let mut r0 = vec![0.0; n];

@@ -249,8 +249,13 @@ fn experiment_writes_csv_and_svg_for_every_method_and_level_independent_of_threa
         assert!(out.join("angular.svg").exists());
     }
     let rows = csv_without_timing(&one.join("angular.csv"));
-    assert_eq!(rows.len(), 1 + 5 * 5, "header + 5 levels x 5 methods");
-    for m in ["gsrp", "nrsrp", "grsrp", "grsrp+", "rectified"] {
+    let methods = rspose::Method::ALL.map(|m| m.name());
+    assert_eq!(
+        rows.len(),
+        1 + 5 * methods.len(),
+        "header + 5 levels x every method"
+    );
+    for m in methods {
         assert_eq!(
             rows.iter()
                 .filter(|r| r.split(',').nth(1) == Some(m))
@@ -271,9 +276,9 @@ fn demo_prints_every_method() {
     let o = rspose(&["demo"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let out = String::from_utf8_lossy(&o.stdout);
-    for m in ["gsrp", "nrsrp", "grsrp", "grsrp+", "rectified"] {
+    for m in rspose::Method::ALL.map(|m| m.name()) {
         assert!(
-            out.lines().any(|l| l.starts_with(m)),
+            out.lines().any(|l| l.starts_with(&format!("{m} "))),
             "{m} missing in {out}"
         );
     }
@@ -309,4 +314,33 @@ fn simulate_refuses_point_counts_above_the_cap() {
     ]);
     assert_bad_input(&o, "points");
     assert!(!out.exists());
+}
+
+#[test]
+fn rectified_v_reports_its_velocities_and_what_it_did() {
+    let d = scratch("rectified-v");
+    let p = d.join("pair.json");
+    let o = rspose(&[
+        "simulate",
+        "--linear",
+        "20",
+        "--seed",
+        "5",
+        "-o",
+        p.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = rspose(&[
+        "estimate",
+        p.to_str().unwrap(),
+        "--method",
+        "rectified+v",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["method"], "rectified+v");
+    assert_eq!(v["velocity_fit"]["outcome"], "estimated", "{v}");
+    assert_eq!(v["linear_velocity"].as_array().map(|a| a.len()), Some(2));
+    assert!(v["translation_error_deg"].as_f64().unwrap() < 5.0, "{v}");
 }

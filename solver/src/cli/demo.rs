@@ -1,7 +1,8 @@
-//! `rspose demo`: one simulated scene at 2.5 rad/s with the paper's noise, every method.
+//! `rspose demo`: one simulated scene at 2.5 rad/s with the paper's noise, every method;
+//! optionally with linear velocity (`--linear`).
 
 use super::{CliError, Preset, ALL_METHODS};
-use rspose::experiment::{level_simulation, run_methods, Sweep};
+use rspose::experiment::{level_simulation, run_methods, Level, Sweep};
 use rspose::simulate::simulate;
 
 /// Options of `rspose demo`.
@@ -13,24 +14,32 @@ pub struct Args {
     /// RANSAC/refinement settings.
     #[arg(long, value_enum, default_value_t = Preset::Default)]
     preset: Preset,
+    /// Linear velocity of each camera (m/s); 20 is the angular-linear sweep's hardest level,
+    /// where `rectified+v` differs from `rectified`.
+    #[arg(long, default_value_t = 0.0)]
+    linear: f64,
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
     // The hardest level of the paper's angular sweep: 2.5 rad/s, 1 px, 0.1 rad/s.
-    let level = Sweep::Angular.levels()[4];
+    let level = Level {
+        linear: a.linear,
+        ..Sweep::Angular.levels()[4]
+    };
     let sim = level_simulation(&level, a.seed);
     let pair = simulate(&sim).map_err(|e| CliError::failed(e.to_string()))?;
     println!(
-        "scene: {} matches, angular velocity {} rad/s, pixel noise {} px, gyro noise {} rad/s, seed {} ({:?} preset)",
+        "scene: {} matches, angular velocity {} rad/s, linear velocity {} m/s, pixel noise {} px, gyro noise {} rad/s, seed {} ({:?} preset)",
         pair.matches.len(),
         level.angular,
+        level.linear,
         level.pixel_noise,
         level.gyro_noise,
         a.seed,
         a.preset
     );
     println!(
-        "{:<10} {:>14} {:>17} {:>9} {:>10}",
+        "{:<12} {:>14} {:>17} {:>9} {:>10}",
         "method", "rotation (deg)", "translation (deg)", "inliers", "time (ms)"
     );
     let preset = a.preset;
@@ -38,10 +47,10 @@ pub fn run(a: Args) -> Result<(), CliError> {
         let ms = o.seconds * 1e3;
         match (o.rotation_error_deg, o.translation_error_deg, o.inliers) {
             (Some(r), Some(t), Some(n)) => {
-                println!("{:<10} {r:>14.4} {t:>17.4} {n:>9} {ms:>10.3}", o.method)
+                println!("{:<12} {r:>14.4} {t:>17.4} {n:>9} {ms:>10.3}", o.method)
             }
             _ => println!(
-                "{:<10} {:>14} {:>17} {:>9} {ms:>10.3}",
+                "{:<12} {:>14} {:>17} {:>9} {ms:>10.3}",
                 o.method, "failed", "failed", "-"
             ),
         }

@@ -14,7 +14,7 @@ use std::time::Instant;
 pub struct Args {
     /// The pair file (see `rspose::pair_file` for the schema).
     pair: PathBuf,
-    /// Method: gsrp, nrsrp, grsrp, grsrp+, rectified.
+    /// Method: gsrp, nrsrp, grsrp, grsrp+, rectified, rectified+v.
     #[arg(long, default_value = "grsrp+")]
     method: String,
     /// RANSAC/refinement settings.
@@ -127,6 +127,12 @@ pub fn run(a: Args) -> Result<(), CliError> {
             "quality": est.quality,
             "flags": est.quality.flags(),
         });
+        if let Some(d) = est.linear_velocity {
+            obj["linear_velocity"] = serde_json::json!(d.map(|v| [v.x, v.y, v.z]));
+        }
+        if let Some(fit) = est.velocity_fit {
+            obj["velocity_fit"] = serde_json::json!(fit);
+        }
         if let Some(e) = errors {
             obj["rotation_error_deg"] = e.rotation_error_deg.into();
             obj["translation_error_deg"] = e.translation_error_deg.into();
@@ -159,6 +165,15 @@ pub fn run(a: Args) -> Result<(), CliError> {
         let flags = est.quality.flags();
         if !flags.is_empty() {
             println!("flags        {}", flags.join(", "));
+        }
+        if let Some(fit) = est.velocity_fit {
+            println!("velocities   {}", fit.describe());
+        }
+        if let Some([d1, d2]) = est.linear_velocity {
+            println!(
+                "linear vel.  [{:.4} {:.4} {:.4}] [{:.4} {:.4} {:.4}] baselines/s (camera-1 frame)",
+                d1.x, d1.y, d1.z, d2.x, d2.y, d2.z
+            );
         }
         println!("seconds      {seconds:.6}");
         if let Some(e) = errors {

@@ -88,5 +88,6 @@ pub fn estimate(
         quality: Default::default(),
         angular_velocity: None,
         linear_velocity: None,
+        velocity_fit: None,
     })
 }

@@ -10,6 +10,7 @@
 //! | `nrsrp` | [`nrsrp`]: Dai et al. uniform RS model by LM, Cauchy loss, init from `gsrp` |
 //! | `grsrp`, `grsrp+` | [`grsrp`]: the paper's G-RSRP solver in RANSAC (+ refinement) |
 //! | `rectified` | [`rectified`]: gyro-undistorted bearings, 5-point RANSAC, Sampson refinement |
+//! | `rectified+v` | [`rectified_v`]: `rectified`, then pose and linear velocities on the generalised epipolar model |
 
 pub mod grsrp;
 pub mod gsrp;
@@ -17,6 +18,7 @@ pub mod nrsrp;
 mod pose_ransac;
 pub mod quality;
 pub mod rectified;
+pub mod rectified_v;
 mod subset;
 
 use crate::camera::{CameraError, View};
@@ -25,6 +27,7 @@ use crate::pair_file::Match;
 use crate::refine::LmOptions;
 use nalgebra::{Matrix3, Vector3};
 pub use quality::{Quality, QualityOptions};
+pub use rectified_v::{VelocityFit, VelocityOptions};
 use std::fmt;
 use std::str::FromStr;
 use thiserror::Error;
@@ -42,16 +45,19 @@ pub enum Method {
     GrsrpPlus,
     /// `rectified`: undistort by gyro, 5-point RANSAC, Sampson refinement.
     Rectified,
+    /// `rectified+v`: `rectified`, then the pose and both cameras' linear velocities.
+    RectifiedV,
 }
 
 impl Method {
-    /// All methods, in the order the README lists them.
-    pub const ALL: [Method; 5] = [
+    /// All methods: the paper's and its baselines, then this library's own.
+    pub const ALL: [Method; 6] = [
         Method::Gsrp,
         Method::Nrsrp,
         Method::Grsrp,
         Method::GrsrpPlus,
         Method::Rectified,
+        Method::RectifiedV,
     ];
 
     /// The command-line name.
@@ -62,6 +68,7 @@ impl Method {
             Method::Grsrp => "grsrp",
             Method::GrsrpPlus => "grsrp+",
             Method::Rectified => "rectified",
+            Method::RectifiedV => "rectified+v",
         }
     }
 
@@ -71,7 +78,7 @@ impl Method {
         match self {
             Method::Nrsrp => 17,
             Method::Grsrp | Method::GrsrpPlus => 5.max(essential.sample_size()),
-            Method::Gsrp | Method::Rectified => essential.sample_size(),
+            Method::Gsrp | Method::Rectified | Method::RectifiedV => essential.sample_size(),
         }
     }
 }
@@ -84,7 +91,9 @@ impl fmt::Display for Method {
 
 /// Unknown method name.
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
-#[error("unknown method `{0}` (expected one of gsrp, nrsrp, grsrp, grsrp+, rectified)")]
+#[error(
+    "unknown method `{0}` (expected one of gsrp, nrsrp, grsrp, grsrp+, rectified, rectified+v)"
+)]
 pub struct ParseMethodError(pub String);
 
 impl FromStr for Method {
@@ -204,6 +213,8 @@ pub struct EstimateOptions {
     pub nrsrp_cauchy_px: f64,
     /// Thresholds of the quality flags on every estimate.
     pub quality: QualityOptions,
+    /// The velocity stage of `rectified+v`.
+    pub velocity: VelocityOptions,
 }
 
 impl EstimateOptions {
@@ -274,6 +285,7 @@ impl Default for EstimateOptions {
             r0_source: R0Source::Rectified,
             nrsrp_cauchy_px: 2.0,
             quality: QualityOptions::default(),
+            velocity: VelocityOptions::default(),
         }
     }
 }
@@ -302,9 +314,12 @@ pub struct Estimate {
     pub quality: Quality,
     /// `nrsrp` only: estimated angular velocities ω1, ω2 (rad/s, camera frames).
     pub angular_velocity: Option<[Vector3<f64>; 2]>,
-    /// `nrsrp` only: estimated linear velocities d1, d2 (baseline units per second, camera-1
-    /// row-0 frame).
+    /// `nrsrp` and `rectified+v` (unless it fell back to `rectified`): estimated linear
+    /// velocities d1, d2 (baseline units per second, camera-1 row-0 frame).
     pub linear_velocity: Option<[Vector3<f64>; 2]>,
+    /// `rectified+v` only: whether the velocities were estimated, regularised by their
+    /// prior, or left out (the `rectified` pose returned), and why.
+    pub velocity_fit: Option<VelocityFit>,
 }
 
 impl Estimate {
@@ -424,6 +439,13 @@ fn validate_options(o: &EstimateOptions) -> Result<(), EstimateError> {
     if !(o.nrsrp_cauchy_px.is_finite() && o.nrsrp_cauchy_px > 0.0) {
         return bad("nrsrp_cauchy_px", "must be finite and positive");
     }
+    o.velocity.validate()?;
+    if o.method == Method::RectifiedV && o.robust.pixel_noise <= 0.0 {
+        return bad(
+            "robust.pixel_noise",
+            "must be positive for rectified+v (it scales the velocity prior and test)",
+        );
+    }
     if let R0Source::Given(r) = o.r0_source {
         if !r.iter().all(|x| x.is_finite())
             || (r.transpose() * r - Matrix3::identity()).norm() > 1e-6
@@ -508,6 +530,7 @@ pub fn estimate_relative_pose(
     let mut est = match options.method {
         Method::Gsrp => gsrp::estimate(view1, view2, working, options),
         Method::Rectified => rectified::estimate(view1, view2, working, options),
+        Method::RectifiedV => rectified_v::estimate(view1, view2, working, options),
         Method::Grsrp => grsrp::estimate(view1, view2, working, options, false),
         Method::GrsrpPlus => grsrp::estimate(view1, view2, working, options, true),
         Method::Nrsrp => nrsrp::estimate(view1, view2, working, options),
@@ -518,7 +541,7 @@ pub fn estimate_relative_pose(
     // The bearings each method works on: gyro-undistorted, undistorted with `nrsrp`'s own
     // rotation estimates, or raw.
     let (b1, b2) = match (options.method, est.angular_velocity) {
-        (Method::Grsrp | Method::GrsrpPlus | Method::Rectified, _) => {
+        (Method::Grsrp | Method::GrsrpPlus | Method::Rectified | Method::RectifiedV, _) => {
             (view1.clone(), view2.clone())
         }
         (_, Some([w1, w2])) => (View::new(view1.camera, w1), View::new(view2.camera, w2)),

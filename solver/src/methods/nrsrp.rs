@@ -71,5 +71,6 @@ pub fn estimate(
             .then(|| [-s.phi[0] / per_frame1, -s.phi[1] / per_frame2]),
         linear_velocity: (per_frame1 > 0.0 && per_frame2 > 0.0)
             .then(|| [s.delta[0] / per_frame1, s.delta[1] / per_frame2]),
+        velocity_fit: None,
     })
 }

@@ -60,6 +60,7 @@ pub(crate) fn run_on(
         quality: Default::default(),
         angular_velocity: None,
         linear_velocity: None,
+        velocity_fit: None,
     })
 }
 

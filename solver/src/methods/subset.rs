@@ -5,11 +5,13 @@
 //! is built.
 
 use super::pose_ransac::{gs_threshold, point_data, threshold};
-use super::{Estimate, EstimateOptions, Method};
+use super::{Estimate, EstimateOptions, Method, RobustOptions};
 use crate::camera::View;
-use crate::epipolar::PoseModel;
+use crate::epipolar::{PointData, PoseModel};
 use crate::geometry::skew;
 use crate::pair_file::Match;
+use crate::refine::Pose;
+use crate::velocity::{VelocityModel, VelocityState};
 use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -27,7 +29,8 @@ pub(crate) fn subset_indices(n: usize, max: usize, seed: u64) -> Vec<usize> {
 
 /// The inlier mask of every match under the estimate's pose, with the model and threshold
 /// the method classifies with (`nrsrp`: the exact angular model on its own rotation
-/// estimates, with the global-shutter threshold of its initialisation).
+/// estimates, with the global-shutter threshold of its initialisation; `rectified+v`: the
+/// generalised epipolar model with its velocities, unless it fell back to `rectified`).
 pub(crate) fn classify_all(
     view1: &View,
     view2: &View,
@@ -36,6 +39,23 @@ pub(crate) fn classify_all(
     options: &EstimateOptions,
 ) -> Vec<bool> {
     let robust = &options.robust;
+    if let (Method::RectifiedV, Some(d), Some(row_time)) = (
+        options.method,
+        est.linear_velocity,
+        super::rectified_v::row_times(view1, view2),
+    ) {
+        let duration = crate::velocity::reference_duration(view1, view2);
+        let state = VelocityState {
+            pose: Pose::new(&est.rotation, &est.translation),
+            delta: d.map(|d| d * duration),
+        };
+        let model = VelocityModel::new(&state, row_time);
+        let (kind, thr_sq) = threshold(view1, view2, robust.threshold);
+        return classify_chunks(view1, view2, matches, robust, |data, i| {
+            let x = model.residual(data, kind, i);
+            x * x < thr_sq
+        });
+    }
     let (v1, v2, model, (kind, thr_sq)) = match options.method {
         Method::Gsrp => (
             View::new(view1.camera, Vector3::zeros()),
@@ -43,7 +63,7 @@ pub(crate) fn classify_all(
             PoseModel::GlobalShutter,
             gs_threshold(view1, view2, robust),
         ),
-        Method::Rectified => (
+        Method::Rectified | Method::RectifiedV => (
             view1.clone(),
             view2.clone(),
             PoseModel::ExactAngular,
@@ -67,13 +87,24 @@ pub(crate) fn classify_all(
     };
     let (r, t) = (est.rotation, est.translation);
     let e = skew(&t) * r;
+    classify_chunks(&v1, &v2, matches, robust, |data, i| {
+        let x = data.residual(model, kind, i, &r, &t, &e);
+        x * x < thr_sq
+    })
+}
+
+/// `inlier(data, i)` for every match, on point data built one chunk at a time.
+fn classify_chunks(
+    view1: &View,
+    view2: &View,
+    matches: &[Match],
+    robust: &RobustOptions,
+    inlier: impl Fn(&PointData, usize) -> bool,
+) -> Vec<bool> {
     let mut inliers = Vec::with_capacity(matches.len());
     for chunk in matches.chunks(CHUNK) {
-        let data = point_data(&v1, &v2, chunk, robust);
-        inliers.extend((0..chunk.len()).map(|i| {
-            let x = data.residual(model, kind, i, &r, &t, &e);
-            x * x < thr_sq
-        }));
+        let data = point_data(view1, view2, chunk, robust);
+        inliers.extend((0..chunk.len()).map(|i| inlier(&data, i)));
     }
     inliers
 }

@@ -17,7 +17,7 @@
 
 use crate::camera::Camera;
 use crate::geometry::exp_so3;
-use crate::pair_file::{GroundTruth, Match, PairFile};
+use crate::pair_file::{rows_of_matrix, GroundTruth, Match, PairFile};
 use crate::rolling_shutter::{project_rs, RsPose};
 use nalgebra::{Matrix3, Vector3};
 use rand::{Rng, SeedableRng};
@@ -170,10 +170,6 @@ fn check(options: &SimulationOptions) -> Result<(), SimulationError> {
     Ok(())
 }
 
-fn to_rows(m: &Matrix3<f64>) -> [[f64; 3]; 3] {
-    std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))
-}
-
 /// Simulate one image pair following the paper's protocol (see the module documentation).
 pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError> {
     check(options)?;
@@ -274,7 +270,7 @@ pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError
         gyro_log: None,
         matches,
         ground_truth: Some(GroundTruth {
-            rotation: to_rows(&r2),
+            rotation: rows_of_matrix(&r2),
             translation: t.into(),
             omega: [omega[0].into(), omega[1].into()],
             velocity: [velocity[0].into(), velocity[1].into()],

@@ -127,7 +127,7 @@ impl PointData {
     /// pixels keeps rows read late, which a gyro error moves further, as well as row 0.
     pub fn set_row_noise(&mut self, noise: RowNoise) {
         let px2 = noise.pixel * noise.pixel;
-        if !(px2 > 0.0) {
+        if px2.is_nan() || px2 <= 0.0 {
             self.scale = [Vec::new(), Vec::new()];
             return;
         }
@@ -156,6 +156,30 @@ impl PointData {
             PoseModel::PaperLinear => &self.scale[1],
         };
         s.get(i).copied().unwrap_or(1.0)
+    }
+
+    /// The points `indices` (in that order), with their weights.
+    pub fn select(&self, indices: &[usize]) -> PointData {
+        let pick3 = |v: &[Vector3<f64>]| indices.iter().map(|&i| v[i]).collect();
+        let pick = |v: &[f64]| indices.iter().map(|&i| v[i]).collect();
+        let pick_m = |v: &[Matrix3<f64>]| indices.iter().map(|&i| v[i]).collect();
+        PointData {
+            m1: pick3(&self.m1),
+            m2: pick3(&self.m2),
+            v1: pick(&self.v1),
+            v2: pick(&self.v2),
+            w1: self.w1,
+            w2: self.w2,
+            omega1: pick_m(&self.omega1),
+            omega2: pick_m(&self.omega2),
+            b1: pick3(&self.b1),
+            b2: pick3(&self.b2),
+            l1: pick3(&self.l1),
+            scale: self
+                .scale
+                .clone()
+                .map(|w| if w.is_empty() { w } else { pick(&w) }),
+        }
     }
 
     /// Number of points.

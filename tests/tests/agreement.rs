@@ -290,7 +290,13 @@ fn check(name: &str, seed: u64, max_value_differs: f64) {
 #[test]
 fn every_shipped_problem_is_checked() {
     assert_all_emitted_listed();
-    let checked = ["grsrp", "grsrp10", "grsrp_gravity", "gs5pt"];
+    let checked = [
+        "grsrp",
+        "grsrp10",
+        "grsrp_gravity",
+        "grsrp_gravity6",
+        "gs5pt",
+    ];
     for p in common::shipped_problems() {
         assert!(
             checked.contains(&p.as_str()),
@@ -315,6 +321,11 @@ fn agreement_grsrp_gravity() {
     // ±t: less well conditioned than the 10 x 20 ones (about 1.6 % of instances agree to
     // 1e-8 rather than 1e-9, with equally small residuals).
     check("grsrp_gravity", 3, 0.03);
+}
+
+#[test]
+fn agreement_grsrp_gravity6() {
+    check("grsrp_gravity6", 5, 0.01);
 }
 
 #[test]

@@ -215,7 +215,7 @@ fn homography_residual(pts: &[(Vector3<f64>, Vector3<f64>)], thr: f64, seed: u64
             continue;
         };
         let count = errors(&h).iter().filter(|&&e| e < thr).count();
-        if best.as_ref().is_none_or(|(c, _)| count > *c) {
+        if best.as_ref().map_or(true, |(c, _)| count > *c) {
             best = Some((count, h));
         }
     }

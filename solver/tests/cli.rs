@@ -407,3 +407,36 @@ fn simulate_writes_gravity_that_grsrp_gravity_uses() {
     let o = rspose(&["simulate", "--gravity-noise=-1", "-o", p.to_str().unwrap()]);
     assert_bad_input(&o, "gravity_noise_deg");
 }
+
+#[test]
+fn compare_runs_every_method_the_pairs_support() {
+    let d = scratch("compare");
+    let names = |o: &Output| -> Vec<String> {
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        v["methods"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|m| m["method"].as_str().unwrap().to_string())
+            .collect()
+    };
+    let p = simulated_pair(&d);
+    let o = rspose(&["compare", p.to_str().unwrap(), "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let all: Vec<String> = rspose::Method::ALL
+        .iter()
+        .map(|m| m.name().to_string())
+        .collect();
+    assert_eq!(names(&o), all);
+    let p = edited_pair(&d, |v| {
+        v.as_object_mut().unwrap().remove("gravity");
+    });
+    let o = rspose(&["compare", p.to_str().unwrap(), "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("grsrp-gravity left out"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(names(&o), all[..all.len() - 1]);
+}

@@ -5,12 +5,13 @@ the summary CSVs of `rspose experiment`. Usage: python3 tools/readme_tables.py [
 import csv
 import sys
 
-METHODS = ["gsrp", "nrsrp", "grsrp", "grsrp+", "rectified", "rectified+v"]
+METHODS = ["gsrp", "nrsrp", "grsrp", "grsrp+", "rectified", "rectified+v", "grsrp-gravity"]
 HEADERS = {
     "angular": "angular velocity (rad/s)",
     "angular-linear": "level (0.5 rad/s + 4 m/s each)",
     "gyro-noise": "gyro noise (rad/s), at 2.5 rad/s + 20 m/s",
     "pixel-noise": "pixel noise (px), at 2.5 rad/s + 20 m/s",
+    "gravity-noise": "gravity noise (deg), at 2.5 rad/s, 50 % outliers",
 }
 
 

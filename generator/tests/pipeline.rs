@@ -23,6 +23,7 @@ fn shipped_problems_counts_and_sizes() {
         ("grsrp10", 10, 10, 20),
         ("grsrp", 20, 80, 100),
         ("grsrp_gravity", 12, 90, 102),
+        ("grsrp_gravity6", 6, 9, 15),
     ] {
         let p = plan_file(&template(name), &opts).unwrap_or_else(|e| panic!("{name}: {e}"));
         let (rows, cols) = p.generated.built.template.size();

@@ -13,10 +13,11 @@
 mod planted;
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use mingen_runtime::FlatValues;
 use mingen_runtime::MinimalSolver;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use rspose::generated::{grsrp, grsrp10, grsrp_gravity, gs5pt};
+use rspose::generated::{grsrp, grsrp10, grsrp_gravity, grsrp_gravity6, gs5pt};
 use rspose::minimal::essential_5pt;
 
 const POOL: usize = 64;
@@ -39,6 +40,12 @@ fn bench_solvers(c: &mut Criterion) {
     bench::<gs5pt::Solver>(c, &g5);
     bench::<grsrp10::Solver>(c, &r10);
     bench::<grsrp_gravity::Solver>(c, &gr);
+    // The same instances for the t-eliminated problem (identical data slots).
+    let gr6: Vec<grsrp_gravity6::Data> = gr
+        .iter()
+        .filter_map(|d| grsrp_gravity6::Data::from_flat(&d.to_slots()))
+        .collect();
+    bench::<grsrp_gravity6::Solver>(c, &gr6);
     bench::<grsrp::Solver>(c, &r20);
 
     // The whole 5-point solver from five bearing pairs to essential matrices (null space of

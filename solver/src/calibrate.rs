@@ -423,6 +423,7 @@ mod tests {
                 ..cam
             },
             gyro: None,
+            gravity: None,
             gyro_log: Some(GyroLogSpec {
                 camera_from_gyro: identity,
                 time_offset: 0.0,

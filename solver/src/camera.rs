@@ -8,7 +8,8 @@
 //! rad/s; extrinsics and bias applied), as a gyroscope reports it, i.e. `Ṙ_wc = R_wc [ω]×`
 //! for the camera-to-world rotation, so row `v`'s world-to-camera rotation is
 //! `exp(−[v λ ω]×) R_cw(0)` ([`crate::rolling_shutter`]). A view may also carry the
-//! orientation over its readout integrated from gyro samples ([`RowTrack`]).
+//! orientation over its readout integrated from gyro samples ([`RowTrack`]), and the
+//! direction of gravity in its camera axes at row 0, from an accelerometer.
 
 use crate::gyro_log::RowTrack;
 use crate::rolling_shutter::row_rotation;
@@ -26,6 +27,9 @@ pub const MIN_FOCAL: f64 = 1e-3;
 pub const MAX_FRAME_READOUT: f64 = 10.0;
 /// Largest angular velocity accepted, rad/s (consumer gyroscopes saturate near 35 rad/s).
 pub const MAX_ANGULAR_VELOCITY: f64 = 100.0;
+/// Accepted lengths of a gravity vector: any unit (g, m/s², a unit vector) but neither
+/// zero nor absurd.
+pub const GRAVITY_NORM_RANGE: std::ops::RangeInclusive<f64> = 1e-6..=1e6;
 
 /// Why a camera or view is invalid. Each variant names the offending parameter.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -61,6 +65,9 @@ pub enum CameraError {
     /// The gyroscope angular velocity is not finite or faster than `MAX_ANGULAR_VELOCITY`.
     #[error("gyro angular velocity must be finite and at most 100 rad/s, got [{0}, {1}, {2}]")]
     InvalidGyro(f64, f64, f64),
+    /// The gravity direction is not finite or its length is zero (or absurd).
+    #[error("gravity must be a finite vector of non-zero length, got [{0}, {1}, {2}]")]
+    InvalidGravity(f64, f64, f64),
 }
 
 /// Pinhole rolling-shutter camera: intrinsics `fx, fy, cx, cy` (pixels), image size
@@ -157,7 +164,10 @@ impl Camera {
 /// One image of a pair: the camera and its gyroscope reading. `omega = ω` is the camera's
 /// angular velocity in its own axes (rad/s, as a gyroscope reports it), constant over the
 /// frame or the mean over its readout; `track`, where present, is the orientation over the
-/// readout integrated from gyro samples, and then gives the exact row rotations.
+/// readout integrated from gyro samples, and then gives the exact row rotations; `gravity`,
+/// where present, the direction of gravity in the camera's axes at row 0 (from an
+/// accelerometer; any length, either sign as long as both views of a pair use the same:
+/// only the direction of the line is used, `R g1 ∥ g2`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct View {
     /// The camera that took the image.
@@ -166,6 +176,8 @@ pub struct View {
     pub omega: Vector3<f64>,
     /// Orientation over the readout from gyro samples (`None`: constant `omega`).
     pub track: Option<Arc<RowTrack>>,
+    /// Gravity direction in camera axes at row 0 (`None`: no accelerometer).
+    pub gravity: Option<Vector3<f64>>,
 }
 
 impl View {
@@ -175,6 +187,7 @@ impl View {
             camera,
             omega,
             track: None,
+            gravity: None,
         }
     }
 
@@ -185,15 +198,29 @@ impl View {
             camera,
             omega,
             track: Some(Arc::new(track)),
+            gravity: None,
         }
     }
 
-    /// The same view with a constant rate `omega` only (the integrated track dropped).
-    pub fn constant_rate(&self) -> Self {
-        View::new(self.camera, self.omega)
+    /// The same view with a gravity direction `g` (camera axes, row 0).
+    pub fn with_gravity(self, g: Vector3<f64>) -> Self {
+        View {
+            gravity: Some(g),
+            ..self
+        }
     }
 
-    /// Validate the camera and that `ω` is finite and at most `MAX_ANGULAR_VELOCITY`.
+    /// The same view with a constant rate `omega` only (the integrated track dropped; the
+    /// gravity kept).
+    pub fn constant_rate(&self) -> Self {
+        View {
+            track: None,
+            ..self.clone()
+        }
+    }
+
+    /// Validate the camera, that `ω` is finite and at most `MAX_ANGULAR_VELOCITY`, and that a
+    /// gravity vector is finite with a length in [`GRAVITY_NORM_RANGE`].
     pub fn validate(&self) -> Result<(), CameraError> {
         self.camera.validate()?;
         let speed = self.omega.norm();
@@ -203,6 +230,11 @@ impl View {
                 self.omega.y,
                 self.omega.z,
             ));
+        }
+        if let Some(g) = self.gravity {
+            if !GRAVITY_NORM_RANGE.contains(&g.norm()) {
+                return Err(CameraError::InvalidGravity(g.x, g.y, g.z));
+            }
         }
         Ok(())
     }
@@ -277,5 +309,22 @@ mod tests {
         assert!(cam.validate().is_ok());
         let v = View::new(Camera::paper(), Vector3::new(f64::INFINITY, 0.0, 0.0));
         assert!(matches!(v.validate(), Err(CameraError::InvalidGyro(..))));
+        // Gravity: any finite non-zero length; zero, NaN and infinity are rejected.
+        let v = View::new(Camera::paper(), Vector3::zeros());
+        assert!(v
+            .clone()
+            .with_gravity(Vector3::new(0.0, 9.81, 0.0))
+            .validate()
+            .is_ok());
+        for g in [
+            Vector3::zeros(),
+            Vector3::new(f64::NAN, 1.0, 0.0),
+            Vector3::new(0.0, f64::INFINITY, 0.0),
+        ] {
+            assert!(matches!(
+                v.clone().with_gravity(g).validate(),
+                Err(CameraError::InvalidGravity(..))
+            ));
+        }
     }
 }

@@ -158,6 +158,30 @@ impl PointData {
         s.get(i).copied().unwrap_or(1.0)
     }
 
+    /// The points `indices` (in that order), with their weights.
+    pub fn select(&self, indices: &[usize]) -> PointData {
+        let pick3 = |v: &[Vector3<f64>]| indices.iter().map(|&i| v[i]).collect();
+        let pick = |v: &[f64]| indices.iter().map(|&i| v[i]).collect();
+        let pick_m = |v: &[Matrix3<f64>]| indices.iter().map(|&i| v[i]).collect();
+        PointData {
+            m1: pick3(&self.m1),
+            m2: pick3(&self.m2),
+            v1: pick(&self.v1),
+            v2: pick(&self.v2),
+            w1: self.w1,
+            w2: self.w2,
+            omega1: pick_m(&self.omega1),
+            omega2: pick_m(&self.omega2),
+            b1: pick3(&self.b1),
+            b2: pick3(&self.b2),
+            l1: pick3(&self.l1),
+            scale: self
+                .scale
+                .clone()
+                .map(|w| if w.is_empty() { w } else { pick(&w) }),
+        }
+    }
+
     /// Number of points.
     pub fn len(&self) -> usize {
         self.m1.len()

@@ -15,6 +15,8 @@
 //!     "frame_times": [t1, t2],             // frame times of image 1 and 2, s
 //!     "samples": [[t, wx, wy, wz], ...]    // gyro clock (s), gyro axes (rad/s), increasing t
 //!   },
+//!   "gravity": [[gx, gy, gz], [gx, gy, gz]],  // optional: gravity in camera axes at row 0
+//!                                          // of image 1 and 2 (accelerometer; any length)
 //!   "matches": [ [[u1, v1], [u2, v2]], ... ],  // pixel in image 1, pixel in image 2
 //!   "ground_truth": {                      // optional
 //!     "rotation": [[r00, r01, r02], [r10, r11, r12], [r20, r21, r22]],  // R = R2 R1^T, rows
@@ -33,6 +35,10 @@
 //! integrated from the samples over its readout `[t_k + offset, t_k + offset + H λ]` (which
 //! the samples must cover, with no gap longer than `H λ`), and its constant rate is the mean
 //! rate over that interval ([`crate::gyro_log`]).
+//!
+//! `gravity` is the direction of gravity in each camera's axes when its row 0 is read, as an
+//! accelerometer reports it (any length and either sign, the same for both views; only the
+//! line's direction is used): for both views or neither.
 //!
 //! Both images share one camera. [`PairFile::load`] parses and then validates every field,
 //! returning a [`PairFileError`] that names the offending field (`camera.fx`, `matches[3]`,
@@ -154,6 +160,13 @@ pub struct PairFile {
     /// Gyro samples: exact row rotations, and the rotation between the frames.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gyro_log: Option<GyroLogSpec>,
+    /// Gravity in the camera axes of view 1 and view 2 at row 0 (accelerometer readings).
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "gravity_field"
+    )]
+    pub gravity: Option<[[f64; 3]; 2]>,
     /// Pixel matches `[[u1, v1], [u2, v2]]`.
     pub matches: Vec<Match>,
     /// Ground truth, present in simulated files.
@@ -206,6 +219,38 @@ fn log_error(e: GyroLogError) -> PairFileError {
     invalid(field, e.to_string())
 }
 
+/// `gravity`: two 3-vectors, or absent/null. Parsed from a JSON value so that every shape
+/// error (one view only, a vector of two numbers, a string) names the field.
+fn gravity_field<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> Result<Option<[[f64; 3]; 2]>, D::Error> {
+    use serde::de::Error;
+    let value = serde_json::Value::deserialize(d)?;
+    if value.is_null() {
+        return Ok(None);
+    }
+    let views = value.as_array().filter(|a| a.len() == 2).ok_or_else(|| {
+        D::Error::custom(
+            "field `gravity`: expected one direction [gx, gy, gz] for each of the two views",
+        )
+    })?;
+    let mut out = [[0.0; 3]; 2];
+    for (k, v) in views.iter().enumerate() {
+        let numbers: Option<Vec<f64>> = v
+            .as_array()
+            .filter(|a| a.len() == 3)
+            .map(|a| a.iter().map(|x| x.as_f64()).collect())
+            .and_then(|x: Option<Vec<f64>>| x);
+        let numbers = numbers.ok_or_else(|| {
+            D::Error::custom(format!(
+                "field `gravity[{k}]`: expected three numbers [gx, gy, gz] (gravity is given for both views or neither)"
+            ))
+        })?;
+        out[k].copy_from_slice(&numbers);
+    }
+    Ok(Some(out))
+}
+
 fn invalid(field: impl Into<String>, reason: impl Into<String>) -> PairFileError {
     PairFileError::InvalidField {
         field: field.into(),
@@ -215,9 +260,20 @@ fn invalid(field: impl Into<String>, reason: impl Into<String>) -> PairFileError
 
 impl PairFile {
     /// The two views: with a gyro log, row rotations integrated from its samples and the
-    /// mean rate over each readout; otherwise the constant `gyro` rates. Errors as
-    /// [`validate`](Self::validate) would.
+    /// mean rate over each readout; otherwise the constant `gyro` rates; with `gravity`
+    /// where the file has it. Errors as [`validate`](Self::validate) would.
     pub fn views(&self) -> Result<(View, View), PairFileError> {
+        let (v1, v2) = self.views_without_gravity()?;
+        Ok(match self.gravity {
+            Some([g1, g2]) => (
+                v1.with_gravity(Vector3::from(g1)),
+                v2.with_gravity(Vector3::from(g2)),
+            ),
+            None => (v1, v2),
+        })
+    }
+
+    fn views_without_gravity(&self) -> Result<(View, View), PairFileError> {
         let Some(spec) = &self.gyro_log else {
             let Some(g) = self.gyro else {
                 return Err(invalid("gyro", "missing (give `gyro` or `gyro_log`)"));
@@ -270,6 +326,7 @@ impl PairFile {
                 CameraError::InvalidReadout(_) => "camera.readout".into(),
                 CameraError::InvalidSize { .. } => "camera.width/height".into(),
                 CameraError::InvalidGyro(..) => "gyro".into(),
+                CameraError::InvalidGravity(..) => "gravity".into(),
             };
             invalid(field, e.to_string())
         })?;
@@ -290,6 +347,16 @@ impl PairFile {
             }
             if !spec.time_offset.is_finite() {
                 return Err(invalid("gyro_log.time_offset", "non-finite value"));
+            }
+        }
+        if let Some(g) = &self.gravity {
+            for (i, v) in g.iter().enumerate() {
+                if !crate::camera::GRAVITY_NORM_RANGE.contains(&Vector3::from(*v).norm()) {
+                    return Err(invalid(
+                        format!("gravity[{i}]"),
+                        "must be finite with a non-zero length",
+                    ));
+                }
             }
         }
         self.views()?;
@@ -412,6 +479,7 @@ mod tests {
             camera: Camera::paper(),
             gyro: Some([[0.1, 0.2, 0.3], [0.0, -1.0, 0.5]]),
             gyro_log: None,
+            gravity: Some([[0.0, 9.8, 0.1], [0.2, 9.7, -0.3]]),
             matches: vec![[[1.0, 2.0], [3.0, 4.0]], [[5.0, 6.0], [7.0, 8.0]]],
             ground_truth: Some(GroundTruth {
                 rotation: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
@@ -462,6 +530,25 @@ mod tests {
         let err = PairFile::load("/nonexistent/dir/pair.json").unwrap_err();
         assert!(matches!(err, PairFileError::Io { .. }));
         assert!(PairFile::from_json_str(&sample().to_json_string(), p).is_ok());
+
+        // Gravity: both views or neither, each finite with a non-zero length.
+        let mut bad = sample();
+        bad.gravity = Some([[0.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+        let err = bad.validate().unwrap_err().to_string();
+        assert!(err.contains("`gravity[0]`"), "{err}");
+        bad.gravity = Some([[0.0, 1.0, 0.0], [f64::NAN, 1.0, 0.0]]);
+        let err = bad.validate().unwrap_err().to_string();
+        assert!(err.contains("`gravity[1]`"), "{err}");
+        let text = sample().to_json_string().replacen(
+            "\"gravity\": [",
+            "\"gravity\": [[0, 1, 0]], \"unused\": [",
+            1,
+        );
+        let err = PairFile::from_json_str(&text, p).unwrap_err().to_string();
+        assert!(err.contains("field `gravity`"), "{err}");
+        let (v1, v2) = sample().views().unwrap();
+        assert_eq!(v1.gravity, Some(Vector3::new(0.0, 9.8, 0.1)));
+        assert_eq!(v2.gravity, Some(Vector3::new(0.2, 9.7, -0.3)));
 
         // A gyro log's bad sample is named by its index; coverage is checked per frame.
         let mut with_log = sample();

@@ -13,10 +13,15 @@
 //! readings stored in the file are the true ω plus Gaussian noise (`gyro_noise` rad/s per
 //! axis), while the true ω generated the images. A fraction `outlier_fraction` of the matches
 //! has its image-2 pixel replaced by a uniformly random pixel (flagged as outliers in the
-//! ground truth). Everything is deterministic given `seed` (ChaCha8).
+//! ground truth). Each view also gets the direction of gravity in its row-0 camera axes, an
+//! accelerometer's reading: a world "down" drawn uniformly on the sphere, rotated into each
+//! camera, then tilted by a Gaussian angle per tangent axis (`gravity_noise_deg`; the
+//! tilt's magnitude averages 1.25 times that). Everything is deterministic given `seed`
+//! (ChaCha8); the gravity is drawn after everything else, so it leaves the rest of a scene
+//! as it was without it.
 
 use crate::camera::Camera;
-use crate::geometry::exp_so3;
+use crate::geometry::{exp_so3, tangent_basis};
 use crate::pair_file::{rows_of_matrix, GroundTruth, Match, PairFile};
 use crate::rolling_shutter::{project_rs, RsPose};
 use nalgebra::{Matrix3, Vector3};
@@ -50,6 +55,8 @@ pub struct SimulationOptions {
     pub gyro_noise: f64,
     /// Fraction of matches replaced by random pixels in image 2, in `[0, 1)` (default 0).
     pub outlier_fraction: f64,
+    /// Gravity noise per tangent axis of each view's gravity direction, degrees (default 1).
+    pub gravity_noise_deg: f64,
     /// Random seed (default 0).
     pub seed: u64,
     /// A planar scene: every point on the plane `z = plane_depth` (m) of camera 1's row-0
@@ -75,6 +82,7 @@ impl Default for SimulationOptions {
             pixel_noise: 1.0,
             gyro_noise: 0.1,
             outlier_fraction: 0.0,
+            gravity_noise_deg: 1.0,
             seed: 0,
             plane_depth: None,
         }
@@ -148,6 +156,7 @@ fn check(options: &SimulationOptions) -> Result<(), SimulationError> {
         ("linear_velocity", options.linear_velocity),
         ("pixel_noise", options.pixel_noise),
         ("gyro_noise", options.gyro_noise),
+        ("gravity_noise_deg", options.gravity_noise_deg),
     ];
     for (name, v) in nonneg {
         if !(v.is_finite() && v >= 0.0) {
@@ -263,11 +272,20 @@ pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError
         omega[0] + gauss3(&mut rng) * options.gyro_noise,
         omega[1] + gauss3(&mut rng) * options.gyro_noise,
     ];
+    let down = random_direction(&mut rng);
+    let sigma = options.gravity_noise_deg.to_radians();
+    let gravity = [Matrix3::identity(), r2].map(|r| {
+        let g = r * down;
+        let (b1, b2) = tangent_basis(&g);
+        let tilt = (b1 * gauss(&mut rng) + b2 * gauss(&mut rng)) * sigma;
+        (exp_so3(&tilt) * g).into()
+    });
     let t = (-r2 * c2).normalize();
     Ok(PairFile {
         camera: cam,
         gyro: Some([gyro[0].into(), gyro[1].into()]),
         gyro_log: None,
+        gravity: Some(gravity),
         matches,
         ground_truth: Some(GroundTruth {
             rotation: rows_of_matrix(&r2),
@@ -333,6 +351,47 @@ mod tests {
         }
         // The global-shutter model is visibly violated.
         assert!(max_plain > 1e-3);
+    }
+
+    /// The gravity of each view is the same world direction in its camera axes (`R g1 = g2`
+    /// exactly without noise), tilted by about the requested angle with noise.
+    #[test]
+    fn gravity_is_one_world_direction_with_the_requested_noise() {
+        let exact = simulate(&SimulationOptions {
+            gravity_noise_deg: 0.0,
+            seed: 9,
+            ..Default::default()
+        })
+        .unwrap();
+        let gt = exact.ground_truth.as_ref().unwrap();
+        let [g1, g2] = exact.gravity.unwrap().map(Vector3::from);
+        assert!((gt.rotation_matrix() * g1 - g2).norm() < 1e-12);
+        assert!((g1.norm() - 1.0).abs() < 1e-12);
+        let mut sum = 0.0;
+        for seed in 0..200 {
+            let noisy = simulate(&SimulationOptions {
+                gravity_noise_deg: 2.0,
+                seed,
+                points: 10,
+                ..Default::default()
+            })
+            .unwrap();
+            let clean = simulate(&SimulationOptions {
+                gravity_noise_deg: 0.0,
+                seed,
+                points: 10,
+                ..Default::default()
+            })
+            .unwrap();
+            // The rest of the scene does not depend on the gravity noise.
+            assert_eq!(noisy.matches, clean.matches);
+            for (a, b) in noisy.gravity.unwrap().iter().zip(clean.gravity.unwrap()) {
+                sum += Vector3::from(*a).angle(&Vector3::from(b)).to_degrees();
+            }
+        }
+        // Rayleigh mean sqrt(pi/2) sigma = 2.51 deg.
+        let mean = sum / 400.0;
+        assert!((mean - 2.51).abs() < 0.2, "{mean}");
     }
 
     #[test]

@@ -344,3 +344,99 @@ fn rectified_v_reports_its_velocities_and_what_it_did() {
     assert_eq!(v["linear_velocity"].as_array().map(|a| a.len()), Some(2));
     assert!(v["translation_error_deg"].as_f64().unwrap() < 5.0, "{v}");
 }
+
+#[test]
+fn bad_gravity_is_bad_input_naming_the_field() {
+    let d = scratch("gravity");
+    let cases = [
+        (serde_json::json!([[0, 0, 0], [0, 1, 0]]), "gravity[0]"),
+        (serde_json::json!([[0, 1, 0], [0, 0, 0]]), "gravity[1]"),
+        (serde_json::json!([["NaN", 1, 0], [0, 1, 0]]), "gravity[0]"),
+        (serde_json::json!([[0, 1, 0], [0, 1, null]]), "gravity[1]"),
+        (serde_json::json!([[0, 1, 0]]), "gravity"),
+        (serde_json::json!([[0, 1, 0], null]), "gravity[1]"),
+        (serde_json::json!([[0, 1]]), "gravity"),
+        (serde_json::json!("down"), "gravity"),
+    ];
+    for (value, needle) in cases {
+        let p = edited_pair(&d, |v| v["gravity"] = value.clone());
+        for method in ["grsrp-gravity", "rectified"] {
+            let o = rspose(&["estimate", p.to_str().unwrap(), "--method", method]);
+            assert_bad_input(&o, needle);
+        }
+    }
+    // Without gravity the other methods run; grsrp-gravity names what it lacks.
+    let p = edited_pair(&d, |v| {
+        v.as_object_mut().unwrap().remove("gravity");
+    });
+    let o = rspose(&["estimate", p.to_str().unwrap(), "--method", "rectified"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = rspose(&["estimate", p.to_str().unwrap(), "--method", "grsrp-gravity"]);
+    assert_bad_input(&o, "gravity");
+}
+
+#[test]
+fn simulate_writes_gravity_that_grsrp_gravity_uses() {
+    let d = scratch("gravity-ok");
+    let p = d.join("pair.json");
+    let o = rspose(&[
+        "simulate",
+        "--gravity-noise",
+        "0.5",
+        "--outliers",
+        "0.5",
+        "--seed",
+        "8",
+        "-o",
+        p.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&p).unwrap()).unwrap();
+    assert_eq!(v["gravity"].as_array().map(|a| a.len()), Some(2));
+    let o = rspose(&[
+        "estimate",
+        p.to_str().unwrap(),
+        "--method",
+        "grsrp-gravity",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(v["rotation_error_deg"].as_f64().unwrap() < 1.0, "{v}");
+    assert!(v["translation_error_deg"].as_f64().unwrap() < 5.0, "{v}");
+    let o = rspose(&["simulate", "--gravity-noise=-1", "-o", p.to_str().unwrap()]);
+    assert_bad_input(&o, "gravity_noise_deg");
+}
+
+#[test]
+fn compare_runs_every_method_the_pairs_support() {
+    let d = scratch("compare");
+    let names = |o: &Output| -> Vec<String> {
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        v["methods"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|m| m["method"].as_str().unwrap().to_string())
+            .collect()
+    };
+    let p = simulated_pair(&d);
+    let o = rspose(&["compare", p.to_str().unwrap(), "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let all: Vec<String> = rspose::Method::ALL
+        .iter()
+        .map(|m| m.name().to_string())
+        .collect();
+    assert_eq!(names(&o), all);
+    let p = edited_pair(&d, |v| {
+        v.as_object_mut().unwrap().remove("gravity");
+    });
+    let o = rspose(&["compare", p.to_str().unwrap(), "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("grsrp-gravity left out"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(names(&o), all[..all.len() - 1]);
+}

@@ -14,12 +14,7 @@ use std::path::Path;
 
 const SEED: u64 = 2024;
 const TRIALS: usize = 100;
-const SWEEPS: [Sweep; 4] = [
-    Sweep::Angular,
-    Sweep::AngularLinear,
-    Sweep::GyroNoise,
-    Sweep::PixelNoise,
-];
+const SWEEPS: [Sweep; 5] = Sweep::ALL;
 
 fn read(path: &Path) -> String {
     std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))

@@ -220,7 +220,13 @@ fn check(name: &str, seed: u64) {
 #[test]
 fn every_shipped_problem_is_checked() {
     assert_all_emitted_listed();
-    let checked = ["grsrp", "grsrp10", "grsrp_gravity", "gs5pt"];
+    let checked = [
+        "grsrp",
+        "grsrp10",
+        "grsrp_gravity",
+        "grsrp_gravity6",
+        "gs5pt",
+    ];
     for p in common::shipped_problems() {
         assert!(
             checked.contains(&p.as_str()),
@@ -242,6 +248,11 @@ fn agreement_grsrp10() {
 #[test]
 fn agreement_grsrp_gravity() {
     check("grsrp_gravity", 3);
+}
+
+#[test]
+fn agreement_grsrp_gravity6() {
+    check("grsrp_gravity6", 5, 0.01);
 }
 
 #[test]

@@ -82,9 +82,18 @@ pub fn run(a: Args) -> Result<(), CliError> {
         apply_r0(&mut o, a.r0, pair, path)?;
         options.push(o);
     }
+    // `grsrp-gravity` needs an accelerometer's gravity, which recordings often lack.
+    let with_gravity = pairs.iter().all(|p| p.gravity.is_some());
+    let methods: Vec<rspose::Method> = ALL_METHODS
+        .into_iter()
+        .filter(|&m| with_gravity || m != rspose::Method::GrsrpGravity)
+        .collect();
+    if !with_gravity {
+        eprintln!("grsrp-gravity left out: not every pair has a `gravity` field");
+    }
     let rows = run_real(
         &pairs,
-        &ALL_METHODS,
+        &methods,
         |method, pair| {
             let k = pairs
                 .iter()

@@ -1,5 +1,5 @@
 //! `rspose demo`: one simulated scene at 2.5 rad/s with the paper's noise, every method;
-//! optionally with linear velocity (`--linear`).
+//! optionally with linear velocity (`--linear`) and outliers (`--outliers`).
 
 use super::{CliError, Preset, ALL_METHODS};
 use rspose::experiment::{level_simulation, run_methods, Level, Sweep};
@@ -18,23 +18,30 @@ pub struct Args {
     /// where `rectified+v` differs from `rectified`.
     #[arg(long, default_value_t = 0.0)]
     linear: f64,
+    /// Fraction of outlier matches, in [0, 1); at 0.5 `grsrp-gravity`'s 3-point samples
+    /// pay most.
+    #[arg(long, default_value_t = 0.0)]
+    outliers: f64,
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
     // The hardest level of the paper's angular sweep: 2.5 rad/s, 1 px, 0.1 rad/s.
     let level = Level {
         linear: a.linear,
+        outlier_fraction: a.outliers,
         ..Sweep::Angular.levels()[4]
     };
     let sim = level_simulation(&level, a.seed);
-    let pair = simulate(&sim).map_err(|e| CliError::failed(e.to_string()))?;
+    let pair = simulate(&sim).map_err(|e| CliError::input(e.to_string()))?;
     println!(
-        "scene: {} matches, angular velocity {} rad/s, linear velocity {} m/s, pixel noise {} px, gyro noise {} rad/s, seed {} ({:?} preset)",
+        "scene: {} matches ({} % outliers), angular velocity {} rad/s, linear velocity {} m/s, pixel noise {} px, gyro noise {} rad/s, gravity noise {} deg, seed {} ({:?} preset)",
         pair.matches.len(),
+        100.0 * level.outlier_fraction,
         level.angular,
         level.linear,
         level.pixel_noise,
         level.gyro_noise,
+        level.gravity_noise_deg,
         a.seed,
         a.preset
     );

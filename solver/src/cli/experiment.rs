@@ -1,4 +1,5 @@
-//! `rspose experiment SWEEP`: one of the paper's synthetic sweeps, every method.
+//! `rspose experiment SWEEP`: one of the paper's synthetic sweeps or the gravity-noise
+//! sweep, every method.
 
 use super::{CliError, Preset, ALL_METHODS};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -11,7 +12,7 @@ use std::path::PathBuf;
 /// Options of `rspose experiment`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// angular, angular-linear, gyro-noise or pixel-noise.
+    /// angular, angular-linear, gyro-noise, pixel-noise or gravity-noise.
     sweep: String,
     /// Trials (scenes) per level.
     #[arg(long, default_value_t = 100)]

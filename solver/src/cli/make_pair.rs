@@ -232,6 +232,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         camera,
         gyro: None,
         gyro_log: Some(spec),
+        gravity: None,
         matches: m.matches,
         ground_truth: None,
     };

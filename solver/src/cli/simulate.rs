@@ -4,7 +4,8 @@ use super::{check_output_dir, CliError};
 use rspose::simulate::{simulate, SimulationOptions};
 use std::path::PathBuf;
 
-/// Options of `rspose simulate` (defaults: 2.5 rad/s, 0 m/s, 1 px, 0.1 rad/s, 150 points).
+/// Options of `rspose simulate` (defaults: 2.5 rad/s, 0 m/s, 1 px, 0.1 rad/s, 1° gravity
+/// noise, 150 points).
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// Angular velocity magnitude of each camera (rad/s).
@@ -19,6 +20,9 @@ pub struct Args {
     /// Gyro noise standard deviation per axis (rad/s).
     #[arg(long = "gyro-noise", default_value_t = 0.1)]
     gyro_noise: f64,
+    /// Gravity noise standard deviation per axis of each view's gravity direction (deg).
+    #[arg(long = "gravity-noise", default_value_t = 1.0)]
+    gravity_noise: f64,
     /// Number of matches (at most 2,000,000).
     #[arg(long, default_value_t = 150)]
     points: usize,
@@ -46,6 +50,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         linear_velocity: a.linear,
         pixel_noise: a.pixel_noise,
         gyro_noise: a.gyro_noise,
+        gravity_noise_deg: a.gravity_noise,
         points: a.points,
         outlier_fraction: a.outliers,
         seed: a.seed,

@@ -97,6 +97,8 @@ pub fn level_simulation(level: &Level, seed: u64) -> SimulationOptions {
         linear_velocity: level.linear,
         pixel_noise: level.pixel_noise,
         gyro_noise: level.gyro_noise,
+        gravity_noise_deg: level.gravity_noise_deg,
+        outlier_fraction: level.outlier_fraction,
         seed,
         ..SimulationOptions::default()
     }

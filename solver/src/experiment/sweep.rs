@@ -1,4 +1,5 @@
-//! The paper's four synthetic sweeps ("Experiments on Synthetic Data") and their levels.
+//! The paper's four synthetic sweeps ("Experiments on Synthetic Data") and their levels, and
+//! this library's gravity-noise sweep.
 
 use std::fmt;
 use std::str::FromStr;
@@ -14,6 +15,9 @@ pub enum Sweep {
     GyroNoise,
     /// Pixel noise 1..5 px at level 5 (2.5 rad/s, 20 m/s), 0.1 rad/s.
     PixelNoise,
+    /// Gravity noise 0.5..64° per axis (doubling; 64° is no information) at 2.5 rad/s, no linear velocity, 1 px,
+    /// 0.1 rad/s, with 50 % outliers (where a 3-point sample pays most).
+    GravityNoise,
 }
 
 /// The scene parameters of one level of a sweep.
@@ -29,15 +33,20 @@ pub struct Level {
     pub pixel_noise: f64,
     /// Standard deviation of the gyro noise per axis (rad/s).
     pub gyro_noise: f64,
+    /// Standard deviation of each view's gravity direction per axis (degrees).
+    pub gravity_noise_deg: f64,
+    /// Fraction of the matches that are outliers.
+    pub outlier_fraction: f64,
 }
 
 impl Sweep {
-    /// All sweeps, in the paper's order.
-    pub const ALL: [Sweep; 4] = [
+    /// All sweeps: the paper's, in its order, then the gravity-noise sweep.
+    pub const ALL: [Sweep; 5] = [
         Sweep::Angular,
         Sweep::AngularLinear,
         Sweep::GyroNoise,
         Sweep::PixelNoise,
+        Sweep::GravityNoise,
     ];
 
     /// The name used on the command line and for output files.
@@ -47,6 +56,7 @@ impl Sweep {
             Sweep::AngularLinear => "angular-linear",
             Sweep::GyroNoise => "gyro-noise",
             Sweep::PixelNoise => "pixel-noise",
+            Sweep::GravityNoise => "gravity-noise",
         }
     }
 
@@ -57,46 +67,44 @@ impl Sweep {
             Sweep::AngularLinear => "velocity level (0.5 rad/s + 4 m/s per level)",
             Sweep::GyroNoise => "gyro noise (rad/s)",
             Sweep::PixelNoise => "pixel noise (px)",
+            Sweep::GravityNoise => "gravity noise per axis (deg), 50 % outliers",
         }
     }
 
-    /// The five levels of the sweep.
+    /// The levels of the sweep (five for the paper's, eight for the gravity noise).
     pub fn levels(self) -> Vec<Level> {
-        (1..=5)
-            .map(|i| {
-                let i = i as f64;
-                match self {
-                    Sweep::Angular => Level {
-                        value: 0.5 * i,
-                        angular: 0.5 * i,
-                        linear: 0.0,
-                        pixel_noise: 1.0,
-                        gyro_noise: 0.1,
-                    },
-                    Sweep::AngularLinear => Level {
-                        value: i,
-                        angular: 0.5 * i,
-                        linear: 4.0 * i,
-                        pixel_noise: 1.0,
-                        gyro_noise: 0.1,
-                    },
-                    Sweep::GyroNoise => Level {
-                        value: i / 10.0,
-                        angular: 2.5,
-                        linear: 20.0,
-                        pixel_noise: 1.0,
-                        gyro_noise: i / 10.0,
-                    },
-                    Sweep::PixelNoise => Level {
-                        value: i,
-                        angular: 2.5,
-                        linear: 20.0,
-                        pixel_noise: i,
-                        gyro_noise: 0.1,
-                    },
-                }
-            })
-            .collect()
+        let level = |value, angular, linear, pixel_noise, gyro_noise| Level {
+            value,
+            angular,
+            linear,
+            pixel_noise,
+            gyro_noise,
+            gravity_noise_deg: 1.0,
+            outlier_fraction: 0.0,
+        };
+        let steps = (1..=5u32).map(f64::from);
+        match self {
+            Sweep::Angular => steps
+                .map(|i| level(0.5 * i, 0.5 * i, 0.0, 1.0, 0.1))
+                .collect(),
+            Sweep::AngularLinear => steps
+                .map(|i| level(i, 0.5 * i, 4.0 * i, 1.0, 0.1))
+                .collect(),
+            Sweep::GyroNoise => steps
+                .map(|i| level(i / 10.0, 2.5, 20.0, 1.0, i / 10.0))
+                .collect(),
+            Sweep::PixelNoise => steps.map(|i| level(i, 2.5, 20.0, i, 0.1)).collect(),
+            Sweep::GravityNoise => (0..8)
+                .map(|k| {
+                    let g = 0.5 * f64::from(1u32 << k);
+                    Level {
+                        gravity_noise_deg: g,
+                        outlier_fraction: 0.5,
+                        ..level(g, 2.5, 0.0, 1.0, 0.1)
+                    }
+                })
+                .collect(),
+        }
     }
 }
 
@@ -108,7 +116,7 @@ impl fmt::Display for Sweep {
 
 /// An unknown sweep name.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown sweep '{0}' (expected one of: angular, angular-linear, gyro-noise, pixel-noise)")]
+#[error("unknown sweep '{0}' (expected one of: angular, angular-linear, gyro-noise, pixel-noise, gravity-noise)")]
 pub struct UnknownSweep(pub String);
 
 impl FromStr for Sweep {
@@ -149,6 +157,14 @@ mod tests {
             p.iter().map(|l| l.pixel_noise).collect::<Vec<_>>(),
             [1.0, 2.0, 3.0, 4.0, 5.0]
         );
+        let gr = Sweep::GravityNoise.levels();
+        assert_eq!(
+            gr.iter().map(|l| l.gravity_noise_deg).collect::<Vec<_>>(),
+            [0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0]
+        );
+        assert!(gr
+            .iter()
+            .all(|l| l.outlier_fraction == 0.5 && l.angular == 2.5 && l.linear == 0.0));
         for s in Sweep::ALL {
             assert_eq!(s.name().parse::<Sweep>().unwrap(), s);
         }

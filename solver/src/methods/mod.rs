@@ -11,8 +11,10 @@
 //! | `grsrp`, `grsrp+` | [`grsrp`]: the paper's G-RSRP solver in RANSAC (+ refinement) |
 //! | `rectified` | [`rectified`]: gyro-undistorted bearings, 5-point RANSAC, Sampson refinement |
 //! | `rectified+v` | [`rectified_v`]: `rectified`, then pose and linear velocities on the generalised epipolar model |
+//! | `grsrp-gravity` | [`grsrp_gravity`]: known gravity, 3-point RANSAC on the generated solver, `rectified`'s refinement |
 
 pub mod grsrp;
+pub mod grsrp_gravity;
 pub mod gsrp;
 pub mod nrsrp;
 mod pose_ransac;
@@ -22,7 +24,7 @@ pub mod rectified_v;
 mod subset;
 
 use crate::camera::{CameraError, View};
-use crate::minimal::{EssentialSolver, GrsrpSolver};
+use crate::minimal::{EssentialSolver, GravitySolver, GrsrpSolver};
 use crate::pair_file::Match;
 use crate::refine::LmOptions;
 use nalgebra::{Matrix3, Vector3};
@@ -47,17 +49,20 @@ pub enum Method {
     Rectified,
     /// `rectified+v`: `rectified`, then the pose and both cameras' linear velocities.
     RectifiedV,
+    /// `grsrp-gravity`: known gravity, 3-point RANSAC, `rectified`'s refinement.
+    GrsrpGravity,
 }
 
 impl Method {
     /// All methods: the paper's and its baselines, then this library's own.
-    pub const ALL: [Method; 6] = [
+    pub const ALL: [Method; 7] = [
         Method::Gsrp,
         Method::Nrsrp,
         Method::Grsrp,
         Method::GrsrpPlus,
         Method::Rectified,
         Method::RectifiedV,
+        Method::GrsrpGravity,
     ];
 
     /// The command-line name.
@@ -69,14 +74,17 @@ impl Method {
             Method::GrsrpPlus => "grsrp+",
             Method::Rectified => "rectified",
             Method::RectifiedV => "rectified+v",
+            Method::GrsrpGravity => "grsrp-gravity",
         }
     }
 
     /// Minimum number of matches the method needs with the given essential solver
-    /// (5 for the minimal methods, 8 with the 8-point stand-in, 17 for `nrsrp`).
+    /// (5 for the minimal methods, 8 with the 8-point stand-in, 17 for `nrsrp`, 3 for
+    /// `grsrp-gravity`).
     pub fn min_matches(&self, essential: EssentialSolver) -> usize {
         match self {
             Method::Nrsrp => 17,
+            Method::GrsrpGravity => 3,
             Method::Grsrp | Method::GrsrpPlus => 5.max(essential.sample_size()),
             Method::Gsrp | Method::Rectified | Method::RectifiedV => essential.sample_size(),
         }
@@ -92,7 +100,7 @@ impl fmt::Display for Method {
 /// Unknown method name.
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
 #[error(
-    "unknown method `{0}` (expected one of gsrp, nrsrp, grsrp, grsrp+, rectified, rectified+v)"
+    "unknown method `{0}` (expected one of gsrp, nrsrp, grsrp, grsrp+, rectified, rectified+v, grsrp-gravity)"
 )]
 pub struct ParseMethodError(pub String);
 
@@ -177,6 +185,9 @@ pub struct RobustOptions {
     /// RANSAC and refinement use at most this many matches, a random subset; every match
     /// is then classified against the final pose (default 20,000; see `methods::subset`).
     pub max_points: usize,
+    /// Error of each view's gravity direction per axis, degrees (default 1): widens
+    /// `grsrp-gravity`'s consensus threshold by the relative tilt it causes.
+    pub gravity_noise_deg: f64,
 }
 
 /// Where `grsrp`/`grsrp+` take their initial rotation `R_0` from.
@@ -207,6 +218,8 @@ pub struct EstimateOptions {
     pub essential_solver: EssentialSolver,
     /// G-RSRP solver (10 or 20 solutions).
     pub grsrp_solver: GrsrpSolver,
+    /// Known-gravity solver of `grsrp-gravity` (6 or 12 solutions).
+    pub gravity_solver: GravitySolver,
     /// Source of `R_0` for `grsrp`/`grsrp+`.
     pub r0_source: R0Source,
     /// Cauchy loss scale of `nrsrp`, in pixels (default 2).
@@ -239,6 +252,7 @@ impl EstimateOptions {
                 max_points: 20_000,
                 pixel_noise: 1.0,
                 gyro_noise: 0.0,
+                gravity_noise_deg: 1.0,
             },
             ..Self::default()
         }
@@ -260,7 +274,9 @@ impl Default for EstimateOptions {
     /// 2 px plus 0.15 of the gyro-predicted rolling-shutter displacement for the
     /// global-shutter model (see [`RobustOptions`]), local optimisation on
     /// improvement, final Sampson refinement for `gsrp`; LM defaults; 5-point and
-    /// 10-solution G-RSRP solvers; `R_0` from `rectified`; `nrsrp` Cauchy scale 2 px.
+    /// 10-solution G-RSRP and 6-solution known-gravity solvers; `R_0` from `rectified`;
+    /// `nrsrp` Cauchy scale 2 px; gravity noise 1° per axis; the velocity stage's defaults
+    /// ([`VelocityOptions`]).
     fn default() -> Self {
         EstimateOptions {
             method: Method::GrsrpPlus,
@@ -278,10 +294,12 @@ impl Default for EstimateOptions {
                 max_points: 20_000,
                 pixel_noise: 1.0,
                 gyro_noise: 0.1,
+                gravity_noise_deg: 1.0,
             },
             refinement: LmOptions::default(),
             essential_solver: EssentialSolver::FivePoint,
             grsrp_solver: GrsrpSolver::Ten,
+            gravity_solver: GravitySolver::Six,
             r0_source: R0Source::Rectified,
             nrsrp_cauchy_px: 2.0,
             quality: QualityOptions::default(),
@@ -371,6 +389,14 @@ pub enum EstimateError {
     /// No model was found (degenerate geometry or every sample failed).
     #[error("no solution found")]
     NoSolution,
+    /// The method needs a gravity direction on both views ([`View::gravity`]).
+    #[error(
+        "method grsrp-gravity needs the gravity direction of both views; view {view} has none"
+    )]
+    MissingGravity {
+        /// 1 or 2.
+        view: usize,
+    },
     /// Invalid option value.
     #[error("invalid option `{option}`: {reason}")]
     InvalidOption {
@@ -428,6 +454,7 @@ fn validate_options(o: &EstimateOptions) -> Result<(), EstimateError> {
     for (name, x) in [
         ("robust.pixel_noise", o.robust.pixel_noise),
         ("robust.gyro_noise", o.robust.gyro_noise),
+        ("robust.gravity_noise_deg", o.robust.gravity_noise_deg),
     ] {
         if !(x.is_finite() && x >= 0.0) {
             return bad(name, "must be finite and non-negative");
@@ -471,6 +498,13 @@ pub(crate) fn validate_input(
         .validate()
         .map_err(|source| EstimateError::InvalidCamera { view: 2, source })?;
     validate_options(options)?;
+    if options.method == Method::GrsrpGravity {
+        for (k, v) in [view1, view2].into_iter().enumerate() {
+            if v.gravity.is_none() {
+                return Err(EstimateError::MissingGravity { view: k + 1 });
+            }
+        }
+    }
     for (index, m) in matches.iter().enumerate() {
         for (k, p) in m.iter().enumerate() {
             if !(p[0].is_finite() && p[1].is_finite()) {
@@ -531,6 +565,7 @@ pub fn estimate_relative_pose(
         Method::Gsrp => gsrp::estimate(view1, view2, working, options),
         Method::Rectified => rectified::estimate(view1, view2, working, options),
         Method::RectifiedV => rectified_v::estimate(view1, view2, working, options),
+        Method::GrsrpGravity => grsrp_gravity::estimate(view1, view2, working, options),
         Method::Grsrp => grsrp::estimate(view1, view2, working, options, false),
         Method::GrsrpPlus => grsrp::estimate(view1, view2, working, options, true),
         Method::Nrsrp => nrsrp::estimate(view1, view2, working, options),
@@ -541,9 +576,14 @@ pub fn estimate_relative_pose(
     // The bearings each method works on: gyro-undistorted, undistorted with `nrsrp`'s own
     // rotation estimates, or raw.
     let (b1, b2) = match (options.method, est.angular_velocity) {
-        (Method::Grsrp | Method::GrsrpPlus | Method::Rectified | Method::RectifiedV, _) => {
-            (view1.clone(), view2.clone())
-        }
+        (
+            Method::Grsrp
+            | Method::GrsrpPlus
+            | Method::Rectified
+            | Method::RectifiedV
+            | Method::GrsrpGravity,
+            _,
+        ) => (view1.clone(), view2.clone()),
         (_, Some([w1, w2])) => (View::new(view1.camera, w1), View::new(view2.camera, w2)),
         _ => (
             View::new(view1.camera, Vector3::zeros()),

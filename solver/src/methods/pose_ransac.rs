@@ -112,7 +112,21 @@ pub(crate) struct EssentialRansac<'a> {
     pub es: Vec<Matrix3<f64>>,
 }
 
-impl EssentialRansac<'_> {
+impl<'a> EssentialRansac<'a> {
+    /// Essential-matrix RANSAC on gyro-undistorted bearings scored with the exact angular
+    /// model (`rectified`'s), with the options' solver and LM settings.
+    pub fn exact(data: &'a PointData, kind: ResidualKind, options: &EstimateOptions) -> Self {
+        EssentialRansac {
+            data,
+            undistorted: true,
+            model: PoseModel::ExactAngular,
+            kind,
+            solver: options.essential_solver,
+            lm: options.refinement.clone(),
+            es: Vec::new(),
+        }
+    }
+
     fn bearings(&self) -> (&[Vector3<f64>], &[Vector3<f64>]) {
         if self.undistorted {
             (&self.data.b1, &self.data.b2)

@@ -11,6 +11,7 @@ use super::{Estimate, EstimateError, EstimateOptions, Method};
 use crate::camera::View;
 use crate::epipolar::{PointData, PoseModel, ResidualKind};
 use crate::pair_file::Match;
+use crate::ransac::RansacResult;
 use crate::refine::{refine_pose, Loss};
 
 /// Run `rectified` on prepared data (inputs already validated).
@@ -21,16 +22,32 @@ pub(crate) fn run_on(
     options: &EstimateOptions,
 ) -> Result<Estimate, EstimateError> {
     let (kind, thr_sq) = threshold(view1, view2, options.robust.threshold);
-    let mut est = EssentialRansac {
+    let (h0, res) = run(
+        &mut EssentialRansac::exact(data, kind, options),
+        options,
+        thr_sq,
+    )?;
+    Ok(refine_exact(
         data,
-        undistorted: true,
-        model: PoseModel::ExactAngular,
-        kind,
-        solver: options.essential_solver,
-        lm: options.refinement.clone(),
-        es: Vec::new(),
-    };
-    let (h0, res) = run(&mut est, options, thr_sq)?;
+        h0,
+        res,
+        (kind, thr_sq),
+        options,
+        Method::Rectified,
+    ))
+}
+
+/// `rectified`'s refinement of a RANSAC result: `(R, t)` by LM on the Sampson error of the
+/// exact angular model over the inliers, the inliers re-classified with the threshold
+/// `(kind, thr_sq)`, the sign of `t` by cheirality.
+pub(crate) fn refine_exact(
+    data: &PointData,
+    h0: Hypothesis,
+    res: RansacResult<Hypothesis>,
+    (kind, thr_sq): (ResidualKind, f64),
+    options: &EstimateOptions,
+    method: Method,
+) -> Estimate {
     let mut inliers = res.inliers;
     let idx = indices(&inliers);
     let r = refine_pose(
@@ -48,8 +65,8 @@ pub(crate) fn run_on(
         *f = x * x < thr_sq;
     }
     let t = orient(&h.r, &h.t, &data.b1, &data.b2, &indices(&inliers));
-    Ok(Estimate {
-        method: Method::Rectified,
+    Estimate {
+        method,
         rotation: h.r,
         translation: t,
         inliers,
@@ -61,7 +78,7 @@ pub(crate) fn run_on(
         angular_velocity: None,
         linear_velocity: None,
         velocity_fit: None,
-    })
+    }
 }
 
 /// Estimate with `rectified` (inputs already validated by the caller).

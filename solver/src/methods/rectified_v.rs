@@ -500,6 +500,46 @@ mod tests {
         assert_eq!(fit, Some(VelocityFit::NoReadout));
     }
 
+    /// Above `max_points` the velocities come from a subset and every match is classified
+    /// with them: the linear motion that moved late rows' matches off the angular model must
+    /// not make them outliers.
+    #[test]
+    fn large_inputs_are_classified_with_the_velocities() {
+        let p = simulate(&SimulationOptions {
+            points: 1500,
+            outlier_fraction: 0.3,
+            linear_velocity: 12.0,
+            angular_velocity: 1.5,
+            seed: 6,
+            ..Default::default()
+        })
+        .unwrap();
+        let gt = p.ground_truth.as_ref().unwrap();
+        let mut o = EstimateOptions::for_method(Method::RectifiedV);
+        o.robust.max_points = 300;
+        let e = run(&p, &o);
+        assert!(!e.velocity_fit.unwrap().fell_back());
+        assert_eq!(e.inliers.len(), p.matches.len());
+        let count = |want: bool| {
+            (0..p.matches.len())
+                .filter(|&i| gt.inliers[i] == want && e.inliers[i])
+                .count()
+        };
+        let rect = run(
+            &p,
+            &EstimateOptions {
+                method: Method::Rectified,
+                ..o.clone()
+            },
+        );
+        let rect_kept = (0..p.matches.len())
+            .filter(|&i| gt.inliers[i] && rect.inliers[i])
+            .count();
+        assert!(count(true) > 1000, "{} true inliers kept", count(true));
+        assert!(count(true) > rect_kept, "{} vs {rect_kept}", count(true));
+        assert!(count(false) < 30, "{} outliers accepted", count(false));
+    }
+
     /// A narrow field of view (f = 4000 px: 27° across) leaves the velocities nearly
     /// indistinguishable from a gyro-rate error and from the translation: fewer directions
     /// of them are determined (more are the prior's, or the method falls back), and what is

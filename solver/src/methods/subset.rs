@@ -63,7 +63,7 @@ pub(crate) fn classify_all(
             PoseModel::GlobalShutter,
             gs_threshold(view1, view2, robust),
         ),
-        Method::Rectified | Method::RectifiedV => (
+        Method::Rectified | Method::RectifiedV | Method::GrsrpGravity => (
             view1.clone(),
             view2.clone(),
             PoseModel::ExactAngular,

@@ -127,9 +127,10 @@ fn garbage_input_never_panics() {
             rng.gen_range(-10.0..10.0),
             0.0,
         );
+        let g = Vector3::new(0.1, rng.gen_range(-10.0..10.0), 0.2);
         let views = [
-            View::new(cam, Vector3::new(0.5, 0.1, -0.3)),
-            View::new(cam, w),
+            View::new(cam, Vector3::new(0.5, 0.1, -0.3)).with_gravity(g),
+            View::new(cam, w).with_gravity(g),
         ];
         for method in Method::ALL {
             for solver in [EssentialSolver::FivePoint, EssentialSolver::EightPoint] {
@@ -151,7 +152,7 @@ fn garbage_input_never_panics() {
 fn degenerate_geometry_gives_no_nan() {
     // All points on one ray pair: rank-deficient; must be an error or a finite pose.
     let cam = Camera::paper();
-    let v = View::new(cam, Vector3::zeros());
+    let v = View::new(cam, Vector3::zeros()).with_gravity(Vector3::y());
     let matches: Vec<Match> = (0..20)
         .map(|k| {
             [
@@ -436,7 +437,13 @@ fn a_global_shutter_camera_makes_the_gyro_methods_agree_with_gsrp() {
     });
     let gt = p.ground_truth.as_ref().unwrap();
     let gs = run(&p, &EstimateOptions::for_method(Method::Gsrp)).unwrap();
-    for m in [Method::Rectified, Method::Grsrp, Method::GrsrpPlus] {
+    for m in [
+        Method::Rectified,
+        Method::Grsrp,
+        Method::GrsrpPlus,
+        Method::RectifiedV,
+        Method::GrsrpGravity,
+    ] {
         let e = run(&p, &EstimateOptions::for_method(m)).unwrap();
         let err = pose_errors(&e, gt);
         assert!(

@@ -47,11 +47,12 @@ fn flat<S: MinimalSolver>() -> Emitted {
 
 /// Every module of `rspose::generated`, in name order.
 pub fn emitted_solvers() -> Vec<Emitted> {
-    use rspose::generated::{grsrp, grsrp10, grsrp_gravity, gs5pt};
+    use rspose::generated::{grsrp, grsrp10, grsrp_gravity, grsrp_gravity6, gs5pt};
     vec![
         flat::<grsrp::Solver>(),
         flat::<grsrp10::Solver>(),
         flat::<grsrp_gravity::Solver>(),
+        flat::<grsrp_gravity6::Solver>(),
         flat::<gs5pt::Solver>(),
     ]
 }

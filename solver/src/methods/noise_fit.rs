@@ -84,13 +84,30 @@ pub(crate) fn fit_noise(
     let f = 0.5 * (view1.camera.mean_focal() + view2.camera.mean_focal());
     let half_diagonal = 0.5 * view1.camera.width.hypot(view1.camera.height) / f;
     let outlier_density = 1.0 / (2.0 * half_diagonal);
-    let variance = |fit: NoiseFit, i: usize| {
+    // σ_i² is linear in σ_px², (λσ_ω)² and the truncation scale squared: split it once into
+    // its three per-match terms so that the search costs a few multiplications a match.
+    let term = |pixel, rate_per_row, truncation, i| {
         let noise = RowNoise {
-            pixel: prior.pixel,
-            rate_per_row: fit.gyro_noise * readout,
-            truncation: fit.truncation,
+            pixel,
+            rate_per_row,
+            truncation,
         };
         data.noise_variance(noise, model, i)
+    };
+    let terms: Vec<[f64; 3]> = finite
+        .iter()
+        .map(|&i| {
+            [
+                term(prior.pixel, 0.0, 0.0, i),
+                term(0.0, 1.0, 0.0, i),
+                term(0.0, 0.0, 1.0, i),
+            ]
+        })
+        .collect();
+    let variance = |fit: NoiseFit, k: usize| {
+        let [p2, rows, truncation] = terms[k];
+        let rate = fit.gyro_noise * readout;
+        p2 + rate * rate * rows + fit.truncation * fit.truncation * truncation
     };
     let log_normal = |x2: f64, var: f64| -0.5 * (x2 / var + var.ln() + std::f64::consts::TAU.ln());
     let mut fit = NoiseFit {
@@ -102,8 +119,8 @@ pub(crate) fn fit_noise(
     let mut posterior = vec![0.0; sq.len()];
     for _ in 0..EM_ROUNDS {
         // Expectation: each residual's probability of being an inlier.
-        for (k, (&i, &x2)) in finite.iter().zip(&sq).enumerate() {
-            let p_in = inlier_fraction * log_normal(x2, variance(fit, i)).exp();
+        for (k, &x2) in sq.iter().enumerate() {
+            let p_in = inlier_fraction * log_normal(x2, variance(fit, k)).exp();
             let p_out = (1.0 - inlier_fraction) * outlier_density;
             posterior[k] = if p_in + p_out > 0.0 {
                 p_in / (p_in + p_out)
@@ -117,11 +134,10 @@ pub(crate) fn fit_noise(
         // time by golden-section search on its logarithm (each variance term grows with its
         // parameter, so each one-dimensional objective is unimodal in practice).
         let likelihood = |fit: NoiseFit| {
-            finite
-                .iter()
-                .zip(&sq)
+            sq.iter()
                 .zip(&posterior)
-                .map(|((&i, &x2), &w)| w * log_normal(x2, variance(fit, i)))
+                .enumerate()
+                .map(|(k, (&x2, &w))| w * log_normal(x2, variance(fit, k)))
                 .sum::<f64>()
         };
         let mut next = fit;

@@ -1,8 +1,9 @@
 """Shared fixtures: the repository, the committed real pairs and the command line.
 
-The command-line binary and the library example are built from this checkout with cargo
-(a no-op when `cargo test --workspace --release` has built them already), into the target
-directory named by CARGO_TARGET_DIR or the repository's `target/`.
+The command-line binary and the library example are built from this checkout by
+`cargo test --workspace --release --no-run` (the build of the README's test command: a
+no-op when it has run, as in `.ci/run`), into the target directory named by
+CARGO_TARGET_DIR or the repository's `target/`.
 """
 
 from __future__ import annotations
@@ -26,9 +27,10 @@ def target_dir() -> Path:
 def binaries() -> dict[str, Path]:
     """Paths of the `rspose` command line and the `library` example (release builds)."""
     subprocess.run(
-        ["cargo", "build", "--release", "-q", "-p", "rspose", "--bin", "rspose", "--example", "library"],
+        ["cargo", "test", "--workspace", "--release", "--no-run", "-q"],
         cwd=REPO,
         check=True,
+        capture_output=True,
     )
     release = target_dir() / "release"
     return {"rspose": release / "rspose", "library": release / "examples" / "library"}

@@ -126,5 +126,17 @@ fn rspose(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(rotation_error_deg, m)?)?;
     m.add_function(wrap_pyfunction!(translation_error_deg, m)?)?;
     m.add_function(wrap_pyfunction!(methods, m)?)?;
+    // `__all__` names what `from rspose import *` (the package's `__init__`) re-exports,
+    // `__version__` included.
+    let mut names: Vec<String> = m
+        .dict()
+        .keys()
+        .iter()
+        .filter_map(|k| k.extract::<String>().ok())
+        .filter(|k| !k.starts_with('_'))
+        .collect();
+    names.push("__version__".into());
+    names.sort();
+    m.add("__all__", names)?;
     Ok(())
 }

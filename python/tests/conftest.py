@@ -26,12 +26,13 @@ def target_dir() -> Path:
 @pytest.fixture(scope="session")
 def binaries() -> dict[str, Path]:
     """Paths of the `rspose` command line and the `library` example (release builds)."""
-    subprocess.run(
+    build = subprocess.run(
         ["cargo", "test", "--workspace", "--release", "--no-run", "-q"],
         cwd=REPO,
-        check=True,
         capture_output=True,
+        text=True,
     )
+    assert build.returncode == 0, build.stderr
     release = target_dir() / "release"
     return {"rspose": release / "rspose", "library": release / "examples" / "library"}
 

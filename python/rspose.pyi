@@ -227,6 +227,9 @@ class Estimate:
     @property
     def velocity_fit(self) -> Optional[dict[str, Any]]:
         """rectified+v only: ``outcome`` and its statistics."""
+    @property
+    def noise_fit(self) -> Optional[dict[str, float]]:
+        """With ``fit_gyro_noise``: the fitted ``gyro_noise`` (rad/s) and ``truncation``."""
     def to_dict(self) -> dict[str, Any]:
         """The object ``rspose estimate --json`` prints, without ``seconds`` and reference
         errors (``inliers`` is the count there)."""
@@ -257,7 +260,7 @@ def estimate_relative_pose(
     ``global_shutter_threshold``, ``rolling_shutter_allowance``, ``adaptive``,
     ``success_probability``, ``min_iterations``, ``max_iterations``,
     ``local_optimisation``, ``final_refinement``, ``seed``, ``pixel_noise``, ``gyro_noise``,
-    ``max_points``, ``gravity_noise_deg``), ``refinement``, ``quality`` and ``velocity``
+    ``fit_gyro_noise``, ``max_points``, ``gravity_noise_deg``), ``refinement``, ``quality`` and ``velocity``
     as dicts, ``essential_solver`` (five_point, eight_point), ``grsrp_solver`` (ten,
     twenty), ``gravity_solver`` (six, twelve), ``r0_source`` (gsrp, rectified, gyro or a
     3 x 3 rotation), ``nrsrp_cauchy_px``. Defaults: ``options()``.

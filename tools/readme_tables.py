@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """Print the README's experiment tables (mean rotation / translation error, degrees) from
 the summary CSVs of `rspose experiment`. Usage: python3 tools/readme_tables.py [RESULTS_DIR]
-(default `results`). `solver/tests/results_fresh.rs` checks the README holds these rows."""
+(default `results`). `solver/tests/results_fresh.rs` checks the README holds these rows.
+`python3 tools/readme_tables.py --gravity` prints the README's `grsrp-gravity` against
+`grsrp+` table from `results/default` and `results` (mean errors and median times of the
+same runs)."""
 import csv
 import sys
 
@@ -31,6 +34,38 @@ def table(directory, sweep):
     return "\n".join(out)
 
 
+def gravity_comparison(default="results/default", paper="results"):
+    def rows(directory):
+        return {(r["level"], r["method"]): r for r in csv.DictReader(open(f"{directory}/gravity-noise.csv"))}
+
+    d, p = rows(default), rows(paper)
+    levels = []
+    for level, _ in d:
+        if level not in levels:
+            levels.append(level)
+
+    def cell(r):
+        ms = 1000 * float(r["seconds_median"])
+        return f"{float(r['rot_mean']):.2f} / {float(r['trans_mean']):.2f}, {ms:.1f} ms"
+
+    def ratio(rs, key):
+        return float(rs[(key, "grsrp-gravity")]["seconds_median"]) / float(rs[(key, "grsrp+")]["seconds_median"])
+
+    out = [
+        "| gravity noise | `grsrp+` default | `grsrp-gravity` default | time ratio | `grsrp+` paper | `grsrp-gravity` paper | time ratio |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for level in levels:
+        out.append(
+            f"| {level}° | {cell(d[(level, 'grsrp+')])} | {cell(d[(level, 'grsrp-gravity')])} | {ratio(d, level):.2f} "
+            f"| {cell(p[(level, 'grsrp+')])} | {cell(p[(level, 'grsrp-gravity')])} | {ratio(p, level):.2f} |"
+        )
+    return "\n".join(out)
+
+
 if __name__ == "__main__":
-    directory = sys.argv[1] if len(sys.argv) > 1 else "results"
-    print("\n\n".join(table(directory, s) for s in HEADERS))
+    if sys.argv[1:] == ["--gravity"]:
+        print(gravity_comparison())
+    else:
+        directory = sys.argv[1] if len(sys.argv) > 1 else "results"
+        print("\n\n".join(table(directory, s) for s in HEADERS))

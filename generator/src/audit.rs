@@ -1,5 +1,5 @@
 //! Numerical-stability audit of an elimination template over many instances (`mingen
-//! audit`, DESIGN §6; random ones, or read from a file by [`crate::instances_file`]),
+//! audit`; random ones, or read from a file by [`crate::instances_file`]),
 //! through the interpreted solver of [`crate::interpret`], which runs the emitted solvers'
 //! numeric code: the audit measures the real solutions a generated solver returns.
 
@@ -38,7 +38,7 @@ impl Default for AuditOptions {
     }
 }
 
-/// Linearly eliminated unknowns of an instance (DESIGN §2, `eliminate`).
+/// Linearly eliminated unknowns of an instance (`eliminate`, templates/README.md).
 #[derive(Clone, Debug)]
 pub struct EliminatedUnknowns {
     /// Coefficient matrix (rows x k): entries are polynomials in the remaining unknowns
@@ -266,7 +266,7 @@ fn histogram(sorted: &[f64]) -> Vec<(f64, usize)> {
 }
 
 impl AuditReport {
-    /// JSON with the DESIGN §6 keys `instances`, `median_log10_residual`,
+    /// JSON with the keys `instances`, `median_log10_residual`,
     /// `p99_log10_residual`, `failures`, `histogram` (a list of
     /// `{"lower_edge": e, "count": n}` for the bins `[e, e + 1)` of log10 residual), plus
     /// `solutions_expected`, `solve_errors`, `missed_solutions`, `no_real_solutions`,

@@ -180,7 +180,7 @@ impl SolverPlan {
             .collect()
     }
 
-    /// The `inspect --json` keys computed by the algebra (DESIGN §6): `solutions`, `basis`,
+    /// The `inspect --json` keys computed by the algebra (the `inspect --json` contract in the README): `solutions`, `basis`,
     /// `action`, `template` `{rows, cols}` (as eliminated by the emitted solver),
     /// `eliminated`, `seconds`, plus `dependent_columns` (excess columns left out of the
     /// elimination) and `per_action`.

@@ -7,7 +7,7 @@ use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArrayMethods, PyUntyp
 use pyo3::exceptions::{PyOSError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rspose_core::pair_file::PairFileError;
+use rspose_core::data::pair_file::PairFileError;
 use rspose_core::EstimateError;
 
 pyo3::create_exception!(

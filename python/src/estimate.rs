@@ -12,8 +12,8 @@ use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
+use rspose_core::data::pair_file::{PairFile, PairFileError};
 use rspose_core::methods::R0Source;
-use rspose_core::pair_file::{PairFile, PairFileError};
 use rspose_core::{estimate_relative_pose as rs_estimate, Estimate as RsEstimate, EstimateError};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -135,6 +135,21 @@ impl Estimate {
         self.inner
             .velocity_fit
             .map(|f| json_to_python(py, &serde_json::json!(f)))
+            .transpose()
+    }
+
+    /// The gyro-rate noise fitted to the final pose's residuals (``fit_gyro_noise``), a
+    /// dict with ``gyro_noise`` (rad/s per axis) and ``truncation``; else None.
+    #[getter]
+    fn noise_fit<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.inner
+            .noise_fit
+            .map(|f| {
+                let d = PyDict::new(py);
+                d.set_item("gyro_noise", f.gyro_noise)?;
+                d.set_item("truncation", f.truncation)?;
+                Ok(d.into_any())
+            })
             .transpose()
     }
 

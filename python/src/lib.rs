@@ -17,7 +17,7 @@ use convert::NoSolutionError;
 use pair::{camera_of, Pair};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use rspose_core::simulate::{simulate as rs_simulate, SimulationOptions};
+use rspose_core::data::simulate::{simulate as rs_simulate, SimulationOptions};
 
 /// Simulates one image pair with the paper's synthetic protocol (``rspose simulate``):
 /// random scene, camera 2 rotated by about ``rotation_std_deg`` per axis and moved by
@@ -75,10 +75,14 @@ fn simulate(
 /// Rotation error in degrees, acos((tr(R_ref^T R) - 1) / 2).
 #[pyfunction]
 fn rotation_error_deg(reference: &Bound<'_, PyAny>, rotation: &Bound<'_, PyAny>) -> PyResult<f64> {
-    let a =
-        rspose_core::pair_file::matrix_from_rows(&convert::matrix_rows(reference, "reference")?);
-    let b = rspose_core::pair_file::matrix_from_rows(&convert::matrix_rows(rotation, "rotation")?);
-    Ok(rspose_core::geometry::rotation_error_deg(&a, &b))
+    let a = rspose_core::data::pair_file::matrix_from_rows(&convert::matrix_rows(
+        reference,
+        "reference",
+    )?);
+    let b = rspose_core::data::pair_file::matrix_from_rows(&convert::matrix_rows(
+        rotation, "rotation",
+    )?);
+    Ok(rspose_core::model::geometry::rotation_error_deg(&a, &b))
 }
 
 /// Translation direction error in degrees, acos(t_ref . t) of the unit vectors.
@@ -90,7 +94,7 @@ fn translation_error_deg(
     let what = "[tx, ty, tz]";
     let a = nalgebra::Vector3::from(convert::vector_of::<3>(reference, "reference", what)?);
     let b = nalgebra::Vector3::from(convert::vector_of::<3>(translation, "translation", what)?);
-    Ok(rspose_core::geometry::translation_error_deg(&a, &b))
+    Ok(rspose_core::model::geometry::translation_error_deg(&a, &b))
 }
 
 /// The names of the methods, in the order the README's tables list them.

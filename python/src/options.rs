@@ -6,9 +6,9 @@ use crate::convert::{matrix_array, matrix_rows, type_name};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
+use rspose_core::estimation::refine::LmOptions;
 use rspose_core::methods::{QualityOptions, R0Source, RobustOptions, Threshold, VelocityOptions};
 use rspose_core::minimal::{EssentialSolver, GravitySolver, GrsrpSolver};
-use rspose_core::refine::LmOptions;
 use rspose_core::{EstimateOptions, Method};
 
 /// Where `r0_source` asks for `R_0`: a library source, or the rotation integrated from the
@@ -188,6 +188,7 @@ fn set_robust(r: &mut RobustOptions, key: &str, v: &Bound<'_, PyAny>) -> PyResul
         "seed" => r.seed = value::<u64>(v, name, "a non-negative integer")?,
         "pixel_noise" => r.pixel_noise = float(v, name)?,
         "gyro_noise" => r.gyro_noise = float(v, name)?,
+        "fit_gyro_noise" => r.fit_gyro_noise = flag(v, name)?,
         "max_points" => r.max_points = count(v, name)?,
         "gravity_noise_deg" => r.gravity_noise_deg = float(v, name)?,
         _ => return Ok(false),
@@ -276,7 +277,7 @@ fn r0_request(v: &Bound<'_, PyAny>) -> PyResult<R0Request> {
     }
     let rows = matrix_rows(v, "option `r0_source`")?;
     Ok(R0Request::Source(R0Source::Given(
-        rspose_core::pair_file::matrix_from_rows(&rows),
+        rspose_core::data::pair_file::matrix_from_rows(&rows),
     )))
 }
 
@@ -371,6 +372,7 @@ pub fn options_dict<'py>(py: Python<'py>, req: &Request) -> PyResult<Bound<'py, 
     robust.set_item("seed", r.seed)?;
     robust.set_item("pixel_noise", r.pixel_noise)?;
     robust.set_item("gyro_noise", r.gyro_noise)?;
+    robust.set_item("fit_gyro_noise", r.fit_gyro_noise)?;
     robust.set_item("max_points", r.max_points)?;
     robust.set_item("gravity_noise_deg", r.gravity_noise_deg)?;
     d.set_item("robust", robust)?;

@@ -8,10 +8,10 @@ use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rspose_core::camera::Camera as RsCamera;
-use rspose_core::pair_file::{
+use rspose_core::data::pair_file::{
     gravity_from_json, matrix_from_rows, GroundTruth as RsGroundTruth, GyroLogSpec, Match, PairFile,
 };
+use rspose_core::model::camera::Camera as RsCamera;
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -185,7 +185,7 @@ fn spec_of(
         frame_times: vector_of::<2>(frame_times, "frame_times", "[t1, t2]")?,
         camera_from_gyro: match camera_from_gyro {
             Some(m) => crate::convert::matrix_rows(m, "camera_from_gyro")?,
-            None => rspose_core::pair_file::rows_of_matrix(&nalgebra::Matrix3::identity()),
+            None => rspose_core::data::pair_file::rows_of_matrix(&nalgebra::Matrix3::identity()),
         },
         time_offset,
     })

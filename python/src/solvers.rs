@@ -8,10 +8,10 @@ use nalgebra::{Matrix3, Vector3};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyList;
-use rspose_core::camera::{Camera, View};
-use rspose_core::epipolar::PointData;
+use rspose_core::data::pair_file::{matrix_from_rows, Match};
 use rspose_core::minimal::{EssentialSolver, GravitySample, GrsrpSample};
-use rspose_core::pair_file::{matrix_from_rows, Match};
+use rspose_core::model::camera::{Camera, View};
+use rspose_core::model::epipolar::PointData;
 use rspose_core::EstimateError;
 
 /// `n` matches from `x1`, `x2` (exactly `n` rows, or at least `n` when `at_least`), finite.

@@ -100,6 +100,7 @@ def test_options_are_the_rust_defaults_and_presets():
     assert r["global_shutter_threshold"] == ("sampson_pixels", 2.0)
     assert (r["adaptive"], r["min_iterations"], r["max_iterations"], r["seed"]) == (True, 50, 1000, 0)
     assert (r["pixel_noise"], r["gyro_noise"], r["max_points"]) == (1.0, 0.1, 20000)
+    assert r["fit_gyro_noise"] is True
     assert d["r0_source"] == "rectified" and d["essential_solver"] == "five_point"
     assert d["refinement"]["max_iterations"] == 50 and d["quality"]["min_inliers"] == 15
     assert d["velocity"]["min_inliers"] == 30

@@ -2,7 +2,7 @@
 //! algebraic threshold 0.01), with the generated minimal solvers.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use rspose::simulate::{simulate, SimulationOptions};
+use rspose::data::simulate::{simulate, SimulationOptions};
 use rspose::{estimate_relative_pose, EstimateOptions, Method};
 use std::hint::black_box;
 

@@ -2,8 +2,8 @@
 //! The matches come from the simulator here; in an application they come from a matcher.
 
 use nalgebra::Vector3;
-use rspose::camera::{Camera, View};
-use rspose::simulate::{simulate, SimulationOptions};
+use rspose::data::simulate::{simulate, SimulationOptions};
+use rspose::model::camera::{Camera, View};
 use rspose::{estimate_relative_pose, EstimateOptions, Method};
 
 /// Pixel matches and the two views' gyroscope readings.

@@ -14,13 +14,13 @@
 //! estimator's accuracy, in the same format as the peer driver.
 
 use nalgebra::{Matrix3, Vector3};
-use rspose::camera::{Camera, View};
-use rspose::evaluate::pose_errors;
-use rspose::geometry::pose_from_essential;
+use rspose::data::pair_file::{GroundTruth, Match};
+use rspose::data::simulate::{simulate, SimulationOptions};
+use rspose::experiment::evaluate::pose_errors;
 use rspose::methods::Threshold;
 use rspose::minimal::essential_5pt;
-use rspose::pair_file::{GroundTruth, Match};
-use rspose::simulate::{simulate, SimulationOptions};
+use rspose::model::camera::{Camera, View};
+use rspose::model::geometry::pose_from_essential;
 use rspose::{estimate_relative_pose, EstimateOptions, Method};
 use std::fmt::Write as _;
 use std::hint::black_box;

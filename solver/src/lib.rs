@@ -7,40 +7,29 @@
 //! Ω(v) = exp(−[v λ ω]×) (row-0 to row-v camera frame); the relative pose refers to row 0
 //! of each image, R = R₂R₁ᵀ, t = R₂(C₁ − C₂), |t| = 1.
 //!
-//! - Minimal solvers: [`generated`] (emitted by `mingen` from `templates/*.mp`) on the
-//!   numeric back end of the `mingen-runtime` crate, adapted for the estimator in
-//!   [`minimal`].
-//! - Model: [`camera`], [`rolling_shutter`], [`geometry`], [`epipolar`].
-//! - Estimation: [`ransac`], [`refine`], [`velocity`] (linear velocity with the gyro's
-//!   rotations), [`methods`] (one file per method) behind
-//!   [`estimate_relative_pose`].
-//! - Data and evaluation: [`pair_file`], [`simulate`], [`evaluate`], [`experiment`];
-//!   [`instances`] (G-RSRP instances on simulated geometry, for `mingen audit`).
+//! The modules follow the architecture (`docs/ARCHITECTURE.md` §3):
+//!
+//! - [`generated`] and [`minimal`]: the minimal solvers, emitted by `mingen` from
+//!   `templates/*.mp` on the numeric back end of the `mingen-runtime` crate, and their
+//!   adapters for the estimator.
+//! - [`model`]: the camera, rolling-shutter and gyro model, geometry, the two-view
+//!   residuals.
+//! - [`estimation`]: RANSAC, nonlinear refinement, linear velocity with the gyro's
+//!   rotations, calibration of readout and gyro time offset.
+//! - [`methods`]: one file per method behind [`estimate_relative_pose`].
+//! - [`data`]: pair files, the simulator, instances for `mingen audit`.
+//! - [`experiment`]: the paper's sweeps, the real-data comparison, error measures.
 
-// Minimal solvers (their numeric back end is the mingen-runtime crate).
 pub mod generated;
 pub mod minimal;
 
-// Camera model and geometry.
-pub mod calibrate;
-pub mod camera;
-pub mod epipolar;
-pub mod geometry;
-pub mod gyro_log;
-pub mod rolling_shutter;
-
-// Robust estimation, refinement and the methods.
-pub mod methods;
-pub mod ransac;
-pub mod refine;
-pub mod velocity;
-
-// Data, simulation, evaluation and the paper's experiments.
-pub mod atomic_file;
-pub mod evaluate;
+pub mod data;
+pub mod estimation;
 pub mod experiment;
-pub mod instances;
-pub mod pair_file;
-pub mod simulate;
+pub mod methods;
+pub mod model;
 
+pub use data::pair_file::{Match, PairFile};
+pub use data::simulate::{simulate, SimulationOptions};
 pub use methods::{estimate_relative_pose, Estimate, EstimateError, EstimateOptions, Method};
+pub use model::camera::{Camera, View};

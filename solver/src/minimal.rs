@@ -7,7 +7,7 @@
 //!   row-major nullspace matrices of the 5x9 epipolar system; `E = x E1 + y E2 + z E3 + E4`.
 //! - `generated::grsrp10` / `generated::grsrp`: `Data { x1, x2: [[f64; 2]; 5], v1, v2: [f64; 5],
 //!   w1, w2: [f64; 3], r0: [[f64; 3]; 3] }` with normalised image points (bearing
-//!   `[x, y, 1]`), rows in pixels, `w = −λ ω` (rad/row, the paper's sign: [`crate::camera::View::paper_rate_per_row`]), `R_0` row-major;
+//!   `[x, y, 1]`), rows in pixels, `w = −λ ω` (rad/row, the paper's sign: [`crate::model::camera::View::paper_rate_per_row`]), `R_0` row-major;
 //!   `Solution { a: [f64; 3], t: [f64; 3] }` and `R = R_0 exp([a]×)`.
 //! - `generated::grsrp_gravity` / `generated::grsrp_gravity6` (t eliminated): `Data { x1,
 //!   x2: [[f64; 2]; 3], v1, v2: [f64; 3], w1, w2, g1, g2: [[f64; 3]; 3] }` (points, rows and
@@ -19,8 +19,8 @@
 //! Also provides the linear 8-point essential solver (non-minimal, needs ≥ 8 points), usable
 //! as a non-minimal alternative to the 5-point solver ([`EssentialSolver::EightPoint`]).
 
-use crate::epipolar::PointData;
-use crate::geometry::{epipolar_nullspace, exp_so3};
+use crate::model::epipolar::PointData;
+use crate::model::geometry::{epipolar_nullspace, exp_so3};
 use mingen_runtime::{FlatValues, MinimalSolver};
 use nalgebra::{Matrix3, SMatrix, Vector3};
 
@@ -137,7 +137,7 @@ pub enum GrsrpSolver {
 }
 
 /// One minimal G-RSRP sample: normalised image points `x = [m.x, m.y]` (bearing `[x, y, 1]`),
-/// rows `v` (pixels), `w = −λ ω` (rad/row, the paper's sign: [`crate::camera::View::paper_rate_per_row`]), initial rotation `R_0`.
+/// rows `v` (pixels), `w = −λ ω` (rad/row, the paper's sign: [`crate::model::camera::View::paper_rate_per_row`]), initial rotation `R_0`.
 #[derive(Debug, Clone, Copy)]
 pub struct GrsrpSample {
     /// Image-1 normalised points.
@@ -380,7 +380,7 @@ fn solve_gravity<S: MinimalSolver>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::{essential_from_pose, exp_so3};
+    use crate::model::geometry::{essential_from_pose, exp_so3};
 
     #[test]
     fn grsrp_slots_follow_the_generated_data_layout() {

@@ -440,3 +440,37 @@ fn compare_runs_every_method_the_pairs_support() {
     );
     assert_eq!(names(&o), all[..all.len() - 1]);
 }
+
+#[test]
+fn the_default_preset_reports_the_fitted_gyro_noise_and_the_paper_preset_does_not() {
+    let d = scratch("noise-fit");
+    let p = d.join("pair.json");
+    let o = rspose(&[
+        "simulate",
+        "--gyro-noise",
+        "0.5",
+        "--seed",
+        "3",
+        "-o",
+        p.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "estimate",
+            p.to_str().unwrap(),
+            "--method",
+            "rectified",
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        let o = rspose(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap()
+    };
+    let v = run(&[]);
+    let fitted = v["noise_fit"]["gyro_noise"].as_f64().unwrap();
+    assert!(fitted.is_finite() && fitted > 0.0, "{v}");
+    let v = run(&["--preset", "paper"]);
+    assert!(v.get("noise_fit").is_none(), "{v}");
+}

@@ -5,11 +5,11 @@
 //! global-shutter 5-point method and stay within 0.1° (median); with the gyro sign flipped
 //! they fall behind it, which pins the convention to a real gyroscope.
 
-use rspose::camera::View;
+use rspose::data::pair_file::PairFile;
 use rspose::estimate_relative_pose;
 use rspose::experiment::real::{run_real, RealRow};
-use rspose::geometry::rotation_error_deg;
-use rspose::pair_file::PairFile;
+use rspose::model::camera::View;
+use rspose::model::geometry::rotation_error_deg;
 use rspose::{EstimateOptions, Method};
 use std::path::Path;
 
@@ -101,7 +101,7 @@ fn the_opposite_gyro_sign_is_worse_than_no_gyro() {
 
 #[test]
 fn readout_and_time_offset_from_the_recording() {
-    use rspose::calibrate::{calibrate, CalibrationOptions, Range};
+    use rspose::estimation::calibrate::{calibrate, CalibrationOptions, Range};
     let options = CalibrationOptions {
         readout: Range {
             min: 0.016,

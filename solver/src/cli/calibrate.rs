@@ -2,8 +2,8 @@
 
 use super::compare::pair_paths;
 use super::CliError;
-use rspose::calibrate::{calibrate, CalibrationOptions, Range};
-use rspose::pair_file::PairFile;
+use rspose::data::pair_file::PairFile;
+use rspose::estimation::calibrate::{calibrate, CalibrationOptions, Range};
 use std::path::PathBuf;
 
 /// Options of `rspose calibrate`.
@@ -74,8 +74,8 @@ pub fn run(a: Args) -> Result<(), CliError> {
         .collect::<Result<Vec<_>, _>>()?;
     let c = calibrate(&pairs, &options).map_err(|e| {
         let msg = match &e {
-            rspose::calibrate::CalibrationError::NoGyroLog(i)
-            | rspose::calibrate::CalibrationError::Log { pair: i, .. } => {
+            rspose::estimation::calibrate::CalibrationError::NoGyroLog(i)
+            | rspose::estimation::calibrate::CalibrationError::Log { pair: i, .. } => {
                 format!("{}: {e}", paths[*i].display())
             }
             _ => e.to_string(),

@@ -3,8 +3,8 @@
 
 use super::estimate::{apply_r0, R0Choice, Rows};
 use super::{CliError, Preset, ALL_METHODS};
+use rspose::data::pair_file::PairFile;
 use rspose::experiment::real::{reference_rotation, run_real, to_markdown};
-use rspose::pair_file::PairFile;
 use std::path::{Path, PathBuf};
 
 /// Options of `rspose compare`.

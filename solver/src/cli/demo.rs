@@ -2,8 +2,8 @@
 //! optionally with linear velocity (`--linear`) and outliers (`--outliers`).
 
 use super::{CliError, Preset, ALL_METHODS};
+use rspose::data::simulate::simulate;
 use rspose::experiment::{level_simulation, run_methods, Level, Sweep};
-use rspose::simulate::simulate;
 
 /// Options of `rspose demo`.
 #[derive(Debug, clap::Args)]
@@ -46,7 +46,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         a.preset
     );
     println!(
-        "{:<12} {:>14} {:>17} {:>9} {:>10}",
+        "{:<13} {:>14} {:>17} {:>9} {:>10}",
         "method", "rotation (deg)", "translation (deg)", "inliers", "time (ms)"
     );
     let preset = a.preset;
@@ -54,10 +54,10 @@ pub fn run(a: Args) -> Result<(), CliError> {
         let ms = o.seconds * 1e3;
         match (o.rotation_error_deg, o.translation_error_deg, o.inliers) {
             (Some(r), Some(t), Some(n)) => {
-                println!("{:<12} {r:>14.4} {t:>17.4} {n:>9} {ms:>10.3}", o.method)
+                println!("{:<13} {r:>14.4} {t:>17.4} {n:>9} {ms:>10.3}", o.method)
             }
             _ => println!(
-                "{:<12} {:>14} {:>17} {:>9} {ms:>10.3}",
+                "{:<13} {:>14} {:>17} {:>9} {ms:>10.3}",
                 o.method, "failed", "failed", "-"
             ),
         }

@@ -4,9 +4,9 @@
 
 use super::{check_output_dir, CliError};
 use clap::ValueEnum;
-use rspose::atomic_file::write_atomic;
-use rspose::instances::{grsrp_instances, InstanceOptions};
-use rspose::simulate::SimulationOptions;
+use rspose::data::atomic_file::write_atomic;
+use rspose::data::instances::{grsrp_instances, InstanceOptions};
+use rspose::data::simulate::SimulationOptions;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 

@@ -1,10 +1,10 @@
 //! `rspose estimate`: relative pose of one pair file.
 
 use super::{CliError, Preset};
-use rspose::evaluate::pose_errors;
-use rspose::geometry::rotation_error_deg;
+use rspose::data::pair_file::PairFile;
+use rspose::experiment::evaluate::pose_errors;
 use rspose::methods::R0Source;
-use rspose::pair_file::PairFile;
+use rspose::model::geometry::rotation_error_deg;
 use rspose::{estimate_relative_pose, EstimateError, Method};
 use std::path::PathBuf;
 use std::time::Instant;
@@ -12,7 +12,7 @@ use std::time::Instant;
 /// Options of `rspose estimate`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// The pair file (see `rspose::pair_file` for the schema).
+    /// The pair file (see `rspose::data::pair_file` for the schema).
     pair: PathBuf,
     /// Method: gsrp, nrsrp, grsrp, grsrp+, rectified, rectified+v.
     #[arg(long, default_value = "grsrp+")]
@@ -150,6 +150,17 @@ pub fn run(a: Args) -> Result<(), CliError> {
         }
         if let Some(fit) = est.velocity_fit {
             println!("velocities   {}", fit.describe());
+        }
+        if let Some(fit) = est.noise_fit {
+            println!(
+                "noise fit    gyro {:.4} rad/s per axis{}",
+                fit.gyro_noise,
+                if fit.truncation < 1.0 {
+                    format!(", paper-model truncation x{:.3}", fit.truncation)
+                } else {
+                    String::new()
+                }
+            );
         }
         if let Some([d1, d2]) = est.linear_velocity {
             println!(

@@ -2,9 +2,9 @@
 //! timestamps, a rig calibration and the matches of two frames.
 
 use super::{check_output_dir, CliError};
-use rspose::camera::Camera;
-use rspose::gyro_log::{parse_gyro_csv, GyroLog, GyroLogError};
-use rspose::pair_file::{matrix_from_rows, GyroLogSpec, Match, PairFile};
+use rspose::data::pair_file::{matrix_from_rows, GyroLogSpec, Match, PairFile};
+use rspose::model::camera::Camera;
+use rspose::model::gyro_log::{parse_gyro_csv, GyroLog, GyroLogError};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 

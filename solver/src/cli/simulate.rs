@@ -1,7 +1,7 @@
 //! `rspose simulate`: one pair from the paper's synthetic protocol.
 
 use super::{check_output_dir, CliError};
-use rspose::simulate::{simulate, SimulationOptions};
+use rspose::data::simulate::{simulate, SimulationOptions};
 use std::path::PathBuf;
 
 /// Options of `rspose simulate` (defaults: 2.5 rad/s, 0 m/s, 1 px, 0.1 rad/s, 1° gravity

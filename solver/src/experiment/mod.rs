@@ -5,6 +5,7 @@
 //! derived from `(seed, i, j)`, and trials are collected by index, so the number of worker
 //! threads changes the wall time, never the numbers (except the timing columns).
 
+pub mod evaluate;
 #[cfg(feature = "plot")]
 mod plot;
 pub mod real;
@@ -16,12 +17,12 @@ pub use plot::{render_svg, write_svg};
 pub use stats::{median, summarize};
 pub use sweep::{Level, Sweep, UnknownSweep};
 
-/// Output files are written whole or not at all (see [`crate::atomic_file`]).
-pub use crate::atomic_file::write_atomic;
+/// Output files are written whole or not at all (see [`crate::data::atomic_file`]).
+pub use crate::data::atomic_file::write_atomic;
 
-use crate::evaluate::pose_errors;
-use crate::pair_file::PairFile;
-use crate::simulate::{simulate, SimulationOptions};
+use crate::data::pair_file::PairFile;
+use crate::data::simulate::{simulate, SimulationOptions};
+use crate::experiment::evaluate::pose_errors;
 use crate::{estimate_relative_pose, EstimateOptions, Method};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;

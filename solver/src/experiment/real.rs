@@ -4,9 +4,9 @@
 //! independent of the gyro methods (they read the same gyro, though only its rate within
 //! each frame), and there is none for the translation.
 
-use crate::geometry::rotation_error_deg;
+use crate::data::pair_file::PairFile;
 use crate::methods::{estimate_relative_pose, EstimateOptions, Method};
-use crate::pair_file::PairFile;
+use crate::model::geometry::rotation_error_deg;
 use nalgebra::Matrix3;
 use serde::Serialize;
 use std::time::Instant;

@@ -8,14 +8,14 @@
 //! the RANSAC inliers: on the paper's algebraic cost with the paper's algebraic threshold,
 //! on the row-noise-weighted Sampson residual of the same model with a pixel threshold.
 
-use super::pose_ransac::{indices, orient, point_data, run, threshold, GrsrpRansac, Hypothesis};
+use super::noise_fit::{final_inliers, refine_and_classify};
+use super::pose_ransac::{indices, orient, point_data, run, threshold, GrsrpRansac};
 use super::{
     gsrp, rectified, Estimate, EstimateError, EstimateOptions, Method, R0Source, Threshold,
 };
-use crate::camera::View;
-use crate::epipolar::{PoseModel, ResidualKind};
-use crate::pair_file::Match;
-use crate::refine::{refine_pose, Loss};
+use crate::data::pair_file::Match;
+use crate::model::camera::View;
+use crate::model::epipolar::{PoseModel, ResidualKind};
 
 /// Estimate with `grsrp` (`plus = false`) or `grsrp+` (`plus = true`); inputs already
 /// validated by the caller.
@@ -42,11 +42,9 @@ pub fn estimate(
         sols: Vec::new(),
     };
     let (mut h, res) = run(&mut est, options, thr_sq)?;
-    let mut inliers = res.inliers;
     let mut refinement_iterations = 0;
     let mut refinement_cost = None;
-    if plus {
-        let idx = indices(&inliers);
+    let (inliers, noise_fit) = if plus {
         // The paper refines the algebraic residual; with a pixel threshold the inliers
         // reach rows a gyro error moves further, and the row-noise-weighted Sampson residual
         // (the same the inliers were chosen with) keeps those from pulling the pose.
@@ -54,23 +52,30 @@ pub fn estimate(
             Threshold::Algebraic(_) => ResidualKind::Algebraic,
             Threshold::SampsonPixels(_) => ResidualKind::Sampson,
         };
-        let r = refine_pose(
+        let r = refine_and_classify(
             &data,
-            &idx,
-            PoseModel::PaperLinear,
-            refine_kind,
-            Loss::Trivial,
-            h.pose(),
-            &options.refinement,
+            (view1, view2),
+            (PoseModel::PaperLinear, refine_kind),
+            (kind, thr_sq),
+            (&h, &res.inliers),
+            options,
         );
         refinement_iterations = r.iterations;
         refinement_cost = Some(r.cost);
-        h = Hypothesis::from_pose(&r.state);
-        for (i, f) in inliers.iter_mut().enumerate() {
-            let x = data.residual(PoseModel::PaperLinear, kind, i, &h.r, &h.t, &h.e);
-            *f = x * x < thr_sq;
-        }
-    }
+        h = r.h;
+        (r.inliers, r.noise_fit)
+    } else if options.robust.fit_gyro_noise {
+        final_inliers(
+            &data,
+            (view1, view2),
+            PoseModel::PaperLinear,
+            (kind, thr_sq),
+            &h,
+            &options.robust,
+        )
+    } else {
+        (res.inliers, None)
+    };
     let t = orient(&h.r, &h.t, &data.b1, &data.b2, &indices(&inliers));
     Ok(Estimate {
         method: if plus {
@@ -89,5 +94,6 @@ pub fn estimate(
         angular_velocity: None,
         linear_velocity: None,
         velocity_fit: None,
+        noise_fit,
     })
 }

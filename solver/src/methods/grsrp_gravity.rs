@@ -26,12 +26,12 @@
 
 use super::pose_ransac::{indices, point_data, run, threshold, EssentialRansac, Hypothesis};
 use super::{rectified, Estimate, EstimateError, EstimateOptions, Method, RobustOptions};
-use crate::camera::View;
-use crate::epipolar::PointData;
-use crate::geometry::fix_translation_sign;
+use crate::data::pair_file::Match;
+use crate::estimation::ransac::{RansacEstimator, RansacResult, Score};
 use crate::minimal::{GravitySample, GravitySolver};
-use crate::pair_file::Match;
-use crate::ransac::{RansacEstimator, RansacResult, Score};
+use crate::model::camera::View;
+use crate::model::epipolar::PointData;
+use crate::model::geometry::fix_translation_sign;
 use nalgebra::{Matrix3, Vector3};
 
 /// Known-gravity RANSAC: hypotheses from the generated 3-point solver, scoring and local
@@ -141,6 +141,7 @@ pub fn estimate(
     };
     Ok(rectified::refine_exact(
         &data,
+        (view1, view2),
         h,
         res,
         (kind, thr_sq),
@@ -152,9 +153,9 @@ pub fn estimate(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::evaluate::pose_errors;
-    use crate::pair_file::PairFile;
-    use crate::simulate::{simulate, SimulationOptions};
+    use crate::data::pair_file::PairFile;
+    use crate::data::simulate::{simulate, SimulationOptions};
+    use crate::experiment::evaluate::pose_errors;
     use crate::{estimate_relative_pose, Method};
 
     fn run(p: &PairFile, o: &EstimateOptions) -> Result<Estimate, EstimateError> {

@@ -8,10 +8,10 @@
 
 use super::pose_ransac::{gs_threshold, indices, orient, run, EssentialRansac, Hypothesis};
 use super::{Estimate, EstimateError, EstimateOptions, Method};
-use crate::camera::View;
-use crate::epipolar::{PointData, PoseModel, ResidualKind};
-use crate::pair_file::Match;
-use crate::refine::{refine_pose, Loss};
+use crate::data::pair_file::Match;
+use crate::estimation::refine::{refine_pose, Loss};
+use crate::model::camera::View;
+use crate::model::epipolar::{PointData, PoseModel, ResidualKind};
 
 /// Run `gsrp` on prepared data (inputs already validated).
 pub(crate) fn run_on(
@@ -67,6 +67,7 @@ pub(crate) fn run_on(
         angular_velocity: None,
         linear_velocity: None,
         velocity_fit: None,
+        noise_fit: None,
     })
 }
 

@@ -16,6 +16,7 @@
 pub mod grsrp;
 pub mod grsrp_gravity;
 pub mod gsrp;
+pub mod noise_fit;
 pub mod nrsrp;
 mod pose_ransac;
 pub mod quality;
@@ -23,11 +24,12 @@ pub mod rectified;
 pub mod rectified_v;
 mod subset;
 
-use crate::camera::{CameraError, View};
+use crate::data::pair_file::Match;
+use crate::estimation::refine::LmOptions;
 use crate::minimal::{EssentialSolver, GravitySolver, GrsrpSolver};
-use crate::pair_file::Match;
-use crate::refine::LmOptions;
+use crate::model::camera::{CameraError, View};
 use nalgebra::{Matrix3, Vector3};
+pub use noise_fit::NoiseFit;
 pub use quality::{Quality, QualityOptions};
 pub use rectified_v::{VelocityFit, VelocityOptions};
 use std::fmt;
@@ -182,6 +184,12 @@ pub struct RobustOptions {
     /// Gyro-rate noise per axis, rad/s (default 0.1): a rate error moves row `v` by about
     /// `f λ v σ_ω` px, so late rows get a proportionally wider threshold.
     pub gyro_noise: f64,
+    /// Fit the gyro-rate noise to the pair's residuals after the final refinement and
+    /// classify the final inliers with it (pixel thresholds only; default true, false in the
+    /// paper preset). [`gyro_noise`](Self::gyro_noise) is then only the starting point and
+    /// the RANSAC stage's noise: the final threshold follows the gyro the data show, which
+    /// may be several times better or worse than the prior (see `methods::noise_fit`).
+    pub fit_gyro_noise: bool,
     /// RANSAC and refinement use at most this many matches, a random subset; every match
     /// is then classified against the final pose (default 20,000; see `methods::subset`).
     pub max_points: usize,
@@ -252,6 +260,7 @@ impl EstimateOptions {
                 max_points: 20_000,
                 pixel_noise: 1.0,
                 gyro_noise: 0.0,
+                fit_gyro_noise: true,
                 gravity_noise_deg: 1.0,
             },
             ..Self::default()
@@ -294,6 +303,7 @@ impl Default for EstimateOptions {
                 max_points: 20_000,
                 pixel_noise: 1.0,
                 gyro_noise: 0.1,
+                fit_gyro_noise: true,
                 gravity_noise_deg: 1.0,
             },
             refinement: LmOptions::default(),
@@ -338,6 +348,10 @@ pub struct Estimate {
     /// `rectified+v` only: whether the velocities were estimated, regularised by their
     /// prior, or left out (the `rectified` pose returned), and why.
     pub velocity_fit: Option<VelocityFit>,
+    /// The noise model the final inliers were classified with, when it was fitted to the
+    /// pair ([`RobustOptions::fit_gyro_noise`]; `rectified`, `grsrp`, `grsrp+`,
+    /// `grsrp-gravity`, and `rectified+v` when it falls back to `rectified`).
+    pub noise_fit: Option<NoiseFit>,
 }
 
 impl Estimate {
@@ -350,7 +364,7 @@ impl Estimate {
     /// command's own `seconds` and the pair file's reference errors): `method`, `rotation`
     /// (row-major rows), `translation`, `inliers` (the count), `iterations`, `inlier_ratio`,
     /// `ransac_score`, `refinement_iterations`, `refinement_cost`, `quality`, `flags`, and
-    /// where present `linear_velocity` and `velocity_fit`. The Python package's
+    /// where present `linear_velocity`, `velocity_fit` and `noise_fit`. The Python package's
     /// `Estimate.to_dict()` is this object.
     pub fn report_json(&self) -> serde_json::Value {
         let rows: Vec<[f64; 3]> = (0..3)
@@ -375,6 +389,12 @@ impl Estimate {
         }
         if let Some(fit) = self.velocity_fit {
             obj["velocity_fit"] = serde_json::json!(fit);
+        }
+        if let Some(fit) = self.noise_fit {
+            obj["noise_fit"] = serde_json::json!({
+                "gyro_noise": fit.gyro_noise,
+                "truncation": fit.truncation,
+            });
         }
         obj
     }

@@ -2,15 +2,15 @@
 //! with the uniform RS model, as used by the paper: initialise `(R, t)` with `gsrp`, zero
 //! velocities, then minimise the generalized epipolar (ray coplanarity) residual over all
 //! points by LM with a Cauchy loss, unknowns `R, t, ω1, d1, ω2, d2` (17 parameters; see
-//! [`crate::refine::NrsrpProblem`]). The gyro is not used.
+//! [`crate::estimation::refine::NrsrpProblem`]). The gyro is not used.
 
 use super::pose_ransac::{indices, orient};
 use super::{gsrp, Estimate, EstimateError, EstimateOptions, Method};
-use crate::camera::View;
-use crate::epipolar::PointData;
-use crate::geometry::exp_so3;
-use crate::pair_file::Match;
-use crate::refine::{refine_nrsrp, LmOptions, NrsrpState, Pose};
+use crate::data::pair_file::Match;
+use crate::estimation::refine::{refine_nrsrp, LmOptions, NrsrpState, Pose};
+use crate::model::camera::View;
+use crate::model::epipolar::PointData;
+use crate::model::geometry::exp_so3;
 use nalgebra::Vector3;
 
 /// Estimate with `nrsrp` (inputs already validated by the caller).
@@ -72,5 +72,6 @@ pub fn estimate(
         linear_velocity: (per_frame1 > 0.0 && per_frame2 > 0.0)
             .then(|| [s.delta[0] / per_frame1, s.delta[1] / per_frame2]),
         velocity_fit: None,
+        noise_fit: None,
     })
 }

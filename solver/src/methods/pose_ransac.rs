@@ -1,14 +1,14 @@
 //! RANSAC estimators shared by the methods: essential-matrix hypotheses (from plain or
 //! gyro-undistorted bearings) and G-RSRP hypotheses, both scored with a per-point epipolar
-//! residual ([`crate::epipolar`]).
+//! residual ([`crate::model::epipolar`]).
 
 use super::{EstimateError, EstimateOptions, RobustOptions, Threshold};
-use crate::camera::View;
-use crate::epipolar::{PointData, PoseModel, ResidualKind, RowNoise};
-use crate::geometry::{fix_translation_sign, pose_from_essential, skew};
+use crate::estimation::ransac::{ransac, RansacEstimator, RansacOptions, RansacResult, Score};
+use crate::estimation::refine::{refine_pose, LmOptions, Loss, Pose};
 use crate::minimal::{EssentialSolver, GrsrpSample, GrsrpSolver};
-use crate::ransac::{ransac, RansacEstimator, RansacOptions, RansacResult, Score};
-use crate::refine::{refine_pose, LmOptions, Loss, Pose};
+use crate::model::camera::View;
+use crate::model::epipolar::{PointData, PoseModel, ResidualKind, RowNoise};
+use crate::model::geometry::{fix_translation_sign, pose_from_essential, skew};
 use nalgebra::{Matrix3, Vector3};
 
 /// A pose hypothesis with its essential matrix `E = [t]× R`.
@@ -66,18 +66,25 @@ pub(crate) fn gs_threshold(view1: &View, view2: &View, o: &RobustOptions) -> (Re
 pub(crate) fn point_data(
     view1: &View,
     view2: &View,
-    matches: &[crate::pair_file::Match],
+    matches: &[crate::data::pair_file::Match],
     o: &RobustOptions,
 ) -> PointData {
     let mut data = PointData::new(view1, view2, matches);
     if matches!(o.threshold, Threshold::SampsonPixels(_)) {
-        let f = 0.5 * (view1.camera.mean_focal() + view2.camera.mean_focal());
-        data.set_row_noise(RowNoise {
-            pixel: o.pixel_noise / f,
-            rate_per_row: o.gyro_noise * view1.camera.readout.max(view2.camera.readout),
-        });
+        data.set_row_noise(row_noise(view1, view2, o.pixel_noise, o.gyro_noise));
     }
     data
+}
+
+/// The per-match noise model of pixel noise `pixel_noise` (px) and gyro-rate noise
+/// `gyro_noise` (rad/s per axis), in normalised units of the two views' mean focal length.
+pub(crate) fn row_noise(view1: &View, view2: &View, pixel_noise: f64, gyro_noise: f64) -> RowNoise {
+    let f = 0.5 * (view1.camera.mean_focal() + view2.camera.mean_focal());
+    RowNoise {
+        pixel: pixel_noise / f,
+        rate_per_row: gyro_noise * view1.camera.readout.max(view2.camera.readout),
+        truncation: 1.0,
+    }
 }
 
 pub(crate) fn ransac_options(r: &RobustOptions, thr_sq: f64) -> RansacOptions {

@@ -20,10 +20,10 @@
 //! Bearings are the method's own: undistorted by the gyro row rotations for the gyro-aided
 //! methods, by `nrsrp`'s estimated rotations for `nrsrp`, raw for `gsrp`.
 
-use crate::camera::View;
-use crate::epipolar::{PointData, PoseModel, ResidualKind};
-use crate::pair_file::Match;
-use crate::refine::{refine_pose, LmOptions, Loss, Pose};
+use crate::data::pair_file::Match;
+use crate::estimation::refine::{refine_pose, LmOptions, Loss, Pose};
+use crate::model::camera::View;
+use crate::model::epipolar::{PointData, PoseModel, ResidualKind};
 use nalgebra::{Matrix3, SMatrix, SymmetricEigen, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;

@@ -4,15 +4,15 @@
 //! (algebraic `b2^T E b1` or Sampson of `m2^T Ω2 E Ω1^T m1`); then refine `(R, t)` by LM on
 //! the Sampson error of the exact angular model over the inliers.
 
+use super::noise_fit::{refine_and_classify, Refined};
 use super::pose_ransac::{
     indices, orient, point_data, run, threshold, EssentialRansac, Hypothesis,
 };
 use super::{Estimate, EstimateError, EstimateOptions, Method};
-use crate::camera::View;
-use crate::epipolar::{PointData, PoseModel, ResidualKind};
-use crate::pair_file::Match;
-use crate::ransac::RansacResult;
-use crate::refine::{refine_pose, Loss};
+use crate::data::pair_file::Match;
+use crate::estimation::ransac::RansacResult;
+use crate::model::camera::View;
+use crate::model::epipolar::{PointData, PoseModel, ResidualKind};
 
 /// Run `rectified` on prepared data (inputs already validated).
 pub(crate) fn run_on(
@@ -29,6 +29,7 @@ pub(crate) fn run_on(
     )?;
     Ok(refine_exact(
         data,
+        (view1, view2),
         h0,
         res,
         (kind, thr_sq),
@@ -42,28 +43,27 @@ pub(crate) fn run_on(
 /// `(kind, thr_sq)`, the sign of `t` by cheirality.
 pub(crate) fn refine_exact(
     data: &PointData,
+    (view1, view2): (&View, &View),
     h0: Hypothesis,
     res: RansacResult<Hypothesis>,
     (kind, thr_sq): (ResidualKind, f64),
     options: &EstimateOptions,
     method: Method,
 ) -> Estimate {
-    let mut inliers = res.inliers;
-    let idx = indices(&inliers);
-    let r = refine_pose(
+    let Refined {
+        h,
+        inliers,
+        noise_fit,
+        iterations,
+        cost,
+    } = refine_and_classify(
         data,
-        &idx,
-        PoseModel::ExactAngular,
-        ResidualKind::Sampson,
-        Loss::Trivial,
-        h0.pose(),
-        &options.refinement,
+        (view1, view2),
+        (PoseModel::ExactAngular, ResidualKind::Sampson),
+        (kind, thr_sq),
+        (&h0, &res.inliers),
+        options,
     );
-    let h = Hypothesis::from_pose(&r.state);
-    for (i, f) in inliers.iter_mut().enumerate() {
-        let x = data.residual(PoseModel::ExactAngular, kind, i, &h.r, &h.t, &h.e);
-        *f = x * x < thr_sq;
-    }
     let t = orient(&h.r, &h.t, &data.b1, &data.b2, &indices(&inliers));
     Estimate {
         method,
@@ -72,12 +72,13 @@ pub(crate) fn refine_exact(
         inliers,
         iterations: res.iterations,
         ransac_score: res.score.msac,
-        refinement_iterations: r.iterations,
-        refinement_cost: Some(r.cost),
+        refinement_iterations: iterations,
+        refinement_cost: Some(cost),
         quality: Default::default(),
         angular_velocity: None,
         linear_velocity: None,
         velocity_fit: None,
+        noise_fit,
     }
 }
 

@@ -1,6 +1,6 @@
 //! `rectified+v`: `rectified`'s RANSAC and pose, then a refinement of the pose and both
 //! cameras' constant linear velocities `d1`, `d2` on the generalised epipolar model with
-//! the gyro's row rotations ([`crate::velocity`]: each row's rotation from the gyro, each
+//! the gyro's row rotations ([`crate::estimation::velocity`]: each row's rotation from the gyro, each
 //! row's centre `C + v λ d`), Sampson-normalised residuals, Cauchy loss, a zero-mean prior on
 //! the velocities. The inliers are re-classified with the refined model (the angular model's
 //! inliers miss the matches the linear motion moved furthest) and the refinement repeated
@@ -20,7 +20,7 @@
 //!   quantile with 6 degrees of freedom: what six free parameters gain on pure noise;
 //!   [`VelocityFit::NotSignificant`] otherwise), and by [`VelocityOptions::rate_margin`] more
 //!   than the competing explanation with as many parameters does: still cameras whose gyro rates are off by a constant
-//!   error of plausible size ([`crate::velocity::RateErrorProblem`], prior
+//!   error of plausible size ([`crate::estimation::velocity::RateErrorProblem`], prior
 //!   [`VelocityOptions::rate_error_std`]). A gyro-rate error also grows with the
 //!   row, and velocities fitted to it move the translation further than the error itself
 //!   did ([`VelocityFit::GyroErrorExplains`] otherwise). Either way, and for global-shutter
@@ -28,14 +28,14 @@
 
 use super::pose_ransac::{indices, orient, point_data, threshold};
 use super::{rectified, Estimate, EstimateError, EstimateOptions, Method};
-use crate::camera::View;
-use crate::epipolar::{PointData, ResidualKind};
-use crate::pair_file::Match;
-use crate::refine::{levenberg_marquardt, LmOptions, Loss, Pose};
-use crate::velocity::{
+use crate::data::pair_file::Match;
+use crate::estimation::refine::{levenberg_marquardt, LmOptions, Loss, Pose};
+use crate::estimation::velocity::{
     reference_duration, refine_velocity, velocity_information, RateErrorProblem, RateErrorState,
     VelocityModel, VelocityProblem, VelocityState,
 };
+use crate::model::camera::View;
+use crate::model::epipolar::{PointData, ResidualKind};
 use nalgebra::Vector3;
 use serde::Serialize;
 
@@ -209,7 +209,7 @@ impl VelocityFit {
     }
 }
 
-/// `λ_c / T` of each view ([`crate::velocity::VelocityModel::new`]); `None` for two
+/// `λ_c / T` of each view ([`crate::estimation::velocity::VelocityModel::new`]); `None` for two
 /// global-shutter views.
 pub(crate) fn row_times(view1: &View, view2: &View) -> Option<[f64; 2]> {
     let t = reference_duration(view1, view2);
@@ -372,6 +372,7 @@ pub fn estimate(
         refinement_cost: Some(cost),
         linear_velocity: Some(state.delta.map(|d| d * (sign / duration))),
         velocity_fit: Some(fit),
+        noise_fit: None,
         ..base
     })
 }
@@ -379,10 +380,10 @@ pub fn estimate(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::camera::Camera;
-    use crate::evaluate::pose_errors;
-    use crate::pair_file::PairFile;
-    use crate::simulate::{simulate, SimulationOptions};
+    use crate::data::pair_file::PairFile;
+    use crate::data::simulate::{simulate, SimulationOptions};
+    use crate::experiment::evaluate::pose_errors;
+    use crate::model::camera::Camera;
     use crate::{estimate_relative_pose, Method};
 
     fn run(p: &PairFile, o: &EstimateOptions) -> Estimate {

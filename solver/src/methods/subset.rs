@@ -4,14 +4,15 @@
 //! method's own model and threshold, in chunks so that no per-match table of the whole input
 //! is built.
 
+use super::noise_fit::NoiseFit;
 use super::pose_ransac::{gs_threshold, point_data, threshold};
 use super::{Estimate, EstimateOptions, Method, RobustOptions};
-use crate::camera::View;
-use crate::epipolar::{PointData, PoseModel};
-use crate::geometry::skew;
-use crate::pair_file::Match;
-use crate::refine::Pose;
-use crate::velocity::{VelocityModel, VelocityState};
+use crate::data::pair_file::Match;
+use crate::estimation::refine::Pose;
+use crate::estimation::velocity::{VelocityModel, VelocityState};
+use crate::model::camera::View;
+use crate::model::epipolar::{PointData, PoseModel};
+use crate::model::geometry::skew;
 use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -30,7 +31,8 @@ pub(crate) fn subset_indices(n: usize, max: usize, seed: u64) -> Vec<usize> {
 /// The inlier mask of every match under the estimate's pose, with the model and threshold
 /// the method classifies with (`nrsrp`: the exact angular model on its own rotation
 /// estimates, with the global-shutter threshold of its initialisation; `rectified+v`: the
-/// generalised epipolar model with its velocities, unless it fell back to `rectified`).
+/// generalised epipolar model with its velocities, unless it fell back to `rectified`), and
+/// the gyro noise fitted to the subset where there is one.
 pub(crate) fn classify_all(
     view1: &View,
     view2: &View,
@@ -39,19 +41,20 @@ pub(crate) fn classify_all(
     options: &EstimateOptions,
 ) -> Vec<bool> {
     let robust = &options.robust;
+    let fit = est.noise_fit;
     if let (Method::RectifiedV, Some(d), Some(row_time)) = (
         options.method,
         est.linear_velocity,
         super::rectified_v::row_times(view1, view2),
     ) {
-        let duration = crate::velocity::reference_duration(view1, view2);
+        let duration = crate::estimation::velocity::reference_duration(view1, view2);
         let state = VelocityState {
             pose: Pose::new(&est.rotation, &est.translation),
             delta: d.map(|d| d * duration),
         };
         let model = VelocityModel::new(&state, row_time);
         let (kind, thr_sq) = threshold(view1, view2, robust.threshold);
-        return classify_chunks(view1, view2, matches, robust, |data, i| {
+        return classify_chunks(view1, view2, matches, robust, fit, |data, i| {
             let x = model.residual(data, kind, i);
             x * x < thr_sq
         });
@@ -87,23 +90,28 @@ pub(crate) fn classify_all(
     };
     let (r, t) = (est.rotation, est.translation);
     let e = skew(&t) * r;
-    classify_chunks(&v1, &v2, matches, robust, |data, i| {
+    classify_chunks(&v1, &v2, matches, robust, fit, |data, i| {
         let x = data.residual(model, kind, i, &r, &t, &e);
         x * x < thr_sq
     })
 }
 
-/// `inlier(data, i)` for every match, on point data built one chunk at a time.
+/// `inlier(data, i)` for every match, on point data built one chunk at a time (weighted by
+/// the fitted noise `fit` where there is one).
 fn classify_chunks(
     view1: &View,
     view2: &View,
     matches: &[Match],
     robust: &RobustOptions,
+    fit: Option<NoiseFit>,
     inlier: impl Fn(&PointData, usize) -> bool,
 ) -> Vec<bool> {
     let mut inliers = Vec::with_capacity(matches.len());
     for chunk in matches.chunks(CHUNK) {
-        let data = point_data(view1, view2, chunk, robust);
+        let mut data = point_data(view1, view2, chunk, robust);
+        if let Some(fit) = fit {
+            data.set_row_noise(fit.row_noise(view1, view2, robust.pixel_noise));
+        }
         inliers.extend((0..chunk.len()).map(|i| inlier(&data, i)));
     }
     inliers

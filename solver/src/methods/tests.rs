@@ -1,8 +1,8 @@
 use super::*;
-use crate::camera::Camera;
-use crate::evaluate::pose_errors;
-use crate::pair_file::PairFile;
-use crate::simulate::{simulate, SimulationOptions};
+use crate::data::pair_file::PairFile;
+use crate::data::simulate::{simulate, SimulationOptions};
+use crate::experiment::evaluate::pose_errors;
+use crate::model::camera::Camera;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -427,9 +427,9 @@ fn quality_flags_stay_silent_on_the_papers_scenes() {
 #[test]
 fn a_global_shutter_camera_makes_the_gyro_methods_agree_with_gsrp() {
     let p = pair(SimulationOptions {
-        camera: crate::camera::Camera {
+        camera: crate::model::camera::Camera {
             readout: 0.0,
-            ..crate::camera::Camera::paper()
+            ..crate::model::camera::Camera::paper()
         },
         angular_velocity: 2.5,
         seed: 4,
@@ -450,7 +450,7 @@ fn a_global_shutter_camera_makes_the_gyro_methods_agree_with_gsrp() {
             err.rotation_error_deg < 0.5 && err.translation_error_deg < 3.0,
             "{m}: {err:?}"
         );
-        let d = crate::geometry::rotation_error_deg(&gs.rotation, &e.rotation);
+        let d = crate::model::geometry::rotation_error_deg(&gs.rotation, &e.rotation);
         assert!(d < 0.2, "{m} differs from gsrp by {d} deg");
     }
 }

@@ -6,7 +6,7 @@
 use nalgebra::{Matrix3, Vector3};
 use rand::Rng;
 use rspose::generated::{grsrp, grsrp10, grsrp_gravity, gs5pt};
-use rspose::geometry::{epipolar_nullspace, exp_so3, skew};
+use rspose::model::geometry::{epipolar_nullspace, exp_so3, skew};
 
 fn rows(m: &Matrix3<f64>) -> [[f64; 3]; 3] {
     std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))

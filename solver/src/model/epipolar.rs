@@ -17,9 +17,9 @@
 //! first-order geometric error in normalised image units (multiply by the focal length for
 //! pixels).
 
-use crate::camera::View;
-use crate::geometry::skew;
-use crate::pair_file::Match;
+use crate::data::pair_file::Match;
+use crate::model::camera::View;
+use crate::model::geometry::skew;
 use nalgebra::{Matrix3, Vector3};
 
 /// Which two-view model a residual follows (see the module documentation).
@@ -83,6 +83,9 @@ pub struct RowNoise {
     pub pixel: f64,
     /// Gyro-rate noise times the readout of a row, `λ σ_ω` (rad/row).
     pub rate_per_row: f64,
+    /// Scale of the paper model's truncation term (1: its bound `(v |w|)² / 2` taken as a
+    /// standard deviation; the truncation error is systematic and usually smaller).
+    pub truncation: f64,
 }
 
 impl PointData {
@@ -131,20 +134,53 @@ impl PointData {
             self.scale = [Vec::new(), Vec::new()];
             return;
         }
-        let g2 = noise.rate_per_row * noise.rate_per_row;
-        let (a1, a2) = (self.w1.norm_squared(), self.w2.norm_squared());
-        let (mut exact, mut paper) = (
-            Vec::with_capacity(self.len()),
-            Vec::with_capacity(self.len()),
-        );
-        for i in 0..self.len() {
-            let (v1, v2) = (self.v1[i] * self.v1[i], self.v2[i] * self.v2[i]);
-            let gyro = g2 * (v1 + v2);
-            let lin = 0.25 * (a1 * a1 * v1 * v1 + a2 * a2 * v2 * v2);
-            exact.push((px2 / (px2 + gyro)).sqrt());
-            paper.push((px2 / (px2 + gyro + lin)).sqrt());
+        let weights = |model| {
+            (0..self.len())
+                .map(|i| (px2 / self.noise_variance(noise, model, i)).sqrt())
+                .collect()
+        };
+        self.scale = [
+            weights(PoseModel::ExactAngular),
+            weights(PoseModel::PaperLinear),
+        ];
+    }
+
+    /// `σ_i²`, the variance of point `i`'s Sampson residual under `noise` (normalised units
+    /// squared): `σ_px² + (λ σ_ω)² (v1² + v2²)`, plus for the paper's model its squared
+    /// truncation error `((v1 |w1|)⁴ + (v2 |w2|)⁴) / 4` times `truncation²`; `σ_px²` alone for the
+    /// global-shutter model, which has no gyro.
+    pub fn noise_variance(&self, noise: RowNoise, model: PoseModel, i: usize) -> f64 {
+        let px2 = noise.pixel * noise.pixel;
+        let (v1, v2) = (self.v1[i] * self.v1[i], self.v2[i] * self.v2[i]);
+        let gyro = noise.rate_per_row * noise.rate_per_row * (v1 + v2);
+        match model {
+            PoseModel::GlobalShutter => px2,
+            PoseModel::ExactAngular => px2 + gyro,
+            PoseModel::PaperLinear => {
+                let (a1, a2) = (self.w1.norm_squared(), self.w2.norm_squared());
+                let lin = 0.25 * (a1 * a1 * v1 * v1 + a2 * a2 * v2 * v2);
+                px2 + gyro + noise.truncation * noise.truncation * lin
+            }
         }
-        self.scale = [exact, paper];
+    }
+
+    /// The Sampson residual `r / |∇r|` of point `i` under `model` without its weight
+    /// (normalised image units; infinite where the gradient vanishes).
+    #[inline]
+    pub fn sampson_unweighted(
+        &self,
+        model: PoseModel,
+        i: usize,
+        r: &Matrix3<f64>,
+        t: &Vector3<f64>,
+        e: &Matrix3<f64>,
+    ) -> f64 {
+        let (res, g) = self.residual_and_gradient(model, i, r, t, e);
+        if g > 0.0 {
+            res / g.sqrt()
+        } else {
+            f64::INFINITY
+        }
     }
 
     /// The weight of point `i`'s Sampson residual under `model` (1 without a noise model).
@@ -338,15 +374,10 @@ impl PointData {
         t: &Vector3<f64>,
         e: &Matrix3<f64>,
     ) -> f64 {
-        let (res, g) = self.residual_and_gradient(model, i, r, t, e);
         match kind {
-            ResidualKind::Algebraic => res,
+            ResidualKind::Algebraic => self.residual_and_gradient(model, i, r, t, e).0,
             ResidualKind::Sampson => {
-                if g > 0.0 {
-                    self.weight(model, i) * res / g.sqrt()
-                } else {
-                    f64::INFINITY
-                }
+                self.weight(model, i) * self.sampson_unweighted(model, i, r, t, e)
             }
         }
     }
@@ -355,9 +386,9 @@ impl PointData {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::camera::Camera;
-    use crate::geometry::{exp_so3, skew};
-    use crate::simulate::{simulate, SimulationOptions};
+    use crate::data::simulate::{simulate, SimulationOptions};
+    use crate::model::camera::Camera;
+    use crate::model::geometry::{exp_so3, skew};
 
     #[test]
     fn models_agree_where_they_should() {

@@ -11,8 +11,8 @@
 //! pair cost is the Cauchy loss of those distances, see `translation_fit_cost`). The
 //! search is a grid, then a finer grid around the best cell.
 
-use crate::gyro_log::{GyroLog, GyroLogError};
-use crate::pair_file::PairFile;
+use crate::data::pair_file::PairFile;
+use crate::model::gyro_log::{GyroLog, GyroLogError};
 use nalgebra::{Matrix3, SymmetricEigen, Vector3};
 use serde::Serialize;
 use thiserror::Error;
@@ -341,8 +341,8 @@ pub fn calibrate(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::camera::Camera;
-    use crate::pair_file::GyroLogSpec;
+    use crate::data::pair_file::GyroLogSpec;
+    use crate::model::camera::Camera;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
@@ -455,7 +455,7 @@ mod tests {
             calibrate(&[], &CalibrationOptions::default()),
             Err(CalibrationError::NoPairs)
         );
-        let pair = crate::simulate::simulate(&Default::default()).unwrap();
+        let pair = crate::data::simulate::simulate(&Default::default()).unwrap();
         assert_eq!(
             calibrate(&[pair], &CalibrationOptions::default()),
             Err(CalibrationError::NoGyroLog(0))

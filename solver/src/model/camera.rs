@@ -7,12 +7,12 @@
 //! reading: the camera's angular velocity `ω` in its own axes (x right, y down, z forward;
 //! rad/s; extrinsics and bias applied), as a gyroscope reports it, i.e. `Ṙ_wc = R_wc [ω]×`
 //! for the camera-to-world rotation, so row `v`'s world-to-camera rotation is
-//! `exp(−[v λ ω]×) R_cw(0)` ([`crate::rolling_shutter`]). A view may also carry the
+//! `exp(−[v λ ω]×) R_cw(0)` ([`crate::model::rolling_shutter`]). A view may also carry the
 //! orientation over its readout integrated from gyro samples ([`RowTrack`]), and the
 //! direction of gravity in its camera axes at row 0, from an accelerometer.
 
-use crate::gyro_log::RowTrack;
-use crate::rolling_shutter::row_rotation;
+use crate::model::gyro_log::RowTrack;
+use crate::model::rolling_shutter::row_rotation;
 use nalgebra::{Matrix3, Vector2, Vector3};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;

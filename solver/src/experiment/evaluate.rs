@@ -2,9 +2,9 @@
 //! rotation `acos((tr(R_gt^T R) - 1) / 2)`, translation `acos(t_gt · t)` for unit vectors
 //! (the estimate's sign was already chosen by cheirality; it is not folded here).
 
-use crate::geometry::{rotation_error_deg, translation_error_deg};
+use crate::data::pair_file::GroundTruth;
 use crate::methods::Estimate;
-use crate::pair_file::GroundTruth;
+use crate::model::geometry::{rotation_error_deg, translation_error_deg};
 use serde::Serialize;
 
 /// Rotation and translation errors in degrees.

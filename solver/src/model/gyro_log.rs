@@ -10,7 +10,7 @@
 //! accurate), so the orientation of the frame at `t1` in the frame at `t0` is
 //! `Q(t0, t1) = R_wc(t0)^T R_wc(t1) = Π_k exp([ω(τ_k) Δ_k]×)`, in time order.
 
-use crate::geometry::exp_so3;
+use crate::model::geometry::exp_so3;
 use nalgebra::{Matrix3, Vector3};
 use thiserror::Error;
 
@@ -28,7 +28,7 @@ pub enum GyroLogError {
         index: usize,
     },
     /// An angular velocity faster than any gyroscope measures
-    /// ([`crate::camera::MAX_ANGULAR_VELOCITY`]).
+    /// ([`crate::model::camera::MAX_ANGULAR_VELOCITY`]).
     #[error("sample {index}: angular velocity above 100 rad/s")]
     Implausible {
         /// Sample index.
@@ -116,7 +116,7 @@ impl GyroLog {
             if !s.iter().all(|x| x.is_finite()) {
                 return Err(GyroLogError::NonFinite { index });
             }
-            if Vector3::new(s[1], s[2], s[3]).norm() > crate::camera::MAX_ANGULAR_VELOCITY {
+            if Vector3::new(s[1], s[2], s[3]).norm() > crate::model::camera::MAX_ANGULAR_VELOCITY {
                 return Err(GyroLogError::Implausible { index });
             }
             if let Some(&previous) = times.last() {
@@ -366,7 +366,7 @@ pub fn parse_gyro_csv(text: &str, time_column: usize) -> Result<GyroCsvSamples, 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::rolling_shutter::row_rotation;
+    use crate::model::rolling_shutter::row_rotation;
 
     fn constant_log(rate: Vector3<f64>, dt: f64, n: usize) -> GyroLog {
         let s: Vec<[f64; 4]> = (0..n)

@@ -2,17 +2,17 @@
 //! `grsrp10` / `grsrp` problem files (their data declarations are the same), for
 //! `mingen audit FILE --instances-from DATA` (`rspose dump-instances`).
 //!
-//! Each instance is its own scene ([`crate::simulate::simulate`] with the given options
+//! Each instance is its own scene ([`crate::data::simulate::simulate`] with the given options
 //! and a per-instance seed): five distinct true inliers drawn at random, their normalised
 //! image points and rows, the gyro rates as the templates take them (`w = −λ ω`, see
-//! [`crate::camera::View::paper_rate_per_row`]), and `R_0` = the true rotation perturbed
+//! [`crate::model::camera::View::paper_rate_per_row`]), and `R_0` = the true rotation perturbed
 //! by a rotation of the given angle about a random axis (the estimator's `R_0` comes from
 //! the gyro, a few degrees from the truth).
 
-use crate::epipolar::PointData;
+use crate::data::simulate::{gauss, simulate, SimulationError, SimulationOptions};
 use crate::generated::grsrp10;
-use crate::geometry::exp_so3;
-use crate::simulate::{gauss, simulate, SimulationError, SimulationOptions};
+use crate::model::epipolar::PointData;
+use crate::model::geometry::exp_so3;
 use nalgebra::Vector3;
 use rand::seq::index::sample;
 use rand::SeedableRng;
@@ -130,7 +130,7 @@ pub fn grsrp_instances(
 mod tests {
     use super::*;
     use crate::generated::grsrp;
-    use crate::geometry::log_so3;
+    use crate::model::geometry::log_so3;
     use mingen_runtime::FlatValues;
 
     /// For each noise-free instance with these rates and `R_0` angle: the angle (degrees)

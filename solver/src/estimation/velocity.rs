@@ -4,7 +4,7 @@
 //!
 //! World frame: camera 1's row-0 frame (`R1 = I`, `C1 = 0`), so `R2 = R` and
 //! `C2 = −R^T t` (`|t| = 1`: lengths in baselines). Camera `c` at row `v` has world-to-camera
-//! rotation `Ω_c(v) R_c` ([`crate::camera::View::row_rotation`], from a constant gyro rate
+//! rotation `Ω_c(v) R_c` ([`crate::model::camera::View::row_rotation`], from a constant gyro rate
 //! or integrated gyro samples) and centre `C_c + v λ_c d_c` (`d_c` world frame). The match
 //! `(m1 at row v1, m2 at row v2)` is two rays in the world frame,
 //!
@@ -30,10 +30,10 @@
 //! data do not determine (few points, a narrow field of view, rows read at the same time in
 //! both images).
 
-use crate::camera::View;
-use crate::epipolar::{PointData, PoseModel, ResidualKind};
-use crate::geometry::tangent_basis;
-use crate::refine::{levenberg_marquardt, LmOptions, LmProblem, LmResult, Loss, Pose};
+use crate::estimation::refine::{levenberg_marquardt, LmOptions, LmProblem, LmResult, Loss, Pose};
+use crate::model::camera::View;
+use crate::model::epipolar::{PointData, PoseModel, ResidualKind};
+use crate::model::geometry::tangent_basis;
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 /// Tangent dimensions: rotation 3, unit translation 2, two displacements 6.
@@ -414,11 +414,11 @@ impl LmProblem<DIM> for RateErrorProblem<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::{exp_so3, skew};
-    use crate::refine::tests::check_jacobian;
-    use crate::simulate::{simulate, SimulationOptions};
+    use crate::data::simulate::{simulate, SimulationOptions};
+    use crate::estimation::refine::tests::check_jacobian;
+    use crate::model::geometry::{exp_so3, skew};
 
-    fn scene(linear: f64, seed: u64) -> (crate::pair_file::PairFile, View, View, PointData) {
+    fn scene(linear: f64, seed: u64) -> (crate::data::pair_file::PairFile, View, View, PointData) {
         let pair = simulate(&SimulationOptions {
             seed,
             points: 60,

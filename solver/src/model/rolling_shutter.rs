@@ -18,8 +18,8 @@
 //! world point straight ahead drifts left in the image as later rows are read: a vertical
 //! world line images with `u` decreasing down the image (tested below).
 
-use crate::camera::{Camera, View};
-use crate::geometry::exp_so3;
+use crate::model::camera::{Camera, View};
+use crate::model::geometry::exp_so3;
 use nalgebra::{Matrix3, Vector2, Vector3};
 use thiserror::Error;
 
@@ -93,7 +93,7 @@ pub fn project_rs(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::{essential_from_pose, exp_so3};
+    use crate::model::geometry::{essential_from_pose, exp_so3};
 
     #[test]
     fn projection_is_a_fixed_point_and_undistortion_inverts_it() {

@@ -34,7 +34,7 @@
 //! `exp(−[v λ ω]×) R_cw(0)` for a constant rate. With a log, each view's row rotations are
 //! integrated from the samples over its readout `[t_k + offset, t_k + offset + H λ]` (which
 //! the samples must cover, with no gap longer than `H λ`), and its constant rate is the mean
-//! rate over that interval ([`crate::gyro_log`]).
+//! rate over that interval ([`crate::model::gyro_log`]).
 //!
 //! `gravity` is the direction of gravity in each camera's axes when its row 0 is read, as an
 //! accelerometer reports it (any length and either sign, the same for both views; only the
@@ -44,8 +44,8 @@
 //! returning a [`PairFileError`] that names the offending field (`camera.fx`, `matches[3]`,
 //! `ground_truth.rotation`, ...).
 
-use crate::camera::{Camera, CameraError, View};
-use crate::gyro_log::{GyroLog, GyroLogError};
+use crate::model::camera::{Camera, CameraError, View};
+use crate::model::gyro_log::{GyroLog, GyroLogError};
 use nalgebra::{Matrix3, Vector3};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -339,7 +339,7 @@ impl PairFile {
         if let Some(g) = &self.gyro {
             for (i, w) in g.iter().enumerate() {
                 let speed = Vector3::from(*w).norm();
-                if speed.is_nan() || speed > crate::camera::MAX_ANGULAR_VELOCITY {
+                if speed.is_nan() || speed > crate::model::camera::MAX_ANGULAR_VELOCITY {
                     return Err(invalid(
                         format!("gyro[{i}]"),
                         "angular velocity must be finite and at most 100 rad/s",
@@ -357,7 +357,7 @@ impl PairFile {
         }
         if let Some(g) = &self.gravity {
             for (i, v) in g.iter().enumerate() {
-                if !crate::camera::GRAVITY_NORM_RANGE.contains(&Vector3::from(*v).norm()) {
+                if !crate::model::camera::GRAVITY_NORM_RANGE.contains(&Vector3::from(*v).norm()) {
                     return Err(invalid(
                         format!("gravity[{i}]"),
                         "must be finite with a non-zero length",
@@ -472,7 +472,7 @@ impl PairFile {
             self.to_json_string()
         };
         text.push('\n');
-        crate::atomic_file::write_atomic(path, text.as_bytes()).map_err(io)
+        crate::data::atomic_file::write_atomic(path, text.as_bytes()).map_err(io)
     }
 }
 

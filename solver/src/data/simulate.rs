@@ -20,10 +20,10 @@
 //! (ChaCha8); the gravity is drawn after everything else, so it leaves the rest of a scene
 //! as it was without it.
 
-use crate::camera::Camera;
-use crate::geometry::{exp_so3, tangent_basis};
-use crate::pair_file::{rows_of_matrix, GroundTruth, Match, PairFile};
-use crate::rolling_shutter::{project_rs, RsPose};
+use crate::data::pair_file::{rows_of_matrix, GroundTruth, Match, PairFile};
+use crate::model::camera::Camera;
+use crate::model::geometry::{exp_so3, tangent_basis};
+use crate::model::rolling_shutter::{project_rs, RsPose};
 use nalgebra::{Matrix3, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -300,8 +300,8 @@ pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::skew;
-    use crate::rolling_shutter::undistort_bearing;
+    use crate::model::geometry::skew;
+    use crate::model::rolling_shutter::undistort_bearing;
 
     #[test]
     fn deterministic_and_valid() {

@@ -1,0 +1,8 @@
+//! The model: a pinhole camera read row by row while it turns (the gyro) and moves, and
+//! the residuals of two views under it.
+
+pub mod camera;
+pub mod epipolar;
+pub mod geometry;
+pub mod gyro_log;
+pub mod rolling_shutter;

@@ -4,21 +4,28 @@
 //! Parameterisation: rotations are unit quaternions updated on the right by tangent steps,
 //! `q ← q ⊗ exp(δθ)` (`R ← R exp([δθ]×)`, δθ ∈ so(3)); the unit translation is updated in the
 //! 2-D tangent plane of the sphere, `t ← normalise(t + δ1 b1 + δ2 b2)` with `(b1, b2)` from
-//! [`tangent_basis`]. Jacobians are central finite differences of the residual vector
-//! (step [`LmOptions::fd_step`] in tangent coordinates), assembled into `J^T W J` as an
-//! `N x N` fixed-size matrix. Robust losses use iteratively reweighted normal equations; the
-//! cost minimised is `Σ ρ(r_i²)` with `ρ(s) = s` (trivial) or `ρ(s) = c² ln(1 + s / c²)`
-//! (Cauchy with scale `c`). Damping is Marquardt's: `(H + μ diag(H)) δ = -g`.
+//! [`tangent_basis`]. Jacobians are central finite differences of the residual vector (step
+//! [`LmOptions::fd_step`] in tangent coordinates) or analytic where a problem provides them,
+//! assembled into `J^T W J` as an `N x N` fixed-size matrix. Robust losses use iteratively
+//! reweighted normal equations; the cost minimised is `Σ ρ(r_i²)` with `ρ(s) = s` (trivial)
+//! or `ρ(s) = c² ln(1 + s / c²)` (Cauchy with scale `c`). Damping is Marquardt's:
+//! `(H + μ diag(H)) δ = -g`.
 //!
-//! Three costs:
-//! - [`refine_pose`] with [`PoseModel::PaperLinear`] + [`ResidualKind::Algebraic`]: the
-//!   paper's `grsrp+` cost `m2^T [t]× (I + v2 [w2]×) R (I - v1 [w1]×) m1` (`w = −λω`) over inliers;
-//! - [`refine_pose`] with [`PoseModel::ExactAngular`] + [`ResidualKind::Sampson`]: Sampson
-//!   error of the exact angular model (`rectified`), or the global-shutter model (`gsrp`);
+//! The costs:
+//! - [`refine_pose`] with [`PaperLinear`] + [`Algebraic`]: the paper's `grsrp+` cost
+//!   `m2^T [t]× (I + v2 [w2]×) R (I - v1 [w1]×) m1` (`w = −λω`) over inliers;
+//! - [`refine_pose`] with [`ExactAngular`] + [`Sampson`]: Sampson error of the exact angular
+//!   model (`rectified`), or the global-shutter model (`gsrp`);
 //! - [`refine_nrsrp`]: Dai et al.'s generalized epipolar constraint for the uniform RS model,
 //!   unknowns `R, t, ω1, d1, ω2, d2`, Cauchy loss over all points;
-//! - [`crate::estimation::velocity`]: the same constraint with the gyro's row rotations, unknowns
-//!   `R, t, d1, d2` (`rectified+v`).
+//! - [`crate::estimation::velocity`]: the same constraint with the gyro's row rotations,
+//!   unknowns `R, t, d1, d2` (`rectified+v`).
+//!
+//! [`tangent_basis`]: crate::model::geometry::tangent_basis
+//! [`PaperLinear`]: crate::model::epipolar::PoseModel::PaperLinear
+//! [`ExactAngular`]: crate::model::epipolar::PoseModel::ExactAngular
+//! [`Algebraic`]: crate::model::epipolar::ResidualKind::Algebraic
+//! [`Sampson`]: crate::model::epipolar::ResidualKind::Sampson
 
 mod lm;
 mod nrsrp;

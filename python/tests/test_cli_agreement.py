@@ -7,6 +7,7 @@ twice: as the pair file (`rspose.load_pair`) and as numpy arrays built here from
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -185,3 +186,28 @@ def test_same_answer_as_the_rust_library_example(binaries):
     assert np.abs(est.rotation - rotation).max() <= TOL
     assert np.abs(est.translation - translation).max() <= TOL
     assert est.num_inliers == inliers
+
+
+RECORDING = Path(__file__).resolve().parents[3] / "shared" / "realdata" / "cc9pro"
+
+
+@pytest.mark.skipif(not (RECORDING / "gyro.txt").exists(), reason=f"recording not at {RECORDING}")
+def test_gyro_log_excerpt_is_make_pairs(cli_json):
+    """`GyroLog.excerpt` on the recording's whole gyro log (what examples/python/cc9pro.py
+    does) gives each committed pair the samples `rspose make-pair` gave it, and so the same
+    estimates."""
+    calibration = json.loads((real_pairs()[0].parent / "calibration.json").read_text())
+    log = np.loadtxt(RECORDING / "gyro.txt", delimiter=",")
+    samples = np.column_stack([log[:, 3], log[:, :3]])
+    frame_times = np.loadtxt(RECORDING / "framestamp.txt")
+    camera = rspose.Camera(**calibration["camera"])
+    for path in real_pairs()[::4]:
+        committed = rspose.load_pair(path)
+        n1, n2 = (int(n) for n in path.stem.split("-")[1:])
+        excerpt = rspose.GyroLog.excerpt(
+            samples, [frame_times[n1 - 1], frame_times[n2 - 1]], camera.height * camera.readout,
+            camera_from_gyro=calibration["camera_from_gyro"], time_offset=calibration["time_offset"],
+        )
+        np.testing.assert_array_equal(excerpt.samples, committed.gyro_log.samples)
+        pair = rspose.Pair(committed.x1, committed.x2, camera, gyro_log=excerpt)
+        assert_same(pair.estimate("rectified"), cli_json(path, "--method", "rectified"))

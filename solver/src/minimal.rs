@@ -19,6 +19,7 @@
 //! Also provides the linear 8-point essential solver (non-minimal, needs ≥ 8 points), usable
 //! as a non-minimal alternative to the 5-point solver ([`EssentialSolver::EightPoint`]).
 
+use crate::model::epipolar::PointData;
 use crate::model::geometry::{epipolar_nullspace, exp_so3};
 use mingen_runtime::{FlatValues, MinimalSolver};
 use nalgebra::{Matrix3, SMatrix, Vector3};
@@ -156,6 +157,20 @@ pub struct GrsrpSample {
 }
 
 impl GrsrpSample {
+    /// The sample of the matches `sample` (indices into `data`): their normalised points and
+    /// rows, the views' rates `w = −λ ω` as `data` holds them, and `r0`.
+    pub fn from_points(data: &PointData, sample: &[usize; 5], r0: Matrix3<f64>) -> Self {
+        GrsrpSample {
+            x1: sample.map(|i| [data.m1[i].x, data.m1[i].y]),
+            x2: sample.map(|i| [data.m2[i].x, data.m2[i].y]),
+            v1: sample.map(|i| data.v1[i]),
+            v2: sample.map(|i| data.v2[i]),
+            w1: data.w1,
+            w2: data.w2,
+            r0,
+        }
+    }
+
     /// The flat data of the `grsrp10` / `grsrp` problem files (their data declarations are
     /// the same): `x1[5]: point, x2[5]: point, v1[5], v2[5], w1: vec3, w2: vec3,
     /// R0: rotation`, in the slot order of [`FlatValues`].
@@ -245,6 +260,29 @@ pub struct GravitySample {
 }
 
 impl GravitySample {
+    /// The sample of the matches `sample` (indices into `data`) for views whose gravity
+    /// directions are `gravity` (camera axes, any length) and whose frames have `rows`
+    /// rows: normalised points and rows from `data`, the alignments
+    /// [`gravity_alignment`], and the views' rates `w = −λ ω` through
+    /// [`gravity_solver_rate`].
+    pub fn from_points(
+        data: &PointData,
+        sample: &[usize; 3],
+        gravity: [Vector3<f64>; 2],
+        rows: [f64; 2],
+    ) -> Self {
+        GravitySample {
+            x1: sample.map(|i| [data.m1[i].x, data.m1[i].y]),
+            x2: sample.map(|i| [data.m2[i].x, data.m2[i].y]),
+            v1: sample.map(|i| data.v1[i]),
+            v2: sample.map(|i| data.v2[i]),
+            w1: gravity_solver_rate(&data.w1, rows[0]),
+            w2: gravity_solver_rate(&data.w2, rows[1]),
+            g1: gravity_alignment(&gravity[0]),
+            g2: gravity_alignment(&gravity[1]),
+        }
+    }
+
     /// The flat data of the `grsrp_gravity` / `grsrp_gravity6` problem files (the same data
     /// declarations): `x1[3]: point, x2[3]: point, v1[3], v2[3], w1: vec3, w2: vec3,
     /// G1: rotation, G2: rotation`, in the slot order of [`FlatValues`].

@@ -113,32 +113,8 @@ pub fn run(a: Args) -> Result<(), CliError> {
         })
         .collect();
     if a.json {
-        let mut obj = serde_json::json!({
-            "method": method.name(),
-            "rotation": rows,
-            "translation": [est.translation.x, est.translation.y, est.translation.z],
-            "inliers": est.num_inliers(),
-            "iterations": est.iterations,
-            "seconds": seconds,
-            "inlier_ratio": est.quality.inlier_ratio,
-            "ransac_score": est.ransac_score,
-            "refinement_iterations": est.refinement_iterations,
-            "refinement_cost": est.refinement_cost,
-            "quality": est.quality,
-            "flags": est.quality.flags(),
-        });
-        if let Some(d) = est.linear_velocity {
-            obj["linear_velocity"] = serde_json::json!(d.map(|v| [v.x, v.y, v.z]));
-        }
-        if let Some(fit) = est.velocity_fit {
-            obj["velocity_fit"] = serde_json::json!(fit);
-        }
-        if let Some(fit) = est.noise_fit {
-            obj["noise_fit"] = serde_json::json!({
-                "gyro_noise": fit.gyro_noise,
-                "truncation": fit.truncation,
-            });
-        }
+        let mut obj = est.report_json();
+        obj["seconds"] = seconds.into();
         if let Some(e) = errors {
             obj["rotation_error_deg"] = e.rotation_error_deg.into();
             obj["translation_error_deg"] = e.translation_error_deg.into();

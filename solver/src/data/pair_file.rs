@@ -226,13 +226,19 @@ fn gravity_field<'de, D: serde::Deserializer<'de>>(
 ) -> Result<Option<[[f64; 3]; 2]>, D::Error> {
     use serde::de::Error;
     let value = serde_json::Value::deserialize(d)?;
+    gravity_from_json(&value).map_err(D::Error::custom)
+}
+
+/// The `gravity` field of a pair file from its JSON value: `null` (no gravity) or one
+/// direction `[gx, gy, gz]` for each of the two views. The error names the field
+/// (`gravity` or `gravity[k]`), as `rspose estimate` reports it; the Python package builds
+/// this value from its `gravity1`/`gravity2` arguments for the same messages.
+pub fn gravity_from_json(value: &serde_json::Value) -> Result<Option<[[f64; 3]; 2]>, String> {
     if value.is_null() {
         return Ok(None);
     }
     let views = value.as_array().filter(|a| a.len() == 2).ok_or_else(|| {
-        D::Error::custom(
-            "field `gravity`: expected one direction [gx, gy, gz] for each of the two views",
-        )
+        "field `gravity`: expected one direction [gx, gy, gz] for each of the two views".to_string()
     })?;
     let mut out = [[0.0; 3]; 2];
     for (k, v) in views.iter().enumerate() {
@@ -242,9 +248,9 @@ fn gravity_field<'de, D: serde::Deserializer<'de>>(
             .map(|a| a.iter().map(|x| x.as_f64()).collect())
             .and_then(|x: Option<Vec<f64>>| x);
         let numbers = numbers.ok_or_else(|| {
-            D::Error::custom(format!(
+            format!(
                 "field `gravity[{k}]`: expected three numbers [gx, gy, gz] (gravity is given for both views or neither)"
-            ))
+            )
         })?;
         out[k].copy_from_slice(&numbers);
     }

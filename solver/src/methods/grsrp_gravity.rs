@@ -28,7 +28,7 @@ use super::pose_ransac::{indices, point_data, run, threshold, EssentialRansac, H
 use super::{rectified, Estimate, EstimateError, EstimateOptions, Method, RobustOptions};
 use crate::data::pair_file::Match;
 use crate::estimation::ransac::{RansacEstimator, RansacResult, Score};
-use crate::minimal::{gravity_alignment, gravity_solver_rate, GravitySample, GravitySolver};
+use crate::minimal::{GravitySample, GravitySolver};
 use crate::model::camera::View;
 use crate::model::epipolar::PointData;
 use crate::model::geometry::fix_translation_sign;
@@ -38,10 +38,10 @@ use nalgebra::{Matrix3, Vector3};
 /// optimisation delegated to the exact angular model (`rectified`'s estimator).
 struct GravityRansac<'a> {
     exact: EssentialRansac<'a>,
-    /// `G1`, `G2`.
-    align: [Matrix3<f64>; 2],
-    /// The rates `w` given to the solver ([`gravity_solver_rate`]).
-    rates: [Vector3<f64>; 2],
+    /// The views' gravity directions.
+    gravity: [Vector3<f64>; 2],
+    /// The views' numbers of rows.
+    rows: [f64; 2],
     solver: GravitySolver,
     sols: Vec<(Matrix3<f64>, Vector3<f64>)>,
 }
@@ -56,16 +56,12 @@ impl RansacEstimator for GravityRansac<'_> {
     }
     fn generate_models(&mut self, sample: &[usize], models: &mut Vec<Hypothesis>) {
         let d: &PointData = self.exact.data;
-        let s = GravitySample {
-            x1: std::array::from_fn(|k| [d.m1[sample[k]].x, d.m1[sample[k]].y]),
-            x2: std::array::from_fn(|k| [d.m2[sample[k]].x, d.m2[sample[k]].y]),
-            v1: std::array::from_fn(|k| d.v1[sample[k]]),
-            v2: std::array::from_fn(|k| d.v2[sample[k]]),
-            w1: self.rates[0],
-            w2: self.rates[1],
-            g1: self.align[0],
-            g2: self.align[1],
-        };
+        let s = GravitySample::from_points(
+            d,
+            &std::array::from_fn(|k| sample[k]),
+            self.gravity,
+            self.rows,
+        );
         let mut sols = std::mem::take(&mut self.sols);
         sols.clear();
         self.solver.solve(&s, &mut sols);
@@ -116,11 +112,8 @@ pub fn estimate(
     let tilt = std::f64::consts::SQRT_2 * options.robust.gravity_noise_deg.to_radians();
     let mut est = GravityRansac {
         exact: exact(&data),
-        align: [gravity_alignment(&g1), gravity_alignment(&g2)],
-        rates: [
-            gravity_solver_rate(&data.w1, view1.camera.height),
-            gravity_solver_rate(&data.w2, view2.camera.height),
-        ],
+        gravity: [g1, g2],
+        rows: [view1.camera.height, view2.camera.height],
         solver: options.gravity_solver,
         sols: Vec::new(),
     };

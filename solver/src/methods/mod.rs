@@ -359,6 +359,45 @@ impl Estimate {
     pub fn num_inliers(&self) -> usize {
         self.inliers.iter().filter(|&&b| b).count()
     }
+
+    /// The estimate as the JSON object `rspose estimate --json` prints (without the
+    /// command's own `seconds` and the pair file's reference errors): `method`, `rotation`
+    /// (row-major rows), `translation`, `inliers` (the count), `iterations`, `inlier_ratio`,
+    /// `ransac_score`, `refinement_iterations`, `refinement_cost`, `quality`, `flags`, and
+    /// where present `linear_velocity`, `velocity_fit` and `noise_fit`. The Python package's
+    /// `Estimate.to_dict()` is this object.
+    pub fn report_json(&self) -> serde_json::Value {
+        let rows: Vec<[f64; 3]> = (0..3)
+            .map(|i| std::array::from_fn(|j| self.rotation[(i, j)]))
+            .collect();
+        let t = self.translation;
+        let mut obj = serde_json::json!({
+            "method": self.method.name(),
+            "rotation": rows,
+            "translation": [t.x, t.y, t.z],
+            "inliers": self.num_inliers(),
+            "iterations": self.iterations,
+            "inlier_ratio": self.quality.inlier_ratio,
+            "ransac_score": self.ransac_score,
+            "refinement_iterations": self.refinement_iterations,
+            "refinement_cost": self.refinement_cost,
+            "quality": self.quality,
+            "flags": self.quality.flags(),
+        });
+        if let Some(d) = self.linear_velocity {
+            obj["linear_velocity"] = serde_json::json!(d.map(|v| [v.x, v.y, v.z]));
+        }
+        if let Some(fit) = self.velocity_fit {
+            obj["velocity_fit"] = serde_json::json!(fit);
+        }
+        if let Some(fit) = self.noise_fit {
+            obj["noise_fit"] = serde_json::json!({
+                "gyro_noise": fit.gyro_noise,
+                "truncation": fit.truncation,
+            });
+        }
+        obj
+    }
 }
 
 /// Why no estimate was produced.

@@ -221,15 +221,7 @@ impl RansacEstimator for GrsrpRansac<'_> {
     }
     fn generate_models(&mut self, sample: &[usize], models: &mut Vec<Hypothesis>) {
         let d = self.data;
-        let s = GrsrpSample {
-            x1: std::array::from_fn(|k| [d.m1[sample[k]].x, d.m1[sample[k]].y]),
-            x2: std::array::from_fn(|k| [d.m2[sample[k]].x, d.m2[sample[k]].y]),
-            v1: std::array::from_fn(|k| d.v1[sample[k]]),
-            v2: std::array::from_fn(|k| d.v2[sample[k]]),
-            w1: d.w1,
-            w2: d.w2,
-            r0: self.r0,
-        };
+        let s = GrsrpSample::from_points(d, &std::array::from_fn(|k| sample[k]), self.r0);
         let mut sols = std::mem::take(&mut self.sols);
         sols.clear();
         self.solver.solve(&s, &mut sols);

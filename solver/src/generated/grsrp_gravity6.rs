@@ -462,17 +462,16 @@ pub fn solve_staged<S: mingen_runtime::Stages>(
         return out;
     }
     let pairs = mingen_runtime::real_eigenpairs_sturm::<6>(&a);
+    const READOUT: [&[(usize, usize)]; 2] = [
+        &[(5, 3), (4, 1)],
+        &[(5, 4), (2, 0), (3, 1), (4, 2)],
+    ];
     for (_, v) in pairs.iter() {
-        let w = v[5];
-        if !w.is_finite() || w.abs() <= 1e-12 {
+        let mut u = [0.0f64; 2];
+        if !mingen_runtime::read_unknowns(v.as_slice(), 5, &READOUT, &mut u) {
             continue;
         }
-        let u0 = (v[5] * v[3] + v[4] * v[1]) / (v[5] * v[5] + v[4] * v[4]);
-        let u1 = (v[5] * v[4] + v[2] * v[0] + v[3] * v[1] + v[4] * v[2])
-            / (v[5] * v[5] + v[2] * v[2] + v[3] * v[3] + v[4] * v[4]);
-        if !u0.is_finite() || !u1.is_finite() {
-            continue;
-        }
+        let [u0, u1] = u;
         let rows: [[f64; 3]; 3] = [
             [
                 -c38 * u0 - c36 * u1 - c34,

@@ -60,7 +60,7 @@ pub enum GroebnerError {
     DegreeTooLarge(u32),
     /// The resource budget ran out before the basis was complete.
     #[error(
-        "Gröbner basis not finished at degree {degree} after {:.1} s: {exhausted}",
+        "Gröbner basis not finished (degree {degree} reached in {:.1} s): {exhausted}",
         *.millis as f64 / 1000.0
     )]
     Budget {

@@ -139,7 +139,9 @@ pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOpti
         Ok(p) => {
             let names = p.variable_names();
             let t = &p.generated.built.template;
-            row.unknowns = names.clone();
+            // Hidden unknowns (of `nonzero`) are the last variables; not shown.
+            let shown = names.len() - p.problem.layout.hidden_count().min(names.len());
+            row.unknowns = names[..shown].to_vec();
             row.eliminated = p.eliminated_names();
             row.solutions = Some(p.generated.count);
             row.template = Some(t.eliminated_size());

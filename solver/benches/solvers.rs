@@ -17,7 +17,7 @@ use mingen_runtime::FlatValues;
 use mingen_runtime::MinimalSolver;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use rspose::generated::{grsrp, grsrp10, grsrp_gravity, grsrp_gravity6, grsrp_readout, gs5pt};
+use rspose::generated::{grsrp, grsrp10, grsrp_gravity, grsrp_gravity6, gs5pt};
 use rspose::minimal::essential_5pt;
 
 const POOL: usize = 64;
@@ -47,17 +47,6 @@ fn bench_solvers(c: &mut Criterion) {
         .collect();
     bench::<grsrp_gravity6::Solver>(c, &gr6);
     bench::<grsrp::Solver>(c, &r20);
-    // The unknown-readout G-RSRP (100 solutions, 171 x 271): uniform random data slots, for
-    // timing only.
-    let ro: Vec<grsrp_readout::Data> = (0..POOL)
-        .filter_map(|_| {
-            let slots: Vec<f64> = (0..<grsrp_readout::Data as FlatValues>::LEN)
-                .map(|_| rand::Rng::gen_range(&mut rng, -1.0..1.0))
-                .collect();
-            grsrp_readout::Data::from_flat(&slots)
-        })
-        .collect();
-    bench::<grsrp_readout::Solver>(c, &ro);
 
     // The whole 5-point solver from five bearing pairs to essential matrices (null space of
     // the epipolar constraints, gs5pt, E = x E1 + y E2 + z E3 + E4): the work PoseLib's

@@ -252,7 +252,7 @@ fn agreement_grsrp_gravity() {
 
 #[test]
 fn agreement_grsrp_gravity6() {
-    check("grsrp_gravity6", 5, 0.01);
+    check("grsrp_gravity6", 5);
 }
 
 #[test]

@@ -192,8 +192,8 @@ pub fn validate<S: InstanceSource>(
 }
 
 /// [`validate`] within a budget: at least two instances (one per prime) are always
-/// checked; further ones only while less than half the time budget has been spent (the
-/// report gives the number checked).
+/// checked, whatever the budget; further ones only while less than half the time budget
+/// has been spent (the report gives the number checked).
 pub fn validate_within<S: InstanceSource>(
     t: &EliminationTemplate,
     src: &S,
@@ -212,10 +212,11 @@ pub fn validate_within<S: InstanceSource>(
                 }
             }
         }
+        let limit = if i < 2 { None } else { deadline };
         if i % 2 == 0 {
-            check_one::<P1, S>(t, src, &mut rng, i, deadline)?;
+            check_one::<P1, S>(t, src, &mut rng, i, limit)?;
         } else {
-            check_one::<P2, S>(t, src, &mut rng, i, deadline)?;
+            check_one::<P2, S>(t, src, &mut rng, i, limit)?;
         }
         done += 1;
     }

@@ -14,9 +14,6 @@ pub mod grsrp_gravity;
 /// The solver of `templates/grsrp_gravity6.mp` (its [`Solver`](grsrp_gravity6::Solver) type implements `mingen_runtime::MinimalSolver`).
 #[rustfmt::skip]
 pub mod grsrp_gravity6;
-/// The solver of `templates/grsrp_readout.mp` (its [`Solver`](grsrp_readout::Solver) type implements `mingen_runtime::MinimalSolver`).
-#[rustfmt::skip]
-pub mod grsrp_readout;
 /// The solver of `templates/gs5pt.mp` (its [`Solver`](gs5pt::Solver) type implements `mingen_runtime::MinimalSolver`).
 #[rustfmt::skip]
 pub mod gs5pt;

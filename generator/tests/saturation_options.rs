@@ -1,21 +1,12 @@
-//! Saturation (`nonzero`), action and degree options, and budgets on small problems: the
-//! counts of the saturated and unsaturated systems, the hidden unknown kept out of the
-//! solutions, random-combination actions, and the errors when a budget runs out.
+//! Saturation (`nonzero`), action and degree options, and budgets: the counts of the
+//! saturated and unsaturated Cayley-form 5-point systems, the hidden unknown kept out of
+//! the solutions, random-combination actions, and the errors when a budget runs out.
 
 use mingen::budget::Budget;
 use mingen::pipeline::plan;
 use mingen::problem::ProblemOptions;
 use mingen::template::TemplateOptions;
 use mingen::Problem;
-
-/// A circle and a hyperbola, each multiplied by x: the 4 intersections of
-/// `x^2 + y^2 = r` and `x y = s` (all with x != 0), and the line x = 0.
-const CIRCLE: &str = "problem circle
-unknown x, y
-data r: scalar, s: scalar
-x * (x*x + y*y - r) = 0
-x * (x*y - s) = 0
-";
 
 fn planned(src: &str, opts: &TemplateOptions) -> Result<mingen::pipeline::SolverPlan, String> {
     let problem = Problem::parse(src, "t.mp").map_err(|e| e.to_string())?;
@@ -24,36 +15,40 @@ fn planned(src: &str, opts: &TemplateOptions) -> Result<mingen::pipeline::Solver
 
 #[test]
 fn nonzero_removes_the_component_and_is_never_returned() {
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../templates/classic/relpose_5pt_cayley_sat.mp");
+    let src = std::fs::read_to_string(file).unwrap();
     let opts = TemplateOptions::default();
-    // Without saturation x = 0 leaves y free: positive-dimensional.
-    let err = planned(CIRCLE, &opts).err().expect("positive-dimensional");
+    // Without saturation the component 1 + q'q = 0 is positive-dimensional.
+    let unsaturated = src.replace("nonzero 1 + q'*q", "");
+    let err = planned(&unsaturated, &opts)
+        .err()
+        .expect("positive-dimensional");
     assert!(err.contains("positive-dimensional"), "{err}");
-    let sat = format!("{CIRCLE}nonzero x\n");
-    let p = planned(&sat, &opts).unwrap();
-    assert_eq!(p.generated.count, 4);
+    let p = planned(&src, &opts).unwrap();
+    assert_eq!(p.generated.count, 20);
     assert_eq!(p.problem.layout.hidden_count(), 1);
     assert_eq!(p.generated.built.template.n_hidden, 1);
-    // The audit measures the declared equations at the real intersections.
+    // The audit measures the declared equations at the real solutions.
     let a = mingen::audit::audit_plan(
         &p,
         &mingen::audit::AuditOptions {
-            instances: 200,
+            instances: 50,
             seed: 3,
         },
     );
-    assert!(a.median_log10_residual < -10.0, "{a}");
-    // The emitted solution type has the declared unknowns only.
-    let src = mingen::generate::emit_plan_from(&p, "t.mp").unwrap();
-    assert!(src.contains("pub x: f64") && src.contains("pub y: f64"));
+    assert!(a.median_log10_residual < -9.0, "{a}");
+    // The emitted solution type has the declared unknowns only (q and t).
+    let out = mingen::generate::emit_plan_from(&p, "t.mp").unwrap();
     assert!(
-        src.contains("pub const UNKNOWNS: usize = 2;"),
+        out.contains("pub const UNKNOWNS: usize = 6;"),
         "hidden unknown leaked into the solution type"
     );
 }
 
 #[test]
 fn nonzero_needs_a_scalar_in_the_unknowns() {
-    let e = Problem::parse("problem p\nunknown t[3]\nt't = 1\nnonzero t\n", "p.mp").unwrap_err();
+    let e = Problem::parse("problem p\nunknown t[3]\nt' * t = 1\nnonzero t\n", "p.mp").unwrap_err();
     assert!(e.to_string().contains("'nonzero' needs a scalar"), "{e}");
     let e = Problem::parse("problem p\nunknown x\nx*x = 1\nnonzero 2\n", "p.mp").unwrap_err();
     assert!(e.to_string().contains("found a constant"), "{e}");
@@ -82,7 +77,7 @@ fn options_choose_the_action_and_are_checked() {
     assert_eq!(p.generated.built.template.action.single(), Some(1));
     for (line, what) in [
         ("option action = z", "option action"),
-        ("option extra_degree = -1", "option extra_degree"),
+        ("option extra_degree = 99", "option extra_degree"),
         ("option basis = best", "option basis"),
         ("option speed = 3", "unknown option 'speed'"),
     ] {

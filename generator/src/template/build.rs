@@ -465,7 +465,8 @@ pub(crate) fn build_in_range<const P: u32>(
         history,
         label: "standard monomials (grevlex)".to_string(),
     });
-    if search.basis_selection {
+    // Basis selection is unbudgeted work: skipped once the budget has run out.
+    if search.basis_selection && exhausted.is_none() {
         let maxeq = eqs.iter().filter_map(|f| f.degree()).max().unwrap_or(0);
         if let Some(sel) =
             select::best_selected::<P>(eqs, nvars, action, basis.len(), maxeq, &opts.var_names)

@@ -85,4 +85,11 @@ xD = apply(2,i->sub(pt(),R)); XD = apply(2,i->sub(v3(),R)); yD = apply(2,i->sub(
 TD = l*xD_0 - Rq*XD_0; YD = Rq*XD_1 + TD;
 I = ideal(xD_1_(1,0)*YD_(2,0) - YD_(1,0), YD_(0,0) - xD_1_(0,0)*YD_(2,0)) + ideal(apply(2,j->sc(transpose yD_j * sk(Rq*PD_j + TD) * Rq * VD_j))) + ideal(z*(1+b^2+c^2+d^2)-1);
 report("p2p2pl", I);
+-- relpose_5pt_cayley (q, t; 40) and relpose_5pt_cayley_sat (t eliminated, saturated by 1 + q'q; 20)
+R = QQ[q1,q2,q3,t1,t2,t3]; x1D = apply(5,i->sub(pt(),R)); x2D = apply(5,i->sub(pt(),R));
+qD = matrix{{q1},{q2},{q3}}; tD = matrix{{t1},{t2},{t3}}; nq = sc(transpose qD * qD);
+Rq = (1 - nq)*id_(R^3) + 2*qD*transpose(qD) + 2*sk(qD);
+I = ideal(apply(5,k->sc(transpose x2D_k * sk(tD) * Rq * x1D_k))) + ideal(t1^2+t2^2+t3^2-1);
+report("relpose_5pt_cayley", I);
+report("relpose_5pt_cayley_sat (t eliminated, saturated)", saturate(eliminate({t1,t2,t3}, I), ideal(1 + nq)));
 exit 0

@@ -375,12 +375,27 @@ pub fn audit_plan_on(plan: &SolverPlan, instances: &[Vec<f64>]) -> AuditReport {
     )
 }
 
+/// The original equations free of hidden unknowns (those of `nonzero`, whose equations
+/// `u * EXPR = 1` only define them): solutions are read without hidden values.
+fn visible_equations(plan: &SolverPlan, data: &[f64]) -> Vec<Poly<f64>> {
+    let layout = &plan.problem.layout;
+    let visible = layout.unknown_count() - layout.hidden_count();
+    plan.problem
+        .evaluate::<f64>(data)
+        .into_iter()
+        .filter(|p| {
+            p.terms()
+                .all(|(m, _)| m.0[visible..].iter().all(|&e| e == 0))
+        })
+        .collect()
+}
+
 /// The audit instance of one data vector.
 fn plan_instance(plan: &SolverPlan, data: &[f64]) -> AuditInstance {
     let (equations, eliminated) = plan.equations::<f64>(data);
     AuditInstance {
         equations,
-        original: plan.problem.evaluate::<f64>(data),
+        original: visible_equations(plan, data),
         eliminated: eliminated.map(|e| EliminatedUnknowns {
             matrix: e.coefficient_matrix,
             positions: e.eliminated,

@@ -124,7 +124,17 @@ pub fn generate_to(
     out: &Path,
     check: bool,
 ) -> Result<GeneratedFile, GenerateError> {
-    let plan = plan_file(problem, &TemplateOptions::default())?;
+    generate_to_with(problem, out, check, &TemplateOptions::default())
+}
+
+/// [`generate_to`] with explicit template options.
+pub fn generate_to_with(
+    problem: &Path,
+    out: &Path,
+    check: bool,
+    options: &TemplateOptions,
+) -> Result<GeneratedFile, GenerateError> {
+    let plan = plan_file(problem, options)?;
     let source = emit_plan_from(&plan, &problem.display().to_string())?;
     let io = |source| GenerateError::Io {
         path: out.display().to_string(),
@@ -174,7 +184,18 @@ pub fn generate(
     with_mod_rs: bool,
     check: bool,
 ) -> Result<Vec<GeneratedFile>, GenerateError> {
-    let options = TemplateOptions::default();
+    generate_with(root, files, with_mod_rs, check, &TemplateOptions::default())
+}
+
+/// [`generate`] with explicit template options.
+pub fn generate_with(
+    root: &Path,
+    files: &[PathBuf],
+    with_mod_rs: bool,
+    check: bool,
+    options: &TemplateOptions,
+) -> Result<Vec<GeneratedFile>, GenerateError> {
+    let options = options.clone();
     let mut outputs: Vec<(PathBuf, String)> = Vec::new();
     for f in files {
         let plan = plan_file(f, &options)?;

@@ -174,24 +174,26 @@ pub fn action_matrix(
     let n = template.basis.len();
     let mut a = DMatrix::zeros(n, n);
     for (j, b) in template.basis.iter().enumerate() {
-        let prod = template.action.mul(b);
-        let not_covered = || InterpretError::ActionNotCovered {
-            basis: format!("{b:?}"),
-            product: format!("{prod:?}"),
-        };
-        let c = column
-            .get(&prod)
-            .and_then(|&c| template.eliminated_column(c))
-            .ok_or_else(not_covered)?;
-        if c >= pivots {
-            a[(j, c - pivots)] = 1.0;
-        } else if c >= first_row {
-            // Row c of the reduced template reads `col_c + sum_k T[c, k] b_k`.
-            for k in 0..n {
-                a[(j, k)] = -m[c * cols + pivots + k];
+        for (prod, coef) in template.action.products(b) {
+            let coef = coef as f64;
+            let not_covered = || InterpretError::ActionNotCovered {
+                basis: format!("{b:?}"),
+                product: format!("{prod:?}"),
+            };
+            let c = column
+                .get(&prod)
+                .and_then(|&c| template.eliminated_column(c))
+                .ok_or_else(not_covered)?;
+            if c >= pivots {
+                a[(j, c - pivots)] += coef;
+            } else if c >= first_row {
+                // Row c of the reduced template reads `col_c + sum_k T[c, k] b_k`.
+                for k in 0..n {
+                    a[(j, k)] -= coef * m[c * cols + pivots + k];
+                }
+            } else {
+                return Err(not_covered());
             }
-        } else {
-            return Err(not_covered());
         }
     }
     Ok(a)
@@ -213,7 +215,7 @@ pub fn readout_pairs(
             .ok_or_else(|| InterpretError::MissingReadout(format!("{m:?}")))
     };
     let one = find(&Monomial::one(n))?;
-    (0..n)
+    (0..template.visible_vars())
         .map(|i| {
             let x = Monomial::var(n, i);
             let first = (one, find(&x)?);
@@ -396,8 +398,9 @@ mod tests {
             n_excess: 1,
             n_reducible: 2,
             n_dependent: 0,
+            n_hidden: 0,
             basis: vec![mono(&[1, 0]), mono(&[0, 1]), mono(&[0, 0])],
-            action: mono(&[1, 0]),
+            action: crate::template::Action::var(2, 0),
         };
         (template, vec![e0, e1])
     }

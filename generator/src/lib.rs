@@ -13,6 +13,7 @@
 
 pub mod algebra;
 pub mod audit;
+pub mod budget;
 pub mod build;
 pub mod eliminate;
 pub mod emit;

@@ -27,6 +27,8 @@ enum Command {
         /// Print one JSON object instead of text.
         #[arg(long)]
         json: bool,
+        #[command(flatten)]
+        search: SearchArgs,
     },
     /// Numerical stability of a problem's template: random real instances through the
     /// interpreted template, normalised residuals, failures, a histogram.
@@ -46,6 +48,8 @@ enum Command {
         /// numbers in the order of the problem's data slots (`mingen inspect` lists them).
         #[arg(long, value_name = "DATA", conflicts_with_all = ["instances", "seed"])]
         instances_from: Option<PathBuf>,
+        #[command(flatten)]
+        search: SearchArgs,
     },
     /// One table row per problem: unknowns, solutions, template against the published
     /// size, action, audit median / p99 / failures, generation seconds.
@@ -65,6 +69,8 @@ enum Command {
         /// Seed of the audit instances.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        #[command(flatten)]
+        search: SearchArgs,
     },
     /// Emit solver/src/generated/<name>.rs for problem files (or all of templates/*.mp),
     /// or, with --out, one problem's solver as a module for any crate that depends on
@@ -82,7 +88,56 @@ enum Command {
         /// module: it refers to mingen_runtime only).
         #[arg(long, value_name = "PATH.rs")]
         out: Option<PathBuf>,
+        #[command(flatten)]
+        search: SearchArgs,
     },
+}
+
+/// Options of the algebra (count and template search), shared by every subcommand that
+/// plans a problem. Options given here override the problem file's `option` lines.
+#[derive(clap::Args, Clone, Debug)]
+struct SearchArgs {
+    /// Wall-clock budget of one problem's algebra, in seconds (Gröbner bases, template
+    /// search and validation raise their degrees until they succeed or this runs out).
+    #[arg(long, default_value_t = mingen::budget::DEFAULT_MAX_SECONDS)]
+    max_seconds: f64,
+    /// Memory budget of one problem's algebra, in MiB (estimated; a step that would need
+    /// more is not started).
+    #[arg(long, value_name = "MIB", default_value_t = mingen::budget::DEFAULT_MAX_MEMORY_MB)]
+    max_memory: u64,
+    /// The action: an unknown's name (e.g. t1) or `random` (a random linear combination
+    /// of the unknowns). Default: every unknown, then a random combination if no unknown
+    /// has distinct eigenvalues.
+    #[arg(long, value_name = "NAME|random")]
+    action: Option<String>,
+    /// Candidate degrees tried above the start degree, as a hard bound (default: 4, then
+    /// raised until a template is found or the budget runs out).
+    #[arg(long, value_name = "N")]
+    extra_degree: Option<u32>,
+    /// Quotient basis: `standard` (grevlex standard monomials) or `selected` (also bases
+    /// selected among the template's columns; the default).
+    #[arg(long, value_name = "standard|selected", value_parser = ["standard", "selected"])]
+    basis: Option<String>,
+}
+
+impl SearchArgs {
+    fn options(&self) -> Result<TemplateOptions, CliError> {
+        if self.max_seconds.is_nan() || self.max_seconds <= 0.0 || self.max_memory == 0 {
+            return Err(CliError {
+                message: "--max-seconds and --max-memory must be positive".into(),
+                code: 2,
+            });
+        }
+        Ok(TemplateOptions {
+            budget: mingen::budget::Budget::new(self.max_seconds, self.max_memory),
+            overrides: mingen::problem::ProblemOptions {
+                action: self.action.clone(),
+                extra_degree: self.extra_degree,
+                basis: self.basis.clone(),
+            },
+            ..TemplateOptions::default()
+        })
+    }
 }
 
 /// A failure reported on one line of stderr with an exit code.
@@ -137,30 +192,39 @@ fn emit(text: &str) -> Result<(), CliError> {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Inspect { file, json } => inspect(&file, json),
+        Command::Inspect { file, json, search } => {
+            search.options().and_then(|o| inspect(&file, json, &o))
+        }
         Command::Generate {
             files,
             all,
             check,
             out,
-        } => match out {
-            Some(out) => generate_out(&files, all, &out, check),
-            None => generate(files, all, check),
-        },
+            search,
+        } => search.options().and_then(|o| match out {
+            Some(out) => generate_out(&files, all, &out, check, &o),
+            None => generate(files, all, check, &o),
+        }),
         Command::Audit {
             file,
             instances,
             seed,
             json,
             instances_from,
-        } => audit(&file, instances, seed, instances_from.as_deref(), json),
+            search,
+        } => search
+            .options()
+            .and_then(|o| audit(&file, instances, seed, instances_from.as_deref(), json, &o)),
         Command::Report {
             paths,
             markdown: _,
             json,
             instances,
             seed,
-        } => report(&paths, instances, seed, json),
+            search,
+        } => search
+            .options()
+            .and_then(|o| report(&paths, instances, seed, json, &o)),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -231,10 +295,10 @@ fn problem_summary(p: &Problem) -> Map<String, Value> {
     m
 }
 
-fn inspect(file: &PathBuf, as_json: bool) -> Result<(), CliError> {
+fn inspect(file: &PathBuf, as_json: bool, options: &TemplateOptions) -> Result<(), CliError> {
     let p = Problem::from_file(file)?;
     let mut summary = problem_summary(&p);
-    let plan = plan_file(file, &TemplateOptions::default())?;
+    let plan = plan_file(file, options)?;
     if let Value::Object(algebra) = plan.summary_json() {
         summary.extend(algebra);
     }
@@ -326,7 +390,7 @@ fn print_plan(out: &mut String, plan: &mingen::pipeline::SolverPlan) {
     }
     outln!(out, "template per action variable:");
     for (v, size) in &g.per_action {
-        let name = names.get(*v).cloned().unwrap_or_default();
+        let name = v.display_with(&names);
         match size {
             Some((r, c)) => outln!(out, "  {name:<6} {r} x {c}"),
             None => outln!(out, "  {name:<6} failed"),
@@ -351,6 +415,7 @@ fn audit(
     seed: u64,
     instances_from: Option<&Path>,
     as_json: bool,
+    options: &TemplateOptions,
 ) -> Result<(), CliError> {
     if instances == 0 {
         return Err(CliError {
@@ -358,7 +423,7 @@ fn audit(
             code: 2,
         });
     }
-    let plan = plan_file(file, &TemplateOptions::default())?;
+    let plan = plan_file(file, options)?;
     let (report, source) = match instances_from {
         Some(path) => {
             let data = mingen::instances_file::read_instances(path, &plan.problem.layout).map_err(
@@ -395,9 +460,15 @@ fn audit(
     ))
 }
 
-fn report(paths: &[PathBuf], instances: usize, seed: u64, as_json: bool) -> Result<(), CliError> {
+fn report(
+    paths: &[PathBuf],
+    instances: usize,
+    seed: u64,
+    as_json: bool,
+    template: &TemplateOptions,
+) -> Result<(), CliError> {
     let options = mingen::audit::AuditOptions { instances, seed };
-    let rows = mingen::report::report(paths, &options).map_err(|e| CliError {
+    let rows = mingen::report::report_with(paths, &options, template).map_err(|e| CliError {
         message: e.to_string(),
         code: 2,
     })?;
@@ -410,7 +481,13 @@ fn report(paths: &[PathBuf], instances: usize, seed: u64, as_json: bool) -> Resu
     }
 }
 
-fn generate_out(files: &[PathBuf], all: bool, out: &Path, check: bool) -> Result<(), CliError> {
+fn generate_out(
+    files: &[PathBuf],
+    all: bool,
+    out: &Path,
+    check: bool,
+    options: &TemplateOptions,
+) -> Result<(), CliError> {
     let [file] = files else {
         return Err(CliError {
             message: "--out takes exactly one problem file".into(),
@@ -423,7 +500,7 @@ fn generate_out(files: &[PathBuf], all: bool, out: &Path, check: bool) -> Result
             code: 2,
         });
     }
-    let f = mingen::generate::generate_to(file, out, check)?;
+    let f = mingen::generate::generate_to_with(file, out, check, options)?;
     match (check, f.fresh) {
         (_, true) => eprintln!("fresh   {}", out.display()),
         (true, false) => {
@@ -437,7 +514,12 @@ fn generate_out(files: &[PathBuf], all: bool, out: &Path, check: bool) -> Result
     Ok(())
 }
 
-fn generate(files: Vec<PathBuf>, all: bool, check: bool) -> Result<(), CliError> {
+fn generate(
+    files: Vec<PathBuf>,
+    all: bool,
+    check: bool,
+    options: &TemplateOptions,
+) -> Result<(), CliError> {
     let root = workspace_root()?;
     if all && !files.is_empty() {
         return Err(CliError {
@@ -452,7 +534,7 @@ fn generate(files: Vec<PathBuf>, all: bool, check: bool) -> Result<(), CliError>
         });
     }
     let files = if all { problem_files(&root)? } else { files };
-    let report = mingen::generate::generate(&root, &files, all, check)?;
+    let report = mingen::generate::generate_with(&root, &files, all, check, options)?;
     let stale: Vec<_> = report.iter().filter(|f| !f.fresh).collect();
     for f in &report {
         let rel = f

@@ -11,7 +11,7 @@ use crate::algebra::{Fp, Poly, Ring};
 use crate::eliminate::{eliminate_linear, EliminateError, Eliminated};
 use crate::instance::random_data_fp;
 use crate::quotient::{InstanceRng, InstanceSource};
-use crate::template::{generate, Generated, TemplateError, TemplateOptions};
+use crate::template::{generate, ActionChoice, Generated, TemplateError, TemplateOptions};
 use crate::Problem;
 use serde_json::{json, Value};
 use std::time::Instant;
@@ -30,6 +30,14 @@ pub enum PipelineError {
         /// What went wrong.
         source: EliminateError,
     },
+    /// An option names something the problem does not have.
+    #[error("{file}: {message}")]
+    Option {
+        /// The problem file.
+        file: String,
+        /// What is wrong.
+        message: String,
+    },
     /// Gröbner basis, count or template construction failed (inconsistent or
     /// positive-dimensional systems end here).
     #[error("{file}: {source}")]
@@ -46,7 +54,7 @@ impl PipelineError {
     pub fn solution_count(&self) -> Option<usize> {
         match self {
             PipelineError::Template { source, .. } => source.solution_count(),
-            PipelineError::Eliminate { .. } => None,
+            PipelineError::Eliminate { .. } | PipelineError::Option { .. } => None,
         }
     }
 }
@@ -73,6 +81,9 @@ impl InstanceSource for ProblemSource<'_> {
             .filter(|i| !self.problem.layout.eliminate.contains(i))
             .map(|i| names[i].clone())
             .collect()
+    }
+    fn hidden_vars(&self) -> usize {
+        self.problem.layout.hidden_count()
     }
     fn instance<const P: u32>(&self, rng: &mut InstanceRng) -> Vec<Poly<Fp<P>>> {
         let data = random_data_fp::<P>(&self.problem.layout, rng);
@@ -116,13 +127,55 @@ pub struct SolverPlan {
     pub seconds: f64,
 }
 
-/// Runs the algebra pipeline on `problem` (see the module documentation).
+/// The template options for `problem`: `options` with the problem file's `option` lines
+/// applied, then `options.overrides` (the command line's) over them. An action name is an
+/// unknown scalar of the system (after elimination); `random` is a random linear
+/// combination of the unknowns; an extra degree is a hard bound (no adaptive raising).
+pub fn resolve_options(problem: &Problem, options: &TemplateOptions) -> TemplateOptions {
+    let file = &problem.layout.options;
+    let o = &options.overrides;
+    let action = o.action.as_ref().or(file.action.as_ref());
+    let extra = o.extra_degree.or(file.extra_degree);
+    let basis = o.basis.as_ref().or(file.basis.as_ref());
+    let mut out = options.clone();
+    if let Some(a) = action {
+        let names = ProblemSource::new(problem).var_names();
+        out.actions = match names.iter().position(|n| n == a) {
+            Some(v) => ActionChoice::Unknowns(vec![v]),
+            None => ActionChoice::Random,
+        };
+    }
+    if let Some(d) = extra {
+        out.max_extra_degree = d;
+        out.adaptive_degree = false;
+    }
+    if let Some(b) = basis {
+        out.basis_selection = b != "standard";
+    }
+    out
+}
+
+/// Runs the algebra pipeline on `problem` (see the module documentation), with the
+/// options of [`resolve_options`].
 pub fn plan(
     problem: Problem,
     file: &str,
     options: &TemplateOptions,
 ) -> Result<SolverPlan, PipelineError> {
     let start = Instant::now();
+    let options = &resolve_options(&problem, options);
+    if let Some(a) = &options.overrides.action {
+        let names = ProblemSource::new(&problem).var_names();
+        if a != "random" && !names.contains(a) {
+            return Err(PipelineError::Option {
+                file: file.to_string(),
+                message: format!(
+                    "--action {a}: not an unknown of the system (the unknowns: {}; or 'random')",
+                    names.join(", ")
+                ),
+            });
+        }
+    }
     if !problem.layout.eliminate.is_empty() {
         // Check the elimination once on an exact instance so that a structural problem is a
         // clear error here rather than an empty system later.
@@ -197,7 +250,7 @@ impl SolverPlan {
             "eliminated": self.eliminated_names(),
             "seconds": self.seconds,
             "per_action": self.generated.per_action.iter().map(|(v, s)| json!({
-                "action": names.get(*v).cloned().unwrap_or_default(),
+                "action": v.display_with(&names),
                 "template": s.map(|(r, c)| json!({"rows": r, "cols": c})),
             })).collect::<Vec<_>>(),
         })

@@ -102,6 +102,23 @@ pub struct UnknownSymbol {
     pub len: Option<usize>,
     /// Index of its first scalar variable among all unknown scalars.
     pub first_var: usize,
+    /// An auxiliary unknown that `nonzero EXPR` introduces (`EXPR * u = 1`): part of
+    /// the polynomial system, never of a solution. Hidden unknowns come after all
+    /// declared ones.
+    pub hidden: bool,
+}
+
+/// Template-search options given in the problem file (`option NAME = VALUE`); the
+/// command line overrides them.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ProblemOptions {
+    /// `option action = NAME` (an unknown scalar, e.g. `t1`) or `option action = random`.
+    pub action: Option<String>,
+    /// `option extra_degree = N`: candidate degrees tried above the start, a hard bound.
+    pub extra_degree: Option<u32>,
+    /// `option basis = standard` (grevlex standard monomials only) or `selected` (also
+    /// bases selected among the template's columns, the default).
+    pub basis: Option<String>,
 }
 
 /// The symbols of a problem: what emitted solvers take as data and return as solutions.
@@ -115,6 +132,8 @@ pub struct ProblemLayout {
     pub data: Vec<DataSymbol>,
     /// Flat indices of the unknown scalars named by `eliminate` (empty if none).
     pub eliminate: Vec<usize>,
+    /// Options of the template search given in the file.
+    pub options: ProblemOptions,
 }
 
 impl ProblemLayout {
@@ -129,9 +148,17 @@ impl ProblemLayout {
         }
         out
     }
-    /// Number of unknown scalars.
+    /// Number of unknown scalars (hidden ones included: the variables of the system).
     pub fn unknown_count(&self) -> usize {
         self.unknowns.iter().map(|u| u.len.unwrap_or(1)).sum()
+    }
+    /// Number of hidden unknowns (one per `nonzero`), the last variables.
+    pub fn hidden_count(&self) -> usize {
+        self.unknowns.iter().filter(|u| u.hidden).count()
+    }
+    /// The declared unknowns (without the hidden ones), in declaration order.
+    pub fn declared_unknowns(&self) -> impl Iterator<Item = &UnknownSymbol> {
+        self.unknowns.iter().filter(|u| !u.hidden)
     }
     /// Display names of the data slots in slot order, e.g. `x1[0].x`, `x1[0].y`, `v1[0]`,
     /// `w1.x`, `R0[2][1]`.

@@ -15,7 +15,8 @@
 //! a function of the seed.
 
 use crate::algebra::{Fp, Monomial, MonomialOrder, Poly, P1, P2};
-use crate::groebner::{groebner, GroebnerBasis, GroebnerError, Mon};
+use crate::budget::Deadline;
+use crate::groebner::{groebner_with, GroebnerBasis, GroebnerError, GroebnerOptions, Mon};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use thiserror::Error;
@@ -32,6 +33,11 @@ pub trait InstanceSource {
     /// Names of the unknowns, used in error messages; defaults to `x0, x1, ...`.
     fn var_names(&self) -> Vec<String> {
         (0..self.nvars()).map(|i| format!("x{i}")).collect()
+    }
+    /// Number of hidden variables (the last ones; see
+    /// [`crate::problem::UnknownSymbol::hidden`]); none by default.
+    fn hidden_vars(&self) -> usize {
+        0
     }
     /// The equations of one random instance over `Z_P`, drawing from `rng`.
     fn instance<const P: u32>(&self, rng: &mut InstanceRng) -> Vec<Poly<Fp<P>>>;
@@ -133,12 +139,13 @@ fn count_on<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     names: &[String],
     which: &str,
+    opts: &GroebnerOptions,
 ) -> Result<(GroebnerBasis<P>, Vec<Monomial>), AnalysisError> {
     let wrap = |source| AnalysisError::Groebner {
         which: which.to_string(),
         source,
     };
-    let gb = groebner(nvars, eqs).map_err(wrap)?;
+    let gb = groebner_with(nvars, eqs, opts).map_err(wrap)?;
     let b = standard_monomials_named(&gb, names).map_err(wrap)?;
     Ok((gb, b))
 }
@@ -147,18 +154,32 @@ fn count_on<const P: u32>(
 /// instances: instance 1 and 2 mod [`P1`], instance 3 mod [`P2`]; all three must agree on
 /// the count and the standard monomials.
 pub fn analyse<S: InstanceSource>(src: &S, seed: u64) -> Result<Analysis, AnalysisError> {
+    analyse_within(src, seed, None)
+}
+
+/// [`analyse`] within a time and memory budget (the Gröbner bases stop with
+/// [`GroebnerError::Budget`] when it runs out).
+pub fn analyse_within<S: InstanceSource>(
+    src: &S,
+    seed: u64,
+    deadline: Option<Deadline>,
+) -> Result<Analysis, AnalysisError> {
+    let opts = GroebnerOptions {
+        deadline,
+        ..GroebnerOptions::default()
+    };
     let n = src.nvars();
     let names = src.var_names();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let eq1 = src.instance::<P1>(&mut rng);
-    let (gb1, b1) = count_on(n, &eq1, &names, &format!("instance 1 mod {P1}"))?;
+    let (gb1, b1) = count_on(n, &eq1, &names, &format!("instance 1 mod {P1}"), &opts)?;
     let eq2 = src.instance::<P1>(&mut rng);
     let w2 = format!("instance 2 mod {P1}");
-    let (_, b2) = count_on(n, &eq2, &names, &w2)?;
+    let (_, b2) = count_on(n, &eq2, &names, &w2, &opts)?;
     let mut rng3 = ChaCha8Rng::seed_from_u64(seed ^ 0x5EED_0002);
     let eq3 = src.instance::<P2>(&mut rng3);
     let w3 = format!("instance 3 mod {P2}");
-    let (_, b3) = count_on(n, &eq3, &names, &w3)?;
+    let (_, b3) = count_on(n, &eq3, &names, &w3, &opts)?;
     for (b, which) in [(&b2, w2), (&b3, w3)] {
         if b.len() != b1.len() {
             return Err(AnalysisError::CountMismatch {

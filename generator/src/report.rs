@@ -99,6 +99,11 @@ fn header_value(source: &str, key: &str) -> Option<String> {
 
 /// The report row of one problem file: plan (count, template), then audit with `audit`.
 pub fn report_row(file: &Path, audit: &AuditOptions) -> ReportRow {
+    report_row_with(file, audit, &TemplateOptions::default())
+}
+
+/// [`report_row`] with explicit template options.
+pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOptions) -> ReportRow {
     let shown = file.display().to_string();
     let source = std::fs::read_to_string(file).unwrap_or_default();
     let mut row = ReportRow {
@@ -128,13 +133,15 @@ pub fn report_row(file: &Path, audit: &AuditOptions) -> ReportRow {
     };
     row.problem = problem.layout.name.clone();
     let start = std::time::Instant::now();
-    let planned: Result<SolverPlan, _> = plan(problem, &shown, &TemplateOptions::default());
+    let planned: Result<SolverPlan, _> = plan(problem, &shown, options);
     row.seconds = start.elapsed().as_secs_f64();
     match planned {
         Ok(p) => {
             let names = p.variable_names();
             let t = &p.generated.built.template;
-            row.unknowns = names.clone();
+            // Hidden unknowns (of `nonzero`) are the last variables; not shown.
+            let shown = names.len() - p.problem.layout.hidden_count().min(names.len());
+            row.unknowns = names[..shown].to_vec();
             row.eliminated = p.eliminated_names();
             row.solutions = Some(p.generated.count);
             row.template = Some(t.eliminated_size());
@@ -151,9 +158,18 @@ pub fn report_row(file: &Path, audit: &AuditOptions) -> ReportRow {
 
 /// The report of every problem file named by `paths` (see [`problem_files`]).
 pub fn report(paths: &[PathBuf], audit: &AuditOptions) -> Result<Vec<ReportRow>, ReportError> {
+    report_with(paths, audit, &TemplateOptions::default())
+}
+
+/// [`report`] with explicit template options.
+pub fn report_with(
+    paths: &[PathBuf],
+    audit: &AuditOptions,
+    options: &TemplateOptions,
+) -> Result<Vec<ReportRow>, ReportError> {
     Ok(problem_files(paths)?
         .iter()
-        .map(|f| report_row(f, audit))
+        .map(|f| report_row_with(f, audit, options))
         .collect())
 }
 

@@ -84,6 +84,7 @@ fn five_point_layout() -> ProblemLayout {
                 name: n.to_string(),
                 len: None,
                 first_var: i,
+                hidden: false,
             })
             .collect(),
         data: (0..4)
@@ -95,6 +96,7 @@ fn five_point_layout() -> ProblemLayout {
             })
             .collect(),
         eliminate: vec![],
+        options: Default::default(),
     }
 }
 
@@ -132,8 +134,9 @@ fn five_point_template() -> EliminationTemplate {
         n_excess: 4,
         n_reducible: 6,
         n_dependent: 0,
+        n_hidden: 0,
         basis,
-        action,
+        action: mingen::template::Action::var(3, 0),
     }
 }
 
@@ -323,7 +326,7 @@ fn template_satisfies_the_convention_numerically() {
             let c = t
                 .columns
                 .iter()
-                .position(|c| *c == t.action.mul(b))
+                .position(|c| *c == b.mul(&Monomial::var(3, 0)))
                 .unwrap();
             if c >= 10 {
                 a[(j, c - 10)] = 1.0;
@@ -403,11 +406,13 @@ fn elimination_emission_parses() {
                 name: "s".into(),
                 len: None,
                 first_var: 0,
+                hidden: false,
             },
             UnknownSymbol {
                 name: "t".into(),
                 len: Some(3),
                 first_var: 1,
+                hidden: false,
             },
         ],
         data: vec![
@@ -425,6 +430,7 @@ fn elimination_emission_parses() {
             },
         ],
         eliminate: vec![1, 2, 3],
+        options: Default::default(),
     };
     let s2 = Monomial(vec![2]);
     let s = Monomial(vec![1]);
@@ -440,8 +446,9 @@ fn elimination_emission_parses() {
         n_excess: 0,
         n_reducible: 1,
         n_dependent: 0,
+        n_hidden: 0,
         basis: vec![s.clone(), one.clone()],
-        action: s.clone(),
+        action: mingen::template::Action::var(1, 0),
     };
     let cst = |c: Traced| Poly::constant(1, c);
     let sv = Poly::<Traced>::var(1, 0);

@@ -75,7 +75,7 @@ fn grsrp_20_solutions_template_below_205x225() {
     assert_eq!(r, t.n_excess + t.n_reducible, "square left block");
     assert!(r <= 80 && c <= 100, "{r}x{c} regressed");
     assert!(g.built.basis_choice.starts_with("selected"));
-    let action_var = g.built.template.action.0.iter().position(|&e| e == 1);
+    let action_var = g.built.template.action.single();
     assert!(matches!(action_var, Some(3..=5)), "a t action");
     // Smallest over all actions, ignoring the eigenvalue requirement.
     let opts = TemplateOptions {

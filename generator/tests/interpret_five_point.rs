@@ -52,8 +52,9 @@ fn five_point_template() -> EliminationTemplate {
         n_excess: 4,
         n_reducible: 6,
         n_dependent: 0,
+        n_hidden: 0,
         basis,
-        action: x,
+        action: mingen::template::Action::var(3, 0),
     }
 }
 
@@ -261,8 +262,9 @@ fn audit_with_eliminated_unknowns() {
         n_excess: 1,
         n_reducible: 2,
         n_dependent: 0,
+        n_hidden: 0,
         basis: vec![m2([1, 0]), m2([0, 1]), m2([0, 0])],
-        action: m2([1, 0]),
+        action: mingen::template::Action::var(2, 0),
     };
     let widen = |p: &P| {
         Poly::from_terms(

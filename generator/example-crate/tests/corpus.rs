@@ -240,3 +240,66 @@ fn grsrp_gravity_lin_elim_finds_the_planted_pose() {
         solve_flat::<ex::grsrp_gravity_lin_elim::Solver>(&flat, &with_t_either_sign(&[a], &t))
     });
 }
+
+#[test]
+fn relpose_5pt_cayley_sat_finds_the_planted_pose() {
+    check(20, 1e-8, 1e-4, |rng| {
+        let (r, t, pts) = scene(rng, 5);
+        let mut flat = Vec::new();
+        pts.iter().for_each(|[a, _]| push_point(&mut flat, a));
+        pts.iter().for_each(|[_, b]| push_point(&mut flat, b));
+        let q = quaternion_bcd(&r);
+        solve_flat::<ex::relpose_5pt_cayley_sat::Solver>(&flat, &with_t_either_sign(&q, &t))
+    });
+}
+
+/// A pose `(r, t)` and camera-frame points ahead of the camera with their world points.
+fn absolute_scene(
+    rng: &mut ChaCha8Rng,
+    n: usize,
+) -> (Matrix3<f64>, Vec<Vector3<f64>>, Vec<Vector3<f64>>) {
+    let r = rotation(rng);
+    let t = translation(rng) * 2.0;
+    let cam: Vec<Vector3<f64>> = (0..n).map(|_| point_ahead(rng)).collect();
+    let world = cam.iter().map(|y| r.transpose() * (y - t)).collect();
+    (r, cam, world)
+}
+
+#[test]
+fn p35pf_finds_the_planted_pose_and_focal_length() {
+    check(21, 1e-7, 1e-3, |rng| {
+        let (r, cam, world) = absolute_scene(rng, 4);
+        let f = rng.gen_range(0.5..2.0);
+        let mut flat = Vec::new();
+        cam.iter()
+            .for_each(|y| flat.extend([f * y.x / y.z, f * y.y / y.z]));
+        world.iter().for_each(|x| push_vec(&mut flat, x));
+        let [b, c, d] = quaternion_bcd(&r);
+        let n = 1.0 + b * b + c * c + d * d;
+        let l = n * cam[0].z / f;
+        solve_flat::<ex::p35pf::Solver>(&flat, &[vec![b, c, d, l, f]])
+    });
+}
+
+#[test]
+fn p2p2pl_finds_the_planted_pose() {
+    check(22, 1e-7, 1e-3, |rng| {
+        let (r, cam, world) = absolute_scene(rng, 4);
+        let mut flat = Vec::new();
+        // Points 0 and 1 are 2D-3D point matches; points 2 and 3 lie on world lines.
+        push_point(&mut flat, &cam[0]);
+        push_point(&mut flat, &cam[1]);
+        push_vec(&mut flat, &world[0]);
+        push_vec(&mut flat, &world[1]);
+        push_point(&mut flat, &cam[2]);
+        push_point(&mut flat, &cam[3]);
+        let dirs: Vec<Vector3<f64>> = (0..2).map(|_| unit(rng)).collect();
+        for (j, v) in dirs.iter().enumerate() {
+            push_vec(&mut flat, &(world[2 + j] + v * rng.gen_range(-1.0..1.0)));
+        }
+        dirs.iter().for_each(|v| push_vec(&mut flat, v));
+        let [b, c, d] = quaternion_bcd(&r);
+        let l = (1.0 + b * b + c * c + d * d) * cam[0].z;
+        solve_flat::<ex::p2p2pl::Solver>(&flat, &[vec![b, c, d, l]])
+    });
+}

@@ -13,7 +13,7 @@ pub const STURM_MAX_BASIS: usize = 20;
 
 /// Largest action matrix [`real_eigenpairs_dyn`] accepts: each size is a separate
 /// instantiation of the eigen back end, compiled into every crate that calls it.
-pub const MAX_DYNAMIC_BASIS: usize = 64;
+pub const MAX_DYNAMIC_BASIS: usize = 128;
 
 /// One real eigenpair: eigenvalue and unit eigenvector.
 pub type DynEigenpair = (f64, Vec<f64>);
@@ -42,6 +42,9 @@ pub fn real_eigenpairs_dyn(a: &[f64], n: usize) -> Option<Vec<DynEigenpair>> {
         1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20;
         21 22 23 24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42
         43 44 45 46 47 48 49 50 51 52 53 54 55 56 57 58 59 60 61 62 63 64
+        65 66 67 68 69 70 71 72 73 74 75 76 77 78 79 80 81 82 83 84 85 86 87 88 89 90 91
+        92 93 94 95 96 97 98 99 100 101 102 103 104 105 106 107 108 109 110 111 112 113
+        114 115 116 117 118 119 120 121 122 123 124 125 126 127 128
     )
 }
 
@@ -97,7 +100,7 @@ mod tests {
     #[test]
     fn rejects_bad_shapes() {
         assert!(real_eigenpairs_dyn(&[1.0; 5], 2).is_none());
-        assert!(real_eigenpairs_dyn(&[1.0; 65 * 65], 65).is_none());
+        assert!(real_eigenpairs_dyn(&[1.0; 129 * 129], 129).is_none());
         assert!(real_eigenpairs_dyn(&[], usize::MAX).is_none());
         assert_eq!(real_eigenpairs_dyn(&[], 0), Some(Vec::new()));
         assert!(real_eigenpairs_dyn(&[f64::NAN; 9], 3).unwrap().is_empty());

@@ -260,15 +260,14 @@ fn emit_data_slots(layout: &ProblemLayout, idents: &[Ident]) -> Result<TokenStre
 
 pub(super) fn emit_solution(layout: &ProblemLayout) -> Result<TokenStream, EmitError> {
     let idents = layout
-        .unknowns
-        .iter()
+        .declared_unknowns()
         .map(|u| field_ident(&u.name, "unknown"))
         .collect::<Result<Vec<_>, _>>()?;
     check_unique(&idents, "unknown")?;
     let mut fields = Vec::new();
     let mut zeros = Vec::new();
     let mut big = false;
-    for (u, id) in layout.unknowns.iter().zip(&idents) {
+    for (u, id) in layout.declared_unknowns().zip(&idents) {
         let (ty, zero, what) = match u.len {
             Some(n) => {
                 big |= n > 32;
@@ -324,7 +323,7 @@ pub(super) fn emit_solution(layout: &ProblemLayout) -> Result<TokenStream, EmitE
 fn emit_solution_unknowns(layout: &ProblemLayout, idents: &[Ident]) -> TokenStream {
     let mut values = Vec::new();
     let mut inits = Vec::new();
-    for (u, id) in layout.unknowns.iter().zip(idents) {
+    for (u, id) in layout.declared_unknowns().zip(idents) {
         match u.len {
             None => {
                 let k = lit(values.len());

@@ -41,6 +41,20 @@ pub enum Stmt {
     Data(Vec<Decl>),
     /// `eliminate t`
     Eliminate(Vec<Name>),
+    /// `nonzero EXPR`: only solutions where the scalar `EXPR` does not vanish count.
+    Nonzero {
+        /// Position of the keyword.
+        pos: Pos,
+        /// The expression.
+        expr: Expr,
+    },
+    /// `option NAME = VALUE`: a template-search option of the problem.
+    Option {
+        /// The option's name.
+        name: Name,
+        /// The value as written (a name or an integer), with its position.
+        value: Name,
+    },
     /// `let NAME = expr`
     Let {
         /// The bound name.

@@ -51,6 +51,10 @@ struct Checker {
     equations: Vec<ScalarEquation>,
     iterations: usize,
     fields: FieldNames,
+    /// `nonzero` expressions: (node, position).
+    nonzero: Vec<(NodeId, Pos)>,
+    /// `option` statements: (name, value).
+    options: Vec<(Name, Name)>,
 }
 
 /// Checks parsed statements.
@@ -79,6 +83,7 @@ pub fn check(stmts: &[(Pos, Stmt)]) -> Result<Checked, LangError> {
             unknowns: Vec::new(),
             data: Vec::new(),
             eliminate: Vec::new(),
+            options: Default::default(),
         },
         symbols: HashMap::new(),
         scopes: vec![HashMap::new()],
@@ -86,6 +91,8 @@ pub fn check(stmts: &[(Pos, Stmt)]) -> Result<Checked, LangError> {
         equations: Vec::new(),
         iterations: 0,
         fields: FieldNames::default(),
+        nonzero: Vec::new(),
+        options: Vec::new(),
     };
     for (pos, s) in stmts.iter().skip(1) {
         c.statement(*pos, s, true)?;
@@ -102,6 +109,8 @@ pub fn check(stmts: &[(Pos, Stmt)]) -> Result<Checked, LangError> {
             "the problem has no equations (add 'lhs = rhs')",
         ));
     }
+    c.saturate();
+    c.check_options()?;
     Ok(Checked {
         layout: c.layout,
         nodes: c.tape.nodes,
@@ -203,6 +212,37 @@ impl Checker {
                 }
                 Ok(())
             }
+            Stmt::Nonzero { pos, expr } => {
+                if !top {
+                    return Err(only_top("nonzero"));
+                }
+                let v = self.value(expr)?;
+                let shape = self.tape.shape(v);
+                if !shape.is_scalar() {
+                    return Err(self.err(
+                        expr.pos,
+                        format!(
+                            "'nonzero' needs a scalar expression, found {}",
+                            shape.describe()
+                        ),
+                    ));
+                }
+                if self.tape.constant(v).is_some() {
+                    return Err(self.err(
+                        expr.pos,
+                        "'nonzero' needs an expression in the unknowns, found a constant",
+                    ));
+                }
+                self.nonzero.push((v, *pos));
+                Ok(())
+            }
+            Stmt::Option { name, value } => {
+                if !top {
+                    return Err(only_top("option"));
+                }
+                self.options.push((name.clone(), value.clone()));
+                Ok(())
+            }
             Stmt::Let { name, value } => {
                 self.check_new_name(name)?;
                 let v = self.expr(value)?;
@@ -263,6 +303,88 @@ impl Checker {
         }
     }
 
+    /// Saturation by the Rabinowitsch trick: for the k-th `nonzero EXPR`, a hidden unknown
+    /// `nonzero#k` (after all declared unknowns) and the equation `nonzero#k * EXPR = 1`,
+    /// which has exactly the solutions of the other equations where EXPR does not vanish.
+    fn saturate(&mut self) {
+        for (k, (node, pos)) in std::mem::take(&mut self.nonzero).into_iter().enumerate() {
+            let var = self.layout.unknown_count();
+            self.layout.unknowns.push(UnknownSymbol {
+                name: format!("nonzero#{}", k + 1),
+                len: None,
+                first_var: var,
+                hidden: true,
+            });
+            let z = self.tape.mk(Op::Unknown(var), Shape::SCALAR);
+            let prod = self.tape.mk(Op::Mul(z, node), Shape::SCALAR);
+            let one = self.tape.konst(q_int(1));
+            let diff = self.tape.mk(Op::Sub(prod, one), Shape::SCALAR);
+            self.equations.push(ScalarEquation {
+                node: diff,
+                row: 0,
+                col: 0,
+                line: pos.line,
+            });
+        }
+    }
+
+    /// Checks the `option` statements into `layout.options`.
+    fn check_options(&mut self) -> Result<(), LangError> {
+        let names = self.layout.unknown_names();
+        for (name, value) in std::mem::take(&mut self.options) {
+            let o = &mut self.layout.options;
+            let v = value.name.clone();
+            let bad = |what: &str| Err(LangError::new(value.pos, what.to_string()));
+            let seen = match name.name.as_str() {
+                "action" => {
+                    if v != "random" && !names.contains(&v) {
+                        return bad(&format!(
+                            "option action: expected an unknown scalar ({}) or 'random', found '{v}'",
+                            names
+                                .iter()
+                                .filter(|n| !n.contains('#'))
+                                .cloned()
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ));
+                    }
+                    o.action.replace(v).is_some()
+                }
+                "extra_degree" => match v.parse::<u32>() {
+                    Ok(d) if d <= 64 => o.extra_degree.replace(d).is_some(),
+                    _ => {
+                        return bad(&format!(
+                            "option extra_degree: expected an integer from 0 to 64, found '{v}'"
+                        ))
+                    }
+                },
+                "basis" => {
+                    if v != "standard" && v != "selected" {
+                        return bad(&format!(
+                            "option basis: expected 'standard' or 'selected', found '{v}'"
+                        ));
+                    }
+                    o.basis.replace(v).is_some()
+                }
+                other => {
+                    return Err(LangError::new(
+                        name.pos,
+                        format!(
+                            "unknown option '{other}' (the options are action, extra_degree, basis)"
+                        ),
+                    ))
+                }
+            };
+            if seen {
+                return Err(LangError::new(
+                    name.pos,
+                    format!("option {} is given twice", name.name),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     fn declare_unknown(&mut self, d: &Decl) -> Result<(), LangError> {
         self.check_new_name(&d.name)?;
         let len = match d.len {
@@ -284,6 +406,7 @@ impl Checker {
             name: d.name.name.clone(),
             len,
             first_var,
+            hidden: false,
         });
         Ok(())
     }

@@ -13,11 +13,13 @@ use super::LangError;
 pub const MAX_DEPTH: usize = 64;
 
 /// Words that cannot name a symbol.
-pub const KEYWORDS: [&str; 7] = [
+pub const KEYWORDS: [&str; 9] = [
     "problem",
     "unknown",
     "data",
     "eliminate",
+    "nonzero",
+    "option",
     "let",
     "for",
     "in",
@@ -188,6 +190,28 @@ impl<'a> Parser<'a> {
                     names.push(self.ident("an unknown's name after ','")?);
                 }
                 Ok(Stmt::Eliminate(names))
+            }
+            "nonzero" => {
+                self.bump();
+                let expr = self.expr()?;
+                Ok(Stmt::Nonzero { pos: t.pos, expr })
+            }
+            "option" => {
+                self.bump();
+                let name = self.ident("an option name after 'option'")?;
+                self.expect(Tok::Eq, "'=' after the option name")?;
+                let v = self.peek();
+                let value = match v.tok {
+                    Tok::Ident(s) | Tok::Number(s) => {
+                        self.bump();
+                        Name {
+                            name: s,
+                            pos: v.pos,
+                        }
+                    }
+                    _ => return Err(self.error_here("an option value (a name or a number)")),
+                };
+                Ok(Stmt::Option { name, value })
             }
             "let" => {
                 self.bump();

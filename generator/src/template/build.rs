@@ -18,16 +18,17 @@
 //! pivot column iff `rank([E | R]) - rank(E) = |R|` (E, R: the excess and reducible column
 //! blocks); the basis block does not enter the test.
 
-use super::linalg::{gauss_jordan, is_squarefree};
+use super::linalg::{gauss_jordan, gauss_jordan_within, is_squarefree};
 use super::select::{self, SelectedTemplate};
 use super::shrink::shrink;
-use super::validate::{nf_action_charpoly, validate, ValidationReport};
-use super::{EliminationTemplate, ShapeError, TemplateRow};
-use crate::algebra::{Fp, Monomial, MonomialOrder, Poly, Ring, P1};
+use super::validate::nf_action_charpoly;
+use super::{Action, EliminationTemplate, ShapeError, TemplateRow};
+use crate::algebra::{Fp, Monomial, MonomialOrder, Poly, Ring};
+use crate::budget::{Budget, Deadline, Exhausted};
 use crate::groebner::{groebner, GroebnerError};
-use crate::quotient::{analyse, AnalysisError, InstanceSource};
+use crate::problem::ProblemOptions;
+use crate::quotient::AnalysisError;
 use std::collections::{BTreeMap, BTreeSet};
-use std::time::Instant;
 use thiserror::Error;
 
 /// Failures of template construction and validation.
@@ -41,13 +42,17 @@ pub enum TemplateError {
     Groebner(#[from] GroebnerError),
     /// No candidate set up to the degree bound makes every reducible monomial reducible.
     #[error(
-        "reducible monomials still not reducible with all multiples up to degree {max_degree}"
+        "reducible monomials still not reducible with all multiples up to degree {max_degree}{}",
+        .exhausted.map(|e| format!(" ({e})")).unwrap_or_default()
     )]
     NotReducible {
-        /// The action monomial (rendered).
+        /// The action (rendered).
         action: String,
         /// The largest total degree tried.
         max_degree: u32,
+        /// The budget that stopped the search, if one did (otherwise the degree bound of
+        /// the options did).
+        exhausted: Option<Exhausted>,
     },
     /// The quotient basis lacks 1 or an unknown: solutions cannot be read off eigenvectors.
     #[error("the quotient basis does not contain {missing}: solutions cannot be read off the eigenvectors")]
@@ -109,11 +114,17 @@ impl TemplateError {
 /// Options of template construction.
 #[derive(Clone, Debug)]
 pub struct TemplateOptions {
-    /// How many degrees above the largest of the equations and the reducible monomials to
-    /// try before giving up.
+    /// How many degrees above the largest of the equations and the reducible monomials
+    /// every action is tried at first (4 by default).
     pub max_extra_degree: u32,
-    /// Candidate action variables (indices); empty means all unknowns.
-    pub actions: Vec<usize>,
+    /// When no action works within `max_extra_degree`, raise the candidate degree further
+    /// until one does or the budget runs out (on by default; off means `max_extra_degree`
+    /// is a hard bound).
+    pub adaptive_degree: bool,
+    /// Time and memory budget of the whole algebra (count, templates, validation).
+    pub budget: Budget,
+    /// Which actions to try.
+    pub actions: ActionChoice,
     /// Prefer actions whose action matrix has distinct eigenvalues (a squarefree
     /// characteristic polynomial on the build instance), since the solutions are read off
     /// its eigenvectors. On by default.
@@ -132,6 +143,12 @@ pub struct TemplateOptions {
     pub basis_selection: bool,
     /// Seed of all random choices (instances).
     pub seed: u64,
+    /// Options that override those of the problem file (`option NAME = VALUE`) when the
+    /// pipeline applies them (`crate::pipeline::plan`); set by the command line.
+    pub overrides: ProblemOptions,
+    /// Number of hidden variables (the last ones, from `nonzero`), which the template need
+    /// not read off; [`super::generate`] fills it from its source.
+    pub hidden_vars: usize,
     /// Names of the unknowns, in variable order, for messages; empty renders them as
     /// `x0, x1, ...`. [`generate`] fills them from its source.
     pub var_names: Vec<String>,
@@ -141,15 +158,32 @@ impl Default for TemplateOptions {
     fn default() -> Self {
         TemplateOptions {
             max_extra_degree: 4,
-            actions: Vec::new(),
+            adaptive_degree: true,
+            budget: Budget::default(),
+            actions: ActionChoice::Auto,
             require_distinct_eigenvalues: true,
             validate_instances: 10,
             exponent_caps: 0,
             basis_selection: true,
             seed: 2024,
+            hidden_vars: 0,
+            overrides: ProblemOptions::default(),
             var_names: Vec::new(),
         }
     }
+}
+
+/// Which actions the template search tries.
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub enum ActionChoice {
+    /// Every unknown; when none gives a template whose action matrix has distinct
+    /// eigenvalues, also a random linear combination of the unknowns ([`Action::random`]).
+    #[default]
+    Auto,
+    /// These unknowns (variable indices) only.
+    Unknowns(Vec<usize>),
+    /// A random linear combination of the unknowns only.
+    Random,
 }
 
 /// One shrinking step: `(description, rows, cols)` after the step.
@@ -188,11 +222,11 @@ pub(crate) struct Blocks {
 }
 
 impl Blocks {
-    pub(crate) fn new(basis: &[Monomial], action: &Monomial) -> Blocks {
+    pub(crate) fn new(basis: &[Monomial], action: &Action) -> Blocks {
         let basis_set: BTreeSet<Monomial> = basis.iter().cloned().collect();
         let red_set: BTreeSet<Monomial> = basis
             .iter()
-            .map(|b| b.mul(action))
+            .flat_map(|b| action.products(b).map(|(m, _)| m).collect::<Vec<_>>())
             .filter(|m| !basis_set.contains(m))
             .collect();
         let mut reducible: Vec<Monomial> = red_set.iter().cloned().collect();
@@ -241,10 +275,20 @@ impl Blocks {
     }
     /// The reducibility test `rank([E|R]) - rank(E) == |R|` for a row set.
     pub(crate) fn reducible_by<const P: u32>(&self, rows: &[&Candidate]) -> bool {
+        self.reducible_within::<P>(rows, None)
+            .expect("no budget, never exhausted")
+    }
+    /// [`Self::reducible_by`] within a budget.
+    pub(crate) fn reducible_within<const P: u32>(
+        &self,
+        rows: &[&Candidate],
+        deadline: Option<&Deadline>,
+    ) -> Result<bool, Exhausted> {
         let excess = self.excess_of(rows.iter().copied());
         let mut m = self.dense_er(rows, &excess);
-        let piv = gauss_jordan::<P>(&mut m, excess.len() + self.reducible.len(), false);
-        piv.iter().filter(|&&c| c >= excess.len()).count() == self.reducible.len()
+        let piv =
+            gauss_jordan_within::<P>(&mut m, excess.len() + self.reducible.len(), false, deadline)?;
+        Ok(piv.iter().filter(|&&c| c >= excess.len()).count() == self.reducible.len())
     }
 }
 
@@ -279,7 +323,8 @@ pub(crate) fn candidates<const P: u32>(eqs: &[Poly<Fp<P>>], d: u32) -> Vec<Candi
 /// Candidate rows are all multiples of the equations up to total degree `d`, for `d` from
 /// the largest degree among the equations and the reducible monomials upward (at most
 /// `opts.max_extra_degree` more), until every reducible monomial is reducible; then
-/// Shrinking (`shrink.rs`) removes rows and columns. Deterministic.
+/// Shrinking (`shrink.rs`) removes rows and columns. Deterministic. (The adaptive search
+/// beyond `opts.max_extra_degree` is [`super::best_template`]'s.)
 pub fn build_template<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     basis: &[Monomial],
@@ -287,20 +332,92 @@ pub fn build_template<const P: u32>(
     opts: &TemplateOptions,
 ) -> Result<BuiltTemplate, TemplateError> {
     let nvars = basis.first().map(|b| b.nvars()).unwrap_or(0);
-    let action = Monomial::var(nvars, action_var);
-    let blocks = Blocks::new(basis, &action);
-    let d0 = eqs
-        .iter()
+    let action = Action::var(nvars, action_var);
+    let d0 = start_degree(eqs, basis, &action);
+    let distinct = match groebner(nvars, eqs) {
+        Ok(gb) => is_squarefree::<P>(&nf_action_charpoly::<P>(&gb, basis, &action)),
+        Err(_) => false,
+    };
+    let search = DegreeSearch {
+        degrees: d0..=d0 + opts.max_extra_degree,
+        basis_selection: opts.basis_selection,
+        deadline: None,
+    };
+    build_in_range::<P>(eqs, basis, &action, &search, distinct, opts)
+}
+
+/// The smallest candidate degree worth trying for `action`: the largest degree among the
+/// equations and the reducible monomials.
+pub(crate) fn start_degree<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    basis: &[Monomial],
+    action: &Action,
+) -> u32 {
+    let blocks = Blocks::new(basis, action);
+    eqs.iter()
         .filter_map(|f| f.degree())
         .chain(blocks.reducible.iter().map(|m| m.degree()))
         .max()
-        .unwrap_or(0);
+        .unwrap_or(0)
+}
+
+/// Estimated bytes of the candidate rows of degree `d` and of their dense `[E|R]` matrix.
+pub(crate) fn candidate_bytes<const P: u32>(eqs: &[Poly<Fp<P>>], d: u32) -> u64 {
+    let n = eqs.first().map_or(0, |f| f.nvars()) as u64;
+    let binom =
+        |a: u64, b: u64| -> u64 { (1..=b).fold(1u64, |acc, i| acc.saturating_mul(a + 1 - i) / i) };
+    let cols = binom(n + d as u64, n);
+    let (mut rows, mut terms) = (0u64, 0u64);
+    for f in eqs {
+        let Some(df) = f.degree() else { continue };
+        if df <= d {
+            let r = binom(n + (d - df) as u64, n);
+            rows = rows.saturating_add(r);
+            terms = terms.saturating_add(r.saturating_mul(f.len() as u64));
+        }
+    }
+    rows.saturating_mul(cols)
+        .saturating_mul(4)
+        .saturating_add(terms.saturating_mul(48 + 2 * n))
+}
+
+/// The candidate degrees [`build_in_range`] tries, and its limits.
+pub(crate) struct DegreeSearch<'a> {
+    /// Candidate degrees, tried in increasing order until one reduces.
+    pub(crate) degrees: std::ops::RangeInclusive<u32>,
+    /// Whether to also try bases selected among the template's columns.
+    pub(crate) basis_selection: bool,
+    /// Time and memory budget.
+    pub(crate) deadline: Option<&'a Deadline>,
+}
+
+/// [`build_template`] for the candidate degrees of `search`, with the distinct-eigenvalue
+/// flag computed by the caller.
+pub(crate) fn build_in_range<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    basis: &[Monomial],
+    action: &Action,
+    search: &DegreeSearch,
+    distinct: bool,
+    opts: &TemplateOptions,
+) -> Result<BuiltTemplate, TemplateError> {
+    let nvars = basis.first().map(|b| b.nvars()).unwrap_or(0);
+    let blocks = Blocks::new(basis, action);
     // Candidate families: all multiples up to degree d, optionally with every exponent of
     // the products capped; each family that reduces is shrunk, the smallest result kept.
     let maxdeg = eqs.iter().filter_map(|f| f.degree()).max().unwrap_or(0);
     let mut best: Option<(usize, Vec<Candidate>, Vec<ShrinkStep>)> = None;
     let mut full_ok = false;
-    for d in d0..=d0 + opts.max_extra_degree {
+    let mut exhausted = None;
+    let mut reached = *search.degrees.start();
+    'degrees: for d in search.degrees.clone() {
+        if let Some(dl) = search.deadline {
+            if let Err(e) = dl.check(candidate_bytes(eqs, d)) {
+                exhausted = Some(e);
+                break;
+            }
+        }
+        reached = d;
         for cap in (maxdeg.max(1)..=d).rev().take(opts.exponent_caps + 1) {
             let cands: Vec<Candidate> = candidates(eqs, d)
                 .into_iter()
@@ -311,8 +428,13 @@ pub fn build_template<const P: u32>(
                 })
                 .collect();
             let refs: Vec<&Candidate> = cands.iter().collect();
-            if !blocks.reducible_by::<P>(&refs) {
-                break;
+            match blocks.reducible_within::<P>(&refs, search.deadline) {
+                Ok(true) => {}
+                Ok(false) => break,
+                Err(e) => {
+                    exhausted = Some(e);
+                    break 'degrees;
+                }
             }
             full_ok = true;
             let ne = blocks.excess_of(cands.iter()).len();
@@ -343,10 +465,11 @@ pub fn build_template<const P: u32>(
         history,
         label: "standard monomials (grevlex)".to_string(),
     });
-    if opts.basis_selection {
+    // Basis selection is unbudgeted work: skipped once the budget has run out.
+    if search.basis_selection && exhausted.is_none() {
         let maxeq = eqs.iter().filter_map(|f| f.degree()).max().unwrap_or(0);
         if let Some(sel) =
-            select::best_selected::<P>(eqs, nvars, &action, basis.len(), maxeq, &opts.var_names)
+            select::best_selected::<P>(eqs, nvars, action, basis.len(), maxeq, &opts.var_names)
         {
             if best.as_ref().map_or(true, |b| sel.score < b.score) {
                 best = Some(sel);
@@ -363,17 +486,13 @@ pub fn build_template<const P: u32>(
     else {
         return Err(TemplateError::NotReducible {
             action: action.display_with(&opts.var_names),
-            max_degree: d0 + opts.max_extra_degree,
+            max_degree: reached,
+            exhausted,
         });
     };
-    let template = assemble::<P>(nvars, &blocks, &kept, &action);
+    let template = assemble::<P>(nvars, &blocks, &kept, action, opts.hidden_vars);
     debug_assert!(blocks.reducible_by::<P>(&kept.iter().collect::<Vec<_>>()));
     template.check_emittable(&opts.var_names)?;
-    // Distinct eigenvalues of the action matrix on this instance (basis independent).
-    let distinct = match groebner(nvars, eqs) {
-        Ok(gb) => is_squarefree::<P>(&nf_action_charpoly::<P>(&gb, basis, &action)),
-        Err(_) => false,
-    };
     Ok(BuiltTemplate {
         template,
         history,
@@ -392,7 +511,8 @@ pub(crate) fn assemble<const P: u32>(
     nvars: usize,
     blocks: &Blocks,
     kept: &[Candidate],
-    action: &Monomial,
+    action: &Action,
+    n_hidden: usize,
 ) -> EliminationTemplate {
     let excess = blocks.excess_of(kept.iter());
     let refs: Vec<&Candidate> = kept.iter().collect();
@@ -442,180 +562,9 @@ pub(crate) fn assemble<const P: u32>(
         n_dependent,
         columns,
         basis: blocks.basis.clone(),
+        n_hidden,
         action: action.clone(),
     }
-}
-
-/// Tries each action variable (all unknowns, or `opts.actions`) and keeps the template with
-/// the fewest `rows * cols`, among those whose action matrix has distinct eigenvalues when
-/// `opts.require_distinct_eigenvalues` (falling back to all if none has); ties go to the
-/// lower variable index. Returns the best and, for every action tried, its result.
-#[allow(clippy::type_complexity)]
-pub fn best_template<const P: u32>(
-    eqs: &[Poly<Fp<P>>],
-    basis: &[Monomial],
-    opts: &TemplateOptions,
-) -> Result<
-    (
-        BuiltTemplate,
-        Vec<(usize, Result<BuiltTemplate, TemplateError>)>,
-    ),
-    TemplateError,
-> {
-    let nvars = basis.first().map(|b| b.nvars()).unwrap_or(0);
-    let actions: Vec<usize> = if opts.actions.is_empty() {
-        (0..nvars).collect()
-    } else {
-        opts.actions.clone()
-    };
-    // Basis selection costs most for actions that cannot be chosen anyway: with
-    // `require_distinct_eigenvalues`, actions with a repeated eigenvalue get the standard
-    // basis only, as long as some action has distinct eigenvalues.
-    let distinct: Vec<bool> = match groebner(nvars, eqs) {
-        Ok(gb) => actions
-            .iter()
-            .map(|&v| {
-                is_squarefree::<P>(&nf_action_charpoly::<P>(
-                    &gb,
-                    basis,
-                    &Monomial::var(nvars, v),
-                ))
-            })
-            .collect(),
-        Err(_) => vec![false; actions.len()],
-    };
-    let standard_only = TemplateOptions {
-        basis_selection: false,
-        ..opts.clone()
-    };
-    let skip_selection = opts.require_distinct_eigenvalues && distinct.iter().any(|&d| d);
-    let all: Vec<(usize, Result<BuiltTemplate, TemplateError>)> = actions
-        .iter()
-        .zip(&distinct)
-        .map(|(&v, &d)| {
-            let o = if skip_selection && !d {
-                &standard_only
-            } else {
-                opts
-            };
-            (v, build_template(eqs, basis, v, o))
-        })
-        .collect();
-    let score = |b: &BuiltTemplate| {
-        let (r, c) = b.template.eliminated_size();
-        r * c
-    };
-    let pick = |need_distinct: bool| {
-        all.iter()
-            .filter_map(|(v, r)| r.as_ref().ok().map(|b| (*v, b)))
-            .filter(|(_, b)| !need_distinct || b.distinct_eigenvalues)
-            .min_by_key(|(v, b)| (score(b), *v))
-            .map(|(_, b)| b.clone())
-    };
-    let best = if opts.require_distinct_eigenvalues {
-        pick(true).or_else(|| pick(false))
-    } else {
-        pick(false)
-    };
-    match best {
-        Some(b) => Ok((b, all)),
-        None => {
-            // One clause per distinct reason, naming the actions that failed for it.
-            let mut reasons: Vec<(String, Vec<String>)> = Vec::new();
-            for (v, r) in &all {
-                let Err(e) = r else { continue };
-                let name = Monomial::var(nvars, *v).display_with(&opts.var_names);
-                let reason = e.to_string();
-                match reasons.iter_mut().find(|(r, _)| *r == reason) {
-                    Some((_, names)) => names.push(name),
-                    None => reasons.push((reason, vec![name])),
-                }
-            }
-            Err(TemplateError::NoAction(
-                reasons
-                    .iter()
-                    .map(|(r, names)| format!("action {}: {r}", names.join(", ")))
-                    .collect::<Vec<_>>()
-                    .join("; "),
-            ))
-        }
-    }
-}
-
-/// Everything the algebra core produces for one problem.
-#[derive(Clone, Debug)]
-pub struct Generated {
-    /// Number of solutions.
-    pub count: usize,
-    /// Standard monomials of the Gröbner basis (descending grevlex). The template's own
-    /// basis, `built.template.basis`, may differ (basis selection): emitters and `inspect`
-    /// must use the template's.
-    pub basis: Vec<Monomial>,
-    /// The chosen template with its shrink history.
-    pub built: BuiltTemplate,
-    /// For each action variable tried: `(variable, Some((rows, cols)) or None on failure)`.
-    pub per_action: Vec<(usize, Option<(usize, usize)>)>,
-    /// Validation on fresh instances (`None` if `opts.validate_instances == 0`).
-    pub validation: Option<ValidationReport>,
-    /// Wall-clock seconds: analysis (Gröbner bases), template search, validation.
-    pub seconds: (f64, f64, f64),
-}
-
-/// The whole algebra pipeline for a problem given as an [`InstanceSource`]: count and basis
-/// ([`analyse`], confirmed across instances and primes), the best template over the action
-/// variables ([`best_template`], built on the analysed instance mod P1), and validation
-/// against Gröbner normal forms on `opts.validate_instances` fresh instances.
-pub fn generate<S: InstanceSource>(
-    src: &S,
-    opts: &TemplateOptions,
-) -> Result<Generated, TemplateError> {
-    let t0 = Instant::now();
-    let analysis = analyse(src, opts.seed)?;
-    let t1 = Instant::now();
-    let opts = &TemplateOptions {
-        var_names: src.var_names(),
-        ..opts.clone()
-    };
-    let counted = |source: TemplateError| TemplateError::Counted {
-        count: analysis.count,
-        source: Box::new(source),
-    };
-    let (built, all) =
-        best_template::<P1>(&analysis.equations, &analysis.basis, opts).map_err(counted)?;
-    built
-        .template
-        .check_emittable(&opts.var_names)
-        .map_err(|e| counted(e.into()))?;
-    let t2 = Instant::now();
-    let validation = if opts.validate_instances > 0 {
-        Some(
-            validate(
-                &built.template,
-                src,
-                opts.validate_instances,
-                opts.seed ^ 0x7A11_DA7E,
-            )
-            .map_err(counted)?,
-        )
-    } else {
-        None
-    };
-    let t3 = Instant::now();
-    Ok(Generated {
-        count: analysis.count,
-        basis: analysis.basis,
-        built,
-        per_action: all
-            .into_iter()
-            .map(|(v, r)| (v, r.ok().map(|b| b.template.eliminated_size())))
-            .collect(),
-        validation,
-        seconds: (
-            (t1 - t0).as_secs_f64(),
-            (t2 - t1).as_secs_f64(),
-            (t3 - t2).as_secs_f64(),
-        ),
-    })
 }
 
 impl EliminationTemplate {

@@ -1,6 +1,8 @@
 //! Dense linear algebra mod P on raw residues (`u32 < P`): Gauss-Jordan, incremental
 //! echelon bases, left kernels, characteristic polynomials, polynomial gcd.
 
+use crate::budget::{Deadline, Exhausted};
+
 #[inline]
 pub(crate) fn mulmod<const P: u32>(a: u32, b: u32) -> u32 {
     ((a as u64 * b as u64) % P as u64) as u32
@@ -52,6 +54,16 @@ pub(crate) fn gauss_jordan<const P: u32>(
     ncols: usize,
     full: bool,
 ) -> Vec<usize> {
+    gauss_jordan_within::<P>(m, ncols, full, None).expect("no budget, never exhausted")
+}
+
+/// [`gauss_jordan`] that stops (leaving `m` partly reduced) once the budget runs out.
+pub(crate) fn gauss_jordan_within<const P: u32>(
+    m: &mut [Vec<u32>],
+    ncols: usize,
+    full: bool,
+    deadline: Option<&Deadline>,
+) -> Result<Vec<usize>, Exhausted> {
     let nrows = m.len();
     let width = m.first().map_or(0, |r| r.len());
     let mut pivots = Vec::new();
@@ -64,6 +76,11 @@ pub(crate) fn gauss_jordan<const P: u32>(
         let Some(i) = (r..nrows).find(|&i| m[i][c] != 0) else {
             continue;
         };
+        if r % 64 == 63 {
+            if let Some(d) = deadline {
+                d.check_time()?;
+            }
+        }
         m.swap(r, i);
         let inv = invmod::<P>(m[r][c]);
         nz.clear();
@@ -92,7 +109,7 @@ pub(crate) fn gauss_jordan<const P: u32>(
         pivots.push(c);
         r += 1;
     }
-    pivots
+    Ok(pivots)
 }
 
 /// An incrementally built echelon basis of a row space (for choosing independent rows).

@@ -27,19 +27,22 @@
 
 use crate::algebra::Monomial;
 
+mod action;
 pub mod build;
 mod linalg;
+pub mod search;
 pub mod select;
 mod shape;
 pub mod shrink;
 pub mod validate;
 
+pub use action::Action;
 pub use shape::ShapeError;
 
 pub use build::{
-    best_template, build_template, generate, BuiltTemplate, Generated, ShrinkStep, TemplateError,
-    TemplateOptions,
+    build_template, ActionChoice, BuiltTemplate, ShrinkStep, TemplateError, TemplateOptions,
 };
+pub use search::{best_template, generate, Generated, PerAction};
 pub use validate::{
     check_readoff, gb_action_matrix, template_action_matrix, validate, ValidationReport,
 };
@@ -74,11 +77,20 @@ pub struct EliminationTemplate {
     pub n_dependent: usize,
     /// The quotient basis B (the last block of columns, same order).
     pub basis: Vec<Monomial>,
-    /// The action monomial (usually a single unknown).
-    pub action: Monomial,
+    /// Number of hidden variables (those of `nonzero`), the last `n_hidden` variables:
+    /// part of the system, not read off the eigenvectors (B need not contain them).
+    pub n_hidden: usize,
+    /// The action (usually a single unknown, else a linear form in the unknowns): the
+    /// columns `x_i * b` (coefficient of `x_i` non-zero) outside B are the reducible ones,
+    /// and row j of the action matrix is `sum_i c_i` times the row of `x_i * b_j`.
+    pub action: Action,
 }
 
 impl EliminationTemplate {
+    /// Number of variables read off the eigenvectors (all but the hidden ones).
+    pub fn visible_vars(&self) -> usize {
+        self.nvars - self.n_hidden.min(self.nvars)
+    }
     /// Template size as (rows, columns).
     pub fn size(&self) -> (usize, usize) {
         (self.rows.len(), self.columns.len())

@@ -5,6 +5,7 @@
 use super::build::{candidates, Blocks, Candidate, ShrinkStep};
 use super::linalg::gauss_jordan;
 use super::shrink::{shrink, shrink_quick};
+use super::Action;
 use crate::algebra::{Fp, Monomial, MonomialOrder, Poly};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -52,7 +53,7 @@ fn key_cmp(o: &BasisOrder, a: &Monomial, b: &Monomial) -> std::cmp::Ordering {
 pub(crate) fn select_basis<const P: u32>(
     cands: &[Candidate],
     nvars: usize,
-    action: &Monomial,
+    action: &Action,
     count: usize,
     order: &BasisOrder,
 ) -> Option<Vec<Monomial>> {
@@ -65,7 +66,7 @@ pub(crate) fn select_basis<const P: u32>(
         .collect();
     let mut pool: Vec<Monomial> = cols
         .iter()
-        .filter(|m| cols.contains(&m.mul(action)) && !forced.contains(m))
+        .filter(|m| action.products(m).all(|(p, _)| cols.contains(&p)) && !forced.contains(m))
         .cloned()
         .collect();
     pool.sort_by(|a, b| key_cmp(order, b, a));
@@ -181,7 +182,7 @@ pub(crate) struct SelectedTemplate {
 pub(crate) fn best_selected<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     nvars: usize,
-    action: &Monomial,
+    action: &Action,
     count: usize,
     maxeq: u32,
     names: &[String],
@@ -247,7 +248,7 @@ pub fn explore<const P: u32>(
 ) {
     let cands = candidates(eqs, d);
     for &av in actions {
-        let action = Monomial::var(nvars, av);
+        let action = Action::var(nvars, av);
         let mut seen: BTreeMap<Vec<Monomial>, (usize, usize, usize)> = BTreeMap::new();
         for o in orders {
             let Some(b) = select_basis::<P>(&cands, nvars, &action, count, o) else {
@@ -291,7 +292,7 @@ pub fn explore_random_shrink<const P: u32>(
 ) {
     use rand::seq::SliceRandom;
     use rand::SeedableRng;
-    let action = Monomial::var(nvars, action_var);
+    let action = Action::var(nvars, action_var);
     let cands = candidates(eqs, d);
     let b = select_basis::<P>(&cands, nvars, &action, count, order).expect("basis");
     let blocks = Blocks::new(&b, &action);

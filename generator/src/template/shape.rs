@@ -109,8 +109,14 @@ impl EliminationTemplate {
         let monomials = self
             .columns
             .iter()
-            .chain(std::iter::once(&self.action))
             .chain(self.rows.iter().map(|r| &r.multiplier));
+        if self.action.nvars() != self.nvars {
+            return bad(format!(
+                "the action has {} variables, the template {}",
+                self.action.nvars(),
+                self.nvars
+            ));
+        }
         if let Some(m) = monomials.clone().find(|m| m.nvars() != self.nvars) {
             return bad(format!(
                 "monomial {m:?} has {} variables, the template {}",
@@ -128,7 +134,7 @@ impl EliminationTemplate {
         if !self.basis.contains(&Monomial::one(self.nvars)) {
             missing.push("1".to_string());
         }
-        for v in 0..self.nvars {
+        for v in 0..self.visible_vars() {
             let m = Monomial::var(self.nvars, v);
             if !self.basis.contains(&m) {
                 missing.push(show(&m));
@@ -139,17 +145,18 @@ impl EliminationTemplate {
         }
         let mut needed = BTreeSet::new();
         for b in &self.basis {
-            let p = self.action.mul(b);
-            match column_of.get(&p) {
-                Some(&c) if c >= npiv => {}
-                Some(&c) if c >= self.n_excess => {
-                    needed.insert(c);
-                }
-                _ => {
-                    return Err(ShapeError::ActionNotCovered {
-                        basis: show(b),
-                        product: show(&p),
-                    })
+            for (p, _) in self.action.products(b) {
+                match column_of.get(&p) {
+                    Some(&c) if c >= npiv => {}
+                    Some(&c) if c >= self.n_excess => {
+                        needed.insert(c);
+                    }
+                    _ => {
+                        return Err(ShapeError::ActionNotCovered {
+                            basis: show(b),
+                            product: show(&p),
+                        })
+                    }
                 }
             }
         }
@@ -203,8 +210,9 @@ mod tests {
             n_excess: 1,
             n_reducible: 2,
             n_dependent: 0,
+            n_hidden: 0,
             basis: vec![m([0, 1]), m([1, 0]), m([0, 0])],
-            action: m([1, 0]),
+            action: super::super::Action::var(2, 0),
         }
     }
 
@@ -246,7 +254,7 @@ mod tests {
         );
         t.basis[0] = Monomial(vec![0, 1]);
         t.columns[n - 3] = Monomial(vec![0, 1]);
-        t.action = Monomial(vec![0, 1]);
+        t.action = super::super::Action::var(2, 1);
         let e = t.check_emittable(&names()).unwrap_err();
         assert!(e.to_string().contains("y^2"), "{e}");
         let mut t = toy();

@@ -10,10 +10,11 @@
 //!   (the basis must contain 1 and every unknown).
 
 use super::build::TemplateError;
-use super::linalg::{charpoly, gauss_jordan};
-use super::EliminationTemplate;
+use super::linalg::{addmod, charpoly, gauss_jordan, mulmod, submod};
+use super::{Action, EliminationTemplate};
 use crate::algebra::{Fp, Monomial, Poly, Ring, P1, P2};
-use crate::groebner::{groebner, GroebnerBasis};
+use crate::budget::Deadline;
+use crate::groebner::{groebner_with, GroebnerBasis, GroebnerOptions};
 use crate::quotient::{standard_monomials, InstanceSource};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -34,7 +35,7 @@ pub fn check_readoff(t: &EliminationTemplate, names: &[String]) -> Result<(), Te
     if !t.basis.contains(&Monomial::one(t.nvars)) {
         missing.push("1".to_string());
     }
-    for v in 0..t.nvars {
+    for v in 0..t.visible_vars() {
         let m = Monomial::var(t.nvars, v);
         if !t.basis.contains(&m) {
             missing.push(m.display_with(names));
@@ -98,20 +99,22 @@ pub fn template_action_matrix<const P: u32>(
         t.basis.iter().enumerate().map(|(i, m)| (m, i)).collect();
     let mut out = vec![vec![0u32; nb]; nb];
     for (j, b) in t.basis.iter().enumerate() {
-        let ab = b.mul(&t.action);
-        if let Some(&k) = basis_idx.get(&ab) {
-            out[j][k] = 1;
-            continue;
-        }
-        let c = col_of[&ab];
-        let Some(&r) = red_row.get(&c) else {
-            return Err(TemplateError::Singular {
-                instance: 0,
-                monomial: show(&ab),
-            });
-        };
-        for k in 0..nb {
-            out[j][k] = (P - m[r][nc - nb + k]) % P;
+        for (ab, coef) in t.action.products(b) {
+            let c = Action::residue::<P>(coef);
+            if let Some(&k) = basis_idx.get(&ab) {
+                out[j][k] = addmod::<P>(out[j][k], c);
+                continue;
+            }
+            let col = col_of[&ab];
+            let Some(&r) = red_row.get(&col) else {
+                return Err(TemplateError::Singular {
+                    instance: 0,
+                    monomial: show(&ab),
+                });
+            };
+            for k in 0..nb {
+                out[j][k] = submod::<P>(out[j][k], mulmod::<P>(c, m[r][nc - nb + k]));
+            }
         }
     }
     Ok(out)
@@ -123,14 +126,15 @@ pub fn template_action_matrix<const P: u32>(
 pub fn gb_action_matrix<const P: u32>(
     gb: &GroebnerBasis<P>,
     basis: &[Monomial],
-    action: &Monomial,
+    action: &Action,
 ) -> Vec<Vec<u32>> {
+    let form = action.poly::<P>();
     let n = gb.nvars();
     let idx: BTreeMap<&Monomial, usize> = basis.iter().enumerate().map(|(i, m)| (m, i)).collect();
     basis
         .iter()
         .map(|b| {
-            let nf = gb.normal_form(&Poly::term(b.mul(action), Fp::<P>::one()));
+            let nf = gb.normal_form(&form.mul(&Poly::term(b.clone(), Fp::<P>::one())));
             let mut row = vec![0u32; basis.len()];
             for (m, c) in nf.terms() {
                 debug_assert_eq!(m.nvars(), n);
@@ -145,7 +149,7 @@ pub fn gb_action_matrix<const P: u32>(
 pub(crate) fn nf_action_charpoly<const P: u32>(
     gb: &GroebnerBasis<P>,
     basis: &[Monomial],
-    action: &Monomial,
+    action: &Action,
 ) -> Vec<u32> {
     charpoly::<P>(&gb_action_matrix(gb, basis, action))
 }
@@ -155,13 +159,18 @@ fn check_one<const P: u32, S: InstanceSource>(
     src: &S,
     rng: &mut ChaCha8Rng,
     instance: usize,
+    deadline: Option<&Deadline>,
 ) -> Result<(), TemplateError> {
     let eqs = src.instance::<P>(rng);
     let tm = template_action_matrix::<P>(t, &eqs, &src.var_names()).map_err(|e| match e {
         TemplateError::Singular { monomial, .. } => TemplateError::Singular { instance, monomial },
         e => e,
     })?;
-    let gb = groebner(t.nvars, &eqs)?;
+    let gopts = GroebnerOptions {
+        deadline: deadline.copied(),
+        ..GroebnerOptions::default()
+    };
+    let gb = groebner_with(t.nvars, &eqs, &gopts)?;
     let b = standard_monomials(&gb)?;
     let gm = gb_action_matrix(&gb, &b, &t.action);
     if charpoly::<P>(&tm) != charpoly::<P>(&gm) {
@@ -179,14 +188,37 @@ pub fn validate<S: InstanceSource>(
     n: usize,
     seed: u64,
 ) -> Result<ValidationReport, TemplateError> {
+    validate_within(t, src, n, seed, None)
+}
+
+/// [`validate`] within a budget: at least two instances (one per prime) are always
+/// checked, whatever the budget; further ones only while less than half the time budget
+/// has been spent (the report gives the number checked).
+pub fn validate_within<S: InstanceSource>(
+    t: &EliminationTemplate,
+    src: &S,
+    n: usize,
+    seed: u64,
+    deadline: Option<&Deadline>,
+) -> Result<ValidationReport, TemplateError> {
     check_readoff(t, &src.var_names())?;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut done = 0;
     for i in 0..n {
-        if i % 2 == 0 {
-            check_one::<P1, S>(t, src, &mut rng, i)?;
-        } else {
-            check_one::<P2, S>(t, src, &mut rng, i)?;
+        if i >= 2 {
+            if let Some(d) = deadline {
+                if d.elapsed() > d.budget().max_seconds / 2.0 {
+                    break;
+                }
+            }
         }
+        let limit = if i < 2 { None } else { deadline };
+        if i % 2 == 0 {
+            check_one::<P1, S>(t, src, &mut rng, i, limit)?;
+        } else {
+            check_one::<P2, S>(t, src, &mut rng, i, limit)?;
+        }
+        done += 1;
     }
-    Ok(ValidationReport { instances: n })
+    Ok(ValidationReport { instances: done })
 }

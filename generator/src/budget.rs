@@ -1,0 +1,154 @@
+//! Resource budgets. The searches whose size depends on the problem (the Gröbner basis
+//! degree, the template's candidate degree) have no fixed cap: they raise their degree
+//! until they succeed or until the budget runs out, and then say which budget ran out
+//! and at what degree.
+//!
+//! ## Public API
+//! - [`Budget`]: the limits (wall-clock seconds, bytes of working memory). The command
+//!   line's defaults are [`DEFAULT_MAX_SECONDS`] and [`DEFAULT_MAX_MEMORY_MB`]; the
+//!   library's [`Budget::default`] has the same memory limit and no wall-clock limit, so
+//!   that build scripts and `generate --all` checks never fail on a slow machine.
+//! - [`Deadline`]: a budget started at one instant; [`Deadline::check_time`] and
+//!   [`Deadline::check_memory`] return [`Exhausted`] once a limit is passed.
+//!
+//! Memory is accounted by estimate (the dominant data structures of each search: the
+//! terms of the Gröbner basis and its pairs, the dense matrices of the template search),
+//! checked before a structure is built, so a search stops before it allocates past the
+//! limit.
+
+use std::fmt;
+use std::time::Instant;
+
+/// The command line's default wall-clock budget of one problem's algebra (count,
+/// templates, validation).
+pub const DEFAULT_MAX_SECONDS: f64 = 300.0;
+/// Default memory budget of one problem's algebra, in MiB.
+pub const DEFAULT_MAX_MEMORY_MB: u64 = 4096;
+
+/// Limits of one problem's algebra.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Budget {
+    /// Wall-clock seconds.
+    pub max_seconds: f64,
+    /// Bytes of working memory (estimated, see the module documentation).
+    pub max_memory_bytes: u64,
+}
+
+impl Default for Budget {
+    /// No wall-clock limit; [`DEFAULT_MAX_MEMORY_MB`].
+    fn default() -> Self {
+        Budget {
+            max_seconds: f64::INFINITY,
+            max_memory_bytes: DEFAULT_MAX_MEMORY_MB << 20,
+        }
+    }
+}
+
+impl Budget {
+    /// A budget of `max_seconds` seconds and `max_memory_mb` MiB.
+    pub fn new(max_seconds: f64, max_memory_mb: u64) -> Budget {
+        Budget {
+            max_seconds,
+            max_memory_bytes: max_memory_mb << 20,
+        }
+    }
+    /// Starts the clock now.
+    pub fn start(self) -> Deadline {
+        Deadline {
+            started: Instant::now(),
+            budget: self,
+        }
+    }
+}
+
+/// Which limit ran out.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Exhausted {
+    /// The wall-clock budget (seconds allowed).
+    Time(f64),
+    /// The memory budget: the estimated bytes a step needed, and the bytes allowed.
+    Memory {
+        /// Estimated bytes of the step that was refused.
+        needed: u64,
+        /// Bytes allowed.
+        allowed: u64,
+    },
+}
+
+impl Eq for Exhausted {}
+
+impl fmt::Display for Exhausted {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Exhausted::Time(s) => write!(
+                f,
+                "the time budget of {s} s ran out (raise it with --max-seconds)"
+            ),
+            Exhausted::Memory { needed, allowed } => write!(
+                f,
+                "the next step needs about {} MiB, over the memory budget of {} MiB (raise it with --max-memory)",
+                needed >> 20,
+                allowed >> 20
+            ),
+        }
+    }
+}
+
+/// A [`Budget`] started at an instant.
+#[derive(Clone, Copy, Debug)]
+pub struct Deadline {
+    started: Instant,
+    budget: Budget,
+}
+
+impl Deadline {
+    /// The limits.
+    pub fn budget(&self) -> Budget {
+        self.budget
+    }
+    /// Seconds since the start.
+    pub fn elapsed(&self) -> f64 {
+        self.started.elapsed().as_secs_f64()
+    }
+    /// `Err` once the wall-clock budget has run out.
+    pub fn check_time(&self) -> Result<(), Exhausted> {
+        if self.elapsed() > self.budget.max_seconds {
+            Err(Exhausted::Time(self.budget.max_seconds))
+        } else {
+            Ok(())
+        }
+    }
+    /// `Err` if a step needing `bytes` (estimated) would pass the memory budget.
+    pub fn check_memory(&self, bytes: u64) -> Result<(), Exhausted> {
+        if bytes > self.budget.max_memory_bytes {
+            Err(Exhausted::Memory {
+                needed: bytes,
+                allowed: self.budget.max_memory_bytes,
+            })
+        } else {
+            Ok(())
+        }
+    }
+    /// Both checks.
+    pub fn check(&self, bytes: u64) -> Result<(), Exhausted> {
+        self.check_time()?;
+        self.check_memory(bytes)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn limits_are_enforced() {
+        let d = Budget::new(1000.0, 1).start();
+        assert!(d.check_time().is_ok());
+        assert!(d.check_memory(1 << 20).is_ok());
+        let e = d.check_memory((1 << 20) + 1).unwrap_err();
+        assert!(e.to_string().contains("--max-memory"));
+        let d = Budget::new(0.0, 1).start();
+        std::thread::sleep(std::time::Duration::from_millis(2));
+        assert_eq!(d.check_time(), Err(Exhausted::Time(0.0)));
+    }
+}

@@ -1,0 +1,105 @@
+//! Saturation (`nonzero`), action and degree options, and budgets: the counts of the
+//! saturated and unsaturated Cayley-form 5-point systems, the hidden unknown kept out of
+//! the solutions, random-combination actions, and the errors when a budget runs out.
+
+use mingen::budget::Budget;
+use mingen::pipeline::plan;
+use mingen::problem::ProblemOptions;
+use mingen::template::TemplateOptions;
+use mingen::Problem;
+
+fn planned(src: &str, opts: &TemplateOptions) -> Result<mingen::pipeline::SolverPlan, String> {
+    let problem = Problem::parse(src, "t.mp").map_err(|e| e.to_string())?;
+    plan(problem, "t.mp", opts).map_err(|e| e.to_string())
+}
+
+#[test]
+fn nonzero_removes_the_component_and_is_never_returned() {
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../templates/classic/relpose_5pt_cayley_sat.mp");
+    let src = std::fs::read_to_string(file).unwrap();
+    let opts = TemplateOptions::default();
+    // Without saturation the component 1 + q'q = 0 is positive-dimensional.
+    let unsaturated = src.replace("nonzero 1 + q'*q", "");
+    let err = planned(&unsaturated, &opts)
+        .err()
+        .expect("positive-dimensional");
+    assert!(err.contains("positive-dimensional"), "{err}");
+    let p = planned(&src, &opts).unwrap();
+    assert_eq!(p.generated.count, 20);
+    assert_eq!(p.problem.layout.hidden_count(), 1);
+    assert_eq!(p.generated.built.template.n_hidden, 1);
+    // The audit measures the declared equations at the real solutions.
+    let a = mingen::audit::audit_plan(
+        &p,
+        &mingen::audit::AuditOptions {
+            instances: 50,
+            seed: 3,
+        },
+    );
+    assert!(a.median_log10_residual < -9.0, "{a}");
+    // The emitted solution type has the declared unknowns only (q and t).
+    let out = mingen::generate::emit_plan_from(&p, "t.mp").unwrap();
+    assert!(
+        out.contains("pub const UNKNOWNS: usize = 6;"),
+        "hidden unknown leaked into the solution type"
+    );
+}
+
+#[test]
+fn nonzero_needs_a_scalar_in_the_unknowns() {
+    let e = Problem::parse("problem p\nunknown t[3]\nt' * t = 1\nnonzero t\n", "p.mp").unwrap_err();
+    assert!(e.to_string().contains("'nonzero' needs a scalar"), "{e}");
+    let e = Problem::parse("problem p\nunknown x\nx*x = 1\nnonzero 2\n", "p.mp").unwrap_err();
+    assert!(e.to_string().contains("found a constant"), "{e}");
+}
+
+#[test]
+fn options_choose_the_action_and_are_checked() {
+    let src = "problem c\nunknown x, y\ndata a: scalar, b: scalar\nx*x + y*y = a\nx*y = b\n";
+    let p = planned(
+        &format!("{src}option action = random\n"),
+        &TemplateOptions::default(),
+    )
+    .unwrap();
+    let action = &p.generated.built.template.action;
+    assert!(action.single().is_none(), "{action:?}");
+    assert!(action.coefficients.iter().all(|&c| c != 0));
+    // The command line overrides the file.
+    let opts = TemplateOptions {
+        overrides: ProblemOptions {
+            action: Some("y".into()),
+            ..ProblemOptions::default()
+        },
+        ..TemplateOptions::default()
+    };
+    let p = planned(&format!("{src}option action = random\n"), &opts).unwrap();
+    assert_eq!(p.generated.built.template.action.single(), Some(1));
+    for (line, what) in [
+        ("option action = z", "option action"),
+        ("option extra_degree = 99", "option extra_degree"),
+        ("option basis = best", "option basis"),
+        ("option speed = 3", "unknown option 'speed'"),
+    ] {
+        let e = Problem::parse(&format!("{src}{line}\n"), "c.mp").unwrap_err();
+        assert!(e.to_string().contains(what), "{line}: {e}");
+    }
+}
+
+#[test]
+fn an_exhausted_budget_is_a_clear_error() {
+    // The count is found (a few Gröbner pairs, below the first budget check), then the
+    // template search stops at once: the error keeps the count and names the budget.
+    let src = "problem c\nunknown x, y\ndata a: scalar, b: scalar\nx*x + y*y = a\nx*y = b\n";
+    let opts = TemplateOptions {
+        budget: Budget {
+            max_seconds: 1e-9,
+            max_memory_bytes: 1 << 30,
+        },
+        ..TemplateOptions::default()
+    };
+    let err = planned(src, &opts).err().expect("no time for a template");
+    assert!(err.contains("4 solutions, but no template"), "{err}");
+    assert!(err.contains("up to degree"), "{err}");
+    assert!(err.contains("time budget"), "{err}");
+}

@@ -17,7 +17,6 @@ use super::{EstimateOptions, RobustOptions};
 use crate::estimation::refine::{refine_pose, Loss};
 use crate::model::camera::View;
 use crate::model::epipolar::{PointData, PoseModel, ResidualKind, RowNoise};
-use nalgebra::{Matrix3, Vector3};
 
 /// Smallest and largest gyro-rate noise the fit considers, rad/s per axis (a hundredth of
 /// a good MEMS gyro's noise to far beyond the rates the library accepts as plausible).
@@ -55,25 +54,26 @@ impl NoiseFit {
     }
 }
 
-/// The noise model of a pair fitted to its residuals under the pose `(r, t)`
-/// (`e = [t]× r`) and `model`, starting from `prior` (its pixel noise is kept): the
-/// gyro-rate noise, and for the paper's model also the scale of its truncation term. `None`
-/// when the rows carry no gyro noise (zero readout: a global-shutter camera) or fewer than
-/// ten residuals are finite.
+/// The noise model of a pair fitted to `sq`, the squared unweighted Sampson residuals of its
+/// matches under its final pose and `model` (normalised units; non-finite ones are left
+/// out), with pixel noise `pixel` (normalised units, kept) and starting from the gyro-rate
+/// noise `gyro_noise` (rad/s): the gyro-rate noise, and for the paper's model also the
+/// scale of its truncation term. `None` when the rows carry no gyro noise (zero readout: a
+/// global-shutter camera) or fewer than ten residuals are finite.
 pub(crate) fn fit_noise(
     data: &PointData,
-    view1: &View,
-    view2: &View,
+    (view1, view2): (&View, &View),
     model: PoseModel,
-    (r, t, e): (&Matrix3<f64>, &Vector3<f64>, &Matrix3<f64>),
-    prior: RowNoise,
+    sq: &[f64],
+    (pixel, gyro_noise): (f64, f64),
 ) -> Option<NoiseFit> {
     let readout = view1.camera.readout.max(view2.camera.readout);
-    if readout <= 0.0 || prior.pixel <= 0.0 || model == PoseModel::GlobalShutter {
+    if readout <= 0.0 || pixel <= 0.0 || model == PoseModel::GlobalShutter {
         return None;
     }
-    let (finite, sq): (Vec<usize>, Vec<f64>) = (0..data.len())
-        .map(|i| (i, data.sampson_unweighted(model, i, r, t, e).powi(2)))
+    let (finite, sq): (Vec<usize>, Vec<f64>) = sq
+        .iter()
+        .enumerate()
         .filter(|(_, x2)| x2.is_finite())
         .unzip();
     if sq.len() < 10 {
@@ -98,7 +98,7 @@ pub(crate) fn fit_noise(
         .iter()
         .map(|&i| {
             [
-                term(prior.pixel, 0.0, 0.0, i),
+                term(pixel, 0.0, 0.0, i),
                 term(0.0, 1.0, 0.0, i),
                 term(0.0, 0.0, 1.0, i),
             ]
@@ -111,7 +111,7 @@ pub(crate) fn fit_noise(
     };
     let log_normal = |x2: f64, var: f64| -0.5 * (x2 / var + var.ln() + std::f64::consts::TAU.ln());
     let mut fit = NoiseFit {
-        gyro_noise: (prior.rate_per_row / readout).clamp(RATE_RANGE.0, RATE_RANGE.1),
+        gyro_noise: gyro_noise.clamp(RATE_RANGE.0, RATE_RANGE.1),
         truncation: 1.0,
     };
     let fit_truncation = model == PoseModel::PaperLinear;
@@ -188,23 +188,25 @@ pub(crate) fn final_inliers(
     h: &Hypothesis,
     robust: &RobustOptions,
 ) -> (Vec<bool>, Option<NoiseFit>) {
-    let pose = (&h.r, &h.t, &h.e);
     let fitted = match kind {
         ResidualKind::Sampson if robust.fit_gyro_noise => {
-            let prior = row_noise(view1, view2, robust.pixel_noise, robust.gyro_noise);
-            fit_noise(data, view1, view2, model, pose, prior)
+            // One pass over the matches: the fit and the classification share the residuals.
+            let sq: Vec<f64> = (0..data.len())
+                .map(|i| data.sampson_unweighted(model, i, &h.r, &h.t, &h.e).powi(2))
+                .collect();
+            let pixel = row_noise(view1, view2, robust.pixel_noise, 0.0).pixel;
+            fit_noise(data, (view1, view2), model, &sq, (pixel, robust.gyro_noise))
+                .map(|fit| (fit, sq))
         }
         _ => None,
     };
-    let inliers = match fitted {
-        Some(fit) => {
+    let inliers = match &fitted {
+        Some((fit, sq)) => {
             let noise = fit.row_noise(view1, view2, robust.pixel_noise);
             let px2 = noise.pixel * noise.pixel;
-            (0..data.len())
-                .map(|i| {
-                    let x = data.sampson_unweighted(model, i, &h.r, &h.t, &h.e);
-                    x * x * px2 / data.noise_variance(noise, model, i) < thr_sq
-                })
+            sq.iter()
+                .enumerate()
+                .map(|(i, x2)| x2 * px2 / data.noise_variance(noise, model, i) < thr_sq)
                 .collect()
         }
         None => (0..data.len())
@@ -214,6 +216,7 @@ pub(crate) fn final_inliers(
             })
             .collect(),
     };
+    let fitted = fitted.map(|(fit, _)| fit);
     (inliers, fitted)
 }
 
@@ -315,6 +318,18 @@ mod tests {
     use super::*;
     use crate::data::simulate::{simulate, SimulationOptions};
     use crate::model::geometry::skew;
+    use nalgebra::{Matrix3, Vector3};
+
+    /// Squared unweighted Sampson residuals of every match under `(r, t)`.
+    fn squared_residuals(data: &PointData, r: &Matrix3<f64>, t: &Vector3<f64>) -> Vec<f64> {
+        let e = skew(t) * r;
+        (0..data.len())
+            .map(|i| {
+                data.sampson_unweighted(PoseModel::ExactAngular, i, r, t, &e)
+                    .powi(2)
+            })
+            .collect()
+    }
 
     /// The fit recovers the simulator's gyro noise within a factor of two whatever the
     /// prior, with and without outliers.
@@ -335,18 +350,12 @@ mod tests {
                 let gt = pair.ground_truth.as_ref().unwrap();
                 let (r, t) = (gt.rotation_matrix(), gt.translation_vector());
                 let data = PointData::new(&v1, &v2, &pair.matches);
-                let prior = RowNoise {
-                    pixel: 1.0 / v1.camera.mean_focal(),
-                    rate_per_row: 0.1 * v1.camera.readout,
-                    truncation: 1.0,
-                };
                 let s = fit_noise(
                     &data,
-                    &v1,
-                    &v2,
+                    (&v1, &v2),
                     PoseModel::ExactAngular,
-                    (&r, &t, &(skew(&t) * r)),
-                    prior,
+                    &squared_residuals(&data, &r, &t),
+                    (1.0 / v1.camera.mean_focal(), 0.1),
                 )
                 .unwrap();
                 fitted.push(s.gyro_noise);
@@ -368,18 +377,12 @@ mod tests {
         v2.camera.readout = 0.0;
         let data = PointData::new(&v1, &v2, &pair.matches);
         let (r, t) = (Matrix3::identity(), Vector3::x());
-        let prior = RowNoise {
-            pixel: 1e-3,
-            rate_per_row: 0.0,
-            truncation: 1.0,
-        };
         let fit = fit_noise(
             &data,
-            &v1,
-            &v2,
+            (&v1, &v2),
             PoseModel::ExactAngular,
-            (&r, &t, &(skew(&t) * r)),
-            prior,
+            &squared_residuals(&data, &r, &t),
+            (1e-3, 0.1),
         );
         assert_eq!(fit, None);
     }

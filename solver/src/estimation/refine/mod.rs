@@ -39,8 +39,27 @@ pub use pose::{refine_pose, Pose, PoseProblem};
 pub(crate) mod tests {
     use super::lm::LmProblem;
     use super::Pose;
+    use crate::data::simulate::{simulate, SimulationOptions};
+    use crate::model::epipolar::PointData;
     use crate::model::geometry::exp_so3;
     use nalgebra::{Matrix3, SVector, Vector3};
+
+    /// The scene the analytic Jacobians are checked on: 40 matches at 2 rad/s, their image
+    /// height, and a start pose perturbed from the truth.
+    pub(crate) fn jacobian_scene() -> (PointData, f64, Pose) {
+        let pair = simulate(&SimulationOptions {
+            seed: 21,
+            points: 40,
+            angular_velocity: 2.0,
+            ..Default::default()
+        })
+        .unwrap();
+        let gt = pair.ground_truth.clone().unwrap();
+        let (v1, v2) = pair.views().unwrap();
+        let data = PointData::new(&v1, &v2, &pair.matches);
+        let start = perturbed(&gt.rotation_matrix(), &gt.translation_vector());
+        (data, v1.camera.height, start)
+    }
 
     pub(crate) fn perturbed(gt_r: &Matrix3<f64>, gt_t: &Vector3<f64>) -> Pose {
         Pose::new(

@@ -175,25 +175,15 @@ pub fn refine_nrsrp(
 mod tests {
     use super::*;
     use crate::data::simulate::{simulate, SimulationOptions};
-    use crate::estimation::refine::tests::{check_jacobian, perturbed};
+    use crate::estimation::refine::tests::{check_jacobian, jacobian_scene, perturbed};
     use crate::model::geometry::rotation_error_deg;
 
     #[test]
     fn nrsrp_analytic_jacobian_matches_finite_differences() {
-        let pair = simulate(&SimulationOptions {
-            seed: 21,
-            points: 40,
-            angular_velocity: 2.0,
-            ..Default::default()
-        })
-        .unwrap();
-        let gt = pair.ground_truth.clone().unwrap();
-        let (v1, v2) = pair.views().unwrap();
-        let d = PointData::new(&v1, &v2, &pair.matches);
-        let start = perturbed(&gt.rotation_matrix(), &gt.translation_vector());
+        let (d, height, start) = jacobian_scene();
         let p = NrsrpProblem {
             data: &d,
-            height: v1.camera.height,
+            height,
             cauchy_scale: 0.01,
         };
         let state = NrsrpState {

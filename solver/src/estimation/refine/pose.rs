@@ -198,23 +198,13 @@ pub fn refine_pose(
 mod tests {
     use super::*;
     use crate::data::simulate::{simulate, SimulationOptions};
-    use crate::estimation::refine::tests::{check_jacobian, perturbed};
+    use crate::estimation::refine::tests::{check_jacobian, jacobian_scene, perturbed};
     use crate::model::geometry::{rotation_error_deg, translation_error_deg};
 
     #[test]
     fn pose_analytic_jacobians_match_finite_differences() {
-        let pair = simulate(&SimulationOptions {
-            seed: 21,
-            points: 40,
-            angular_velocity: 2.0,
-            ..Default::default()
-        })
-        .unwrap();
-        let gt = pair.ground_truth.clone().unwrap();
-        let (v1, v2) = pair.views().unwrap();
-        let d = PointData::new(&v1, &v2, &pair.matches);
+        let (d, _, start) = jacobian_scene();
         let idx: Vec<usize> = (0..d.len()).collect();
-        let start = perturbed(&gt.rotation_matrix(), &gt.translation_vector());
         for model in [
             PoseModel::GlobalShutter,
             PoseModel::ExactAngular,

@@ -29,6 +29,7 @@ use crate::algebra::Monomial;
 
 mod action;
 pub mod build;
+pub mod explore;
 mod linalg;
 pub mod search;
 pub mod select;

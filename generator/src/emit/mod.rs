@@ -9,6 +9,7 @@
 //!   Gauss-Jordan, action matrix, real eigenvectors, read-out, null-vector recovery of
 //!   eliminated unknowns), built with `quote!` and formatted with `prettyplease`.
 //! - `structs`: the emitted `Data` / `Solution` structs and their slot conversions.
+//! - `tokens`: literal and doc-attribute helpers both of the above use.
 //! - `files`: header line, output path, atomic write, freshness check.
 //!
 //! All calls into `mingen_runtime` are spelled in `runtime_api` only.
@@ -22,6 +23,7 @@ mod files;
 mod runtime_api;
 mod solver;
 mod structs;
+mod tokens;
 pub mod traced;
 
 pub use coefficients::Program;

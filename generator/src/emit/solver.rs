@@ -4,6 +4,7 @@ use super::coefficients::{Expr, Program};
 use super::files::generated_header_for_path;
 use super::runtime_api as rt;
 use super::structs::{emit_data, emit_solution, field_ident, slot_access};
+use super::tokens::{doc, lit};
 use super::traced::Traced;
 use super::{EmitError, SolverSpec};
 use crate::algebra::{Monomial, MonomialOrder, Poly};
@@ -14,15 +15,6 @@ use std::collections::HashMap;
 
 /// Templates with at most this many rows are kept on the stack; larger ones use a `Vec`.
 pub const SMALL_TEMPLATE_ROWS: usize = 40;
-
-pub(super) fn lit(n: usize) -> Literal {
-    Literal::usize_unsuffixed(n)
-}
-
-pub(super) fn doc(s: impl AsRef<str>) -> TokenStream {
-    let s = format!(" {}", s.as_ref());
-    quote!(#[doc = #s])
-}
 
 /// Everything `solve` needs, validated and indexed.
 struct Plan<'a> {

@@ -2,7 +2,7 @@
 //! order shared with `solve` and `mingen::instance`, and the slot/unknown conversions.
 
 use super::runtime_api as rt;
-use super::solver::{doc, lit};
+use super::tokens::{doc, lit};
 use super::EmitError;
 use crate::problem::{DataKind, DataSymbol, ProblemLayout};
 use proc_macro2::{Ident, TokenStream};

@@ -2,7 +2,7 @@
 //! over column orders and removal orders instead of choosing one. Not a pipeline stage;
 //! `examples/explore_basis.rs` is its command line.
 
-use super::build::{candidates, Blocks, Candidate};
+use super::candidates::{candidates, Blocks, Candidate};
 use super::select::{select_basis, BasisOrder};
 use super::shrink::{shrink, shrink_ordered};
 use super::Action;

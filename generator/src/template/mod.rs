@@ -24,13 +24,28 @@
 //! least-squares combination of the ratios `v[x_i b] / v[b]` over every b in B with
 //! `x_i b` in B (`mingen_runtime::read_unknowns`; B contains 1 and every unknown for all shipped
 //! problems; the builder reports an error otherwise).
+//!
+//! ## Modules, lowest first
+//! Each uses only those before it (and the types of this file), so dependencies go one way:
+//! - `action`, `linalg`, `shape`: the action, arithmetic mod p, the emittability predicate;
+//! - `error`, `options`: [`TemplateError`] and [`TemplateOptions`], shared by all stages;
+//! - `candidates`: candidate rows, column blocks and the reducibility test;
+//! - [`shrink`]: removal of rows and columns reducibility does not need;
+//! - [`select`]: quotient bases chosen among a template's columns;
+//! - [`explore`]: size tables over orders for developers (not used by the pipeline);
+//! - [`validate`](mod@validate): the template against Gröbner normal forms on fresh instances;
+//! - [`build`]: the template of one action;
+//! - [`search`]: the search over actions and candidate degrees.
 
 use crate::algebra::Monomial;
 
 mod action;
 pub mod build;
+mod candidates;
+mod error;
 pub mod explore;
 mod linalg;
+mod options;
 pub mod search;
 pub mod select;
 mod shape;
@@ -38,11 +53,12 @@ pub mod shrink;
 pub mod validate;
 
 pub use action::Action;
+pub use candidates::ShrinkStep;
+pub use error::TemplateError;
+pub use options::{ActionChoice, TemplateOptions};
 pub use shape::ShapeError;
 
-pub use build::{
-    build_template, ActionChoice, BuiltTemplate, ShrinkStep, TemplateError, TemplateOptions,
-};
+pub use build::{build_template, BuiltTemplate};
 pub use search::{best_template, generate, Generated, PerAction};
 pub use validate::{
     check_readoff, gb_action_matrix, template_action_matrix, validate, ValidationReport,

@@ -9,13 +9,11 @@
 //! - [`generate`]`(&source, &opts)`: [`crate::quotient::analyse_within`] (count and basis,
 //!   confirmed), [`best_template`], [`super::validate::validate`]; returns a [`Generated`].
 
-use super::build::{
-    build_in_range, start_degree, ActionChoice, BuiltTemplate, DegreeSearch, TemplateError,
-    TemplateOptions,
-};
+use super::build::{build_in_range, BuiltTemplate, DegreeSearch};
+use super::candidates::start_degree;
 use super::linalg::is_squarefree;
 use super::validate::{nf_action_charpoly, validate_within, ValidationReport};
-use super::Action;
+use super::{Action, ActionChoice, TemplateError, TemplateOptions};
 use crate::algebra::{Fp, Monomial, Poly, P1};
 use crate::budget::Deadline;
 use crate::groebner::{groebner, GroebnerBasis};

@@ -2,7 +2,7 @@
 //! monomials of the Gröbner basis, choose the quotient basis B among the columns of a
 //! candidate template by Gaussian elimination with a chosen column order.
 
-use super::build::{candidates, Blocks, Candidate, ShrinkStep};
+use super::candidates::{candidates, Blocks, Candidate, ShrinkStep};
 use super::linalg::gauss_jordan;
 use super::shrink::{shrink, shrink_quick};
 use super::Action;

@@ -17,7 +17,7 @@
 //! An excess column touched by a single row forces that row out of the kernel support,
 //! so step 2 also removes every "row + private excess column" pair.
 
-use super::build::{Blocks, Candidate, ShrinkStep};
+use super::candidates::{Blocks, Candidate, ShrinkStep};
 use super::linalg::{gauss_jordan, left_kernel_support, EchelonBasis};
 use crate::algebra::MonomialOrder;
 use std::cmp::Ordering;

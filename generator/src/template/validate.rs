@@ -9,9 +9,8 @@
 //!   action matrices have the same characteristic polynomial, after [`check_readoff`]
 //!   (the basis must contain 1 and every unknown).
 
-use super::build::TemplateError;
 use super::linalg::{addmod, charpoly, gauss_jordan, mulmod, submod};
-use super::{Action, EliminationTemplate};
+use super::{Action, EliminationTemplate, TemplateError};
 use crate::algebra::{Fp, Monomial, Poly, Ring, P1, P2};
 use crate::budget::Deadline;
 use crate::groebner::{groebner_with, GroebnerBasis, GroebnerOptions};

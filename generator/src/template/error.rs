@@ -1,0 +1,88 @@
+//! The error of every template stage (search, build, validation, fill), in a module of
+//! its own so that each stage can return it without depending on another.
+
+use super::ShapeError;
+use crate::budget::Exhausted;
+use crate::groebner::GroebnerError;
+use crate::quotient::AnalysisError;
+use thiserror::Error;
+
+/// Failures of template construction and validation.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+pub enum TemplateError {
+    /// Counting solutions failed.
+    #[error(transparent)]
+    Analysis(#[from] AnalysisError),
+    /// A Gröbner basis computation failed (during validation).
+    #[error(transparent)]
+    Groebner(#[from] GroebnerError),
+    /// No candidate set up to the degree bound makes every reducible monomial reducible.
+    #[error(
+        "reducible monomials still not reducible with all multiples up to degree {max_degree}{}",
+        .exhausted.map(|e| format!(" ({e})")).unwrap_or_default()
+    )]
+    NotReducible {
+        /// The action (rendered).
+        action: String,
+        /// The largest total degree tried.
+        max_degree: u32,
+        /// The budget that stopped the search, if one did (otherwise the degree bound of
+        /// the options did).
+        exhausted: Option<Exhausted>,
+    },
+    /// The quotient basis lacks 1 or an unknown: solutions cannot be read off eigenvectors.
+    #[error("the quotient basis does not contain {missing}: solutions cannot be read off the eigenvectors")]
+    BasisLacks {
+        /// Rendered missing monomials (e.g. `1`, `t3`).
+        missing: String,
+    },
+    /// An instance has a monomial the template has no column for.
+    #[error("instance equation {equation} times {multiplier} has monomial {monomial}, which is not a template column")]
+    MissingColumn {
+        /// Equation index.
+        equation: usize,
+        /// Rendered multiplier.
+        multiplier: String,
+        /// Rendered monomial.
+        monomial: String,
+    },
+    /// On some validation instance, a reducible column is not a pivot column.
+    #[error("validation instance {instance}: reducible monomial {monomial} is not reducible by the template")]
+    Singular {
+        /// Instance number.
+        instance: usize,
+        /// Rendered monomial.
+        monomial: String,
+    },
+    /// Template and Gröbner action matrices disagree.
+    #[error("validation instance {instance}: characteristic polynomials of the template and Gröbner action matrices differ")]
+    CharpolyMismatch {
+        /// Instance number.
+        instance: usize,
+    },
+    /// No action variable was given or none works.
+    #[error("no usable action variable: {0}")]
+    NoAction(String),
+    /// The template cannot be solved by elimination and eigenvectors.
+    #[error(transparent)]
+    Shape(#[from] ShapeError),
+    /// The solutions were counted, but no solver could be made: the count is kept so
+    /// that every report can still state it.
+    #[error("{count} solutions, but no template: {source}")]
+    Counted {
+        /// The number of solutions (confirmed on two primes).
+        count: usize,
+        /// Why no template was found or accepted.
+        source: Box<TemplateError>,
+    },
+}
+
+impl TemplateError {
+    /// The number of solutions, if it was found before the failure.
+    pub fn solution_count(&self) -> Option<usize> {
+        match self {
+            TemplateError::Counted { count, .. } => Some(*count),
+            _ => None,
+        }
+    }
+}

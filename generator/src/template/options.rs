@@ -1,0 +1,79 @@
+//! The options of the template search, read by every stage of it.
+
+use crate::budget::Budget;
+use crate::problem::ProblemOptions;
+
+/// Options of template construction.
+#[derive(Clone, Debug)]
+pub struct TemplateOptions {
+    /// How many degrees above the largest of the equations and the reducible monomials
+    /// every action is tried at first (4 by default).
+    pub max_extra_degree: u32,
+    /// When no action works within `max_extra_degree`, raise the candidate degree further
+    /// until one does or the budget runs out (on by default; off means `max_extra_degree`
+    /// is a hard bound).
+    pub adaptive_degree: bool,
+    /// Time and memory budget of the whole algebra (count, templates, validation).
+    pub budget: Budget,
+    /// Which actions to try.
+    pub actions: ActionChoice,
+    /// Prefer actions whose action matrix has distinct eigenvalues (a squarefree
+    /// characteristic polynomial on the build instance), since the solutions are read off
+    /// its eigenvectors. On by default.
+    pub require_distinct_eigenvalues: bool,
+    /// Number of fresh instances [`super::generate`] validates the chosen template on.
+    pub validate_instances: usize,
+    /// How many exponent caps below the degree to try as extra candidate families
+    /// (products with every exponent `<= d - 1, d - 2, ...`); 0 by default (no gain seen
+    /// on the shipped problems).
+    pub exponent_caps: usize,
+    /// Also choose the quotient basis among the template's columns (see
+    /// [`super::select`]): for each of a few column orders (grevlex under the variable
+    /// permutations of [`super::select::basis_orders`]), the basis B is read off a Gaussian
+    /// elimination of all multiples up to a low degree, and the smallest template over the
+    /// standard basis and these bases is kept (ties to the standard basis). On by default.
+    pub basis_selection: bool,
+    /// Seed of all random choices (instances).
+    pub seed: u64,
+    /// Options that override those of the problem file (`option NAME = VALUE`) when the
+    /// pipeline applies them (`crate::pipeline::plan`); set by the command line.
+    pub overrides: ProblemOptions,
+    /// Number of hidden variables (the last ones, from `nonzero`), which the template need
+    /// not read off; [`super::generate`] fills it from its source.
+    pub hidden_vars: usize,
+    /// Names of the unknowns, in variable order, for messages; empty renders them as
+    /// `x0, x1, ...`. [`super::generate`] fills them from its source.
+    pub var_names: Vec<String>,
+}
+
+impl Default for TemplateOptions {
+    fn default() -> Self {
+        TemplateOptions {
+            max_extra_degree: 4,
+            adaptive_degree: true,
+            budget: Budget::default(),
+            actions: ActionChoice::Auto,
+            require_distinct_eigenvalues: true,
+            validate_instances: 10,
+            exponent_caps: 0,
+            basis_selection: true,
+            seed: 2024,
+            hidden_vars: 0,
+            overrides: ProblemOptions::default(),
+            var_names: Vec::new(),
+        }
+    }
+}
+
+/// Which actions the template search tries.
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub enum ActionChoice {
+    /// Every unknown; when none gives a template whose action matrix has distinct
+    /// eigenvalues, also a random linear combination of the unknowns ([`super::Action::random`]).
+    #[default]
+    Auto,
+    /// These unknowns (variable indices) only.
+    Unknowns(Vec<usize>),
+    /// A random linear combination of the unknowns only.
+    Random,
+}

@@ -27,7 +27,8 @@
 //! reruns when a problem file changes and not otherwise.
 
 use crate::emit::{is_fresh, write_atomic};
-use crate::generate::{emit_plan_from, plan_file, GenerateError};
+use crate::generate::GenerateError;
+use crate::pipeline::{emit_plan_from, plan_file};
 use crate::template::TemplateOptions;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -162,7 +163,7 @@ impl Config {
                 file: file.clone(),
                 source,
             };
-            let plan = plan_file(file, &self.options).map_err(generate)?;
+            let plan = plan_file(file, &self.options).map_err(|e| generate(e.into()))?;
             let name = plan.problem.layout.name.clone();
             if let Some(first) = seen.insert(name.clone(), file.clone()) {
                 return Err(BuildError::DuplicateName {
@@ -171,7 +172,8 @@ impl Config {
                     second: file.clone(),
                 });
             }
-            let source = emit_plan_from(&plan, &file.display().to_string()).map_err(generate)?;
+            let source = emit_plan_from(&plan, &file.display().to_string())
+                .map_err(|e| generate(e.into()))?;
             let path = out_dir.join(format!("{name}.rs"));
             let io = |source| BuildError::Io {
                 path: path.clone(),

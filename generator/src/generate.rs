@@ -5,11 +5,8 @@
 //! problem files (fixed seeds, ordered maps), so regenerating and comparing byte for byte
 //! tells whether the checked-in solvers are stale.
 
-use crate::emit::{
-    emit_solver, generated_path, is_fresh, write_atomic, EliminationSpec, EmitError, SolverSpec,
-    Tracer,
-};
-use crate::pipeline::{plan, PipelineError, SolverPlan};
+use crate::emit::{generated_path, is_fresh, write_atomic};
+use crate::pipeline::{emit_plan, emit_plan_from, plan_file, PipelineError};
 use crate::template::TemplateOptions;
 use crate::{Problem, ProblemError};
 use std::path::{Path, PathBuf};
@@ -21,17 +18,10 @@ pub enum GenerateError {
     /// The problem file could not be read or parsed.
     #[error(transparent)]
     Problem(#[from] ProblemError),
-    /// The algebra failed (elimination, Gröbner basis, template).
+    /// Planning or emitting failed (problem file, elimination, Gröbner basis, template,
+    /// emission).
     #[error(transparent)]
     Pipeline(#[from] PipelineError),
-    /// The solver could not be emitted.
-    #[error("{file}: {source}")]
-    Emit {
-        /// The problem file.
-        file: String,
-        /// What went wrong.
-        source: EmitError,
-    },
     /// Reading or writing a generated file failed.
     #[error("{path}: {source}")]
     Io {
@@ -76,44 +66,6 @@ pub fn problem_files(root: &Path) -> Result<Vec<PathBuf>, GenerateError> {
         .collect();
     files.sort();
     Ok(files)
-}
-
-/// Parses and plans one problem file (the algebra of `inspect` and `generate`).
-pub fn plan_file(path: &Path, options: &TemplateOptions) -> Result<SolverPlan, GenerateError> {
-    let problem = Problem::from_file(path)?;
-    Ok(plan(problem, &path.display().to_string(), options)?)
-}
-
-/// Emits the solver source of a planned problem, as checked in under
-/// `solver/src/generated/` (header naming `templates/<name>.mp`).
-pub fn emit_plan(plan: &SolverPlan) -> Result<String, GenerateError> {
-    emit_plan_from(plan, &format!("templates/{}.mp", plan.problem.layout.name))
-}
-
-/// Emits the solver source of a planned problem, its header naming the problem file
-/// `problem_path`. The source is a self-contained module body for any crate that depends
-/// on `mingen-runtime`: it names no `crate::` path and has no inner attributes, so it can
-/// be a module file (`mod name;`) or `include!`d into `mod name { ... }`.
-pub fn emit_plan_from(plan: &SolverPlan, problem_path: &str) -> Result<String, GenerateError> {
-    let layout = &plan.problem.layout;
-    let tracer = Tracer::new();
-    let data = tracer.inputs(layout.data_slot_count());
-    let (equations, elimination) = plan.equations(&data);
-    let spec = SolverSpec {
-        layout: layout.clone(),
-        template: plan.generated.built.template.clone(),
-        equations,
-        problem_path: problem_path.to_string(),
-        elimination: elimination.map(|e| EliminationSpec {
-            eliminated: e.eliminated,
-            remaining: e.remaining,
-            coefficient_matrix: e.coefficient_matrix,
-        }),
-    };
-    emit_solver(&spec).map_err(|source| GenerateError::Emit {
-        file: plan.file.clone(),
-        source,
-    })
 }
 
 /// Plans and emits one problem file into `out` (any path, e.g. a module of another crate);

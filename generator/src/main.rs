@@ -3,7 +3,8 @@
 
 use clap::{Parser, Subcommand};
 use mingen::algebra::MonomialOrder;
-use mingen::generate::{plan_file, problem_files, workspace_root, GenerateError};
+use mingen::generate::{problem_files, workspace_root, GenerateError};
+use mingen::pipeline::{plan_file, PipelineError};
 use mingen::template::TemplateOptions;
 use mingen::{Problem, ProblemError};
 use serde_json::{json, Map, Value};
@@ -148,6 +149,15 @@ struct CliError {
 
 impl From<GenerateError> for CliError {
     fn from(e: GenerateError) -> Self {
+        CliError {
+            message: e.to_string(),
+            code: 2,
+        }
+    }
+}
+
+impl From<PipelineError> for CliError {
+    fn from(e: PipelineError) -> Self {
         CliError {
             message: e.to_string(),
             code: 2,

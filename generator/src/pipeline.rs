@@ -1,25 +1,41 @@
-//! The generator pipeline for one problem, end to end:
-//! parsed [`Problem`] -> (linear elimination) -> random instances mod p -> Gröbner basis,
-//! solution count and quotient basis -> best elimination template -> validation.
+//! The generator pipeline for one problem, end to end, and the one place that runs its
+//! stages in order:
 //!
-//! [`plan`] runs the algebra once; the resulting [`SolverPlan`] then serves `inspect`
-//! (sizes, basis, timings), the interpreter and audit (f64 instances), and the emitter
-//! (traced instances): all of them obtain the template's equations through
-//! [`SolverPlan::equations`], so every consumer sees the same elimination.
+//! 1. [`plan_file`]: problem file -> [`Problem`] (lexer, parser, checker, expansion);
+//! 2. [`plan`]: options resolved, the linear elimination checked, then [`find_template`]:
+//!    random instances mod p -> Gröbner basis, solution count and quotient basis
+//!    ([`analyse_within`]) -> best elimination template on that same instance and Gröbner
+//!    basis ([`best_template`](crate::template::best_template)) -> validation on fresh
+//!    instances;
+//! 3. [`emit_plan_from`]: traced instance -> Rust source of the solver.
+//!
+//! The resulting [`SolverPlan`] also serves `inspect` (sizes, basis, timings), the
+//! interpreter and audit (f64 instances): all of them obtain the template's equations
+//! through [`SolverPlan::equations`], so every consumer sees the same elimination. Writing
+//! files is `crate::generate`'s and `crate::build`'s.
 
-use crate::algebra::{Fp, Poly, Ring};
+use crate::algebra::{Fp, Monomial, Poly, Ring};
 use crate::eliminate::{eliminate_linear, EliminateError, Eliminated};
+use crate::emit::{emit_solver, EliminationSpec, EmitError, SolverSpec, Tracer};
 use crate::instance::random_data_fp;
-use crate::quotient::{InstanceRng, InstanceSource};
-use crate::template::{generate, ActionChoice, Generated, TemplateError, TemplateOptions};
-use crate::Problem;
+use crate::quotient::{analyse_within, InstanceRng, InstanceSource};
+use crate::template::search::best_template_within;
+use crate::template::validate::validate_within;
+use crate::template::{
+    Action, ActionChoice, BuiltTemplate, TemplateError, TemplateOptions, ValidationReport,
+};
+use crate::{Problem, ProblemError};
 use serde_json::{json, Value};
+use std::path::Path;
 use std::time::Instant;
 use thiserror::Error;
 
 /// Why a problem cannot be turned into a solver.
 #[derive(Debug, Error)]
 pub enum PipelineError {
+    /// The problem file could not be read or parsed.
+    #[error(transparent)]
+    Problem(#[from] ProblemError),
     /// `eliminate` could not be carried out.
     #[error("{file}: eliminate {names}: {source}")]
     Eliminate {
@@ -47,6 +63,14 @@ pub enum PipelineError {
         /// What went wrong.
         source: TemplateError,
     },
+    /// The solver could not be emitted.
+    #[error("{file}: {source}")]
+    Emit {
+        /// The problem file.
+        file: String,
+        /// What went wrong.
+        source: EmitError,
+    },
 }
 
 impl PipelineError {
@@ -54,7 +78,10 @@ impl PipelineError {
     pub fn solution_count(&self) -> Option<usize> {
         match self {
             PipelineError::Template { source, .. } => source.solution_count(),
-            PipelineError::Eliminate { .. } | PipelineError::Option { .. } => None,
+            PipelineError::Problem(_)
+            | PipelineError::Eliminate { .. }
+            | PipelineError::Option { .. }
+            | PipelineError::Emit { .. } => None,
         }
     }
 }
@@ -155,6 +182,12 @@ pub fn resolve_options(problem: &Problem, options: &TemplateOptions) -> Template
     out
 }
 
+/// Parses and plans one problem file (the algebra of `inspect` and `generate`).
+pub fn plan_file(path: &Path, options: &TemplateOptions) -> Result<SolverPlan, PipelineError> {
+    let problem = Problem::from_file(path)?;
+    plan(problem, &path.display().to_string(), options)
+}
+
 /// Runs the algebra pipeline on `problem` (see the module documentation), with the
 /// options of [`resolve_options`].
 pub fn plan(
@@ -196,7 +229,7 @@ pub fn plan(
             });
         }
     }
-    let generated = generate(&ProblemSource::new(&problem), options).map_err(|source| {
+    let generated = find_template(&ProblemSource::new(&problem), options).map_err(|source| {
         PipelineError::Template {
             file: file.to_string(),
             source,
@@ -255,4 +288,115 @@ impl SolverPlan {
             })).collect::<Vec<_>>(),
         })
     }
+}
+
+/// Everything the algebra core produces for one problem.
+#[derive(Clone, Debug)]
+pub struct Generated {
+    /// Number of solutions.
+    pub count: usize,
+    /// Standard monomials of the Gröbner basis (descending grevlex). The template's own
+    /// basis, `built.template.basis`, may differ (basis selection): emitters and `inspect`
+    /// must use the template's.
+    pub basis: Vec<Monomial>,
+    /// The chosen template with its shrink history.
+    pub built: BuiltTemplate,
+    /// For each action tried: `(action, Some((rows, cols)) or None on failure)`.
+    pub per_action: Vec<(Action, Option<(usize, usize)>)>,
+    /// Validation on fresh instances (`None` if `opts.validate_instances == 0`).
+    pub validation: Option<ValidationReport>,
+    /// Wall-clock seconds: analysis (Gröbner bases), template search, validation.
+    pub seconds: (f64, f64, f64),
+}
+
+/// The algebra of a problem given as an [`InstanceSource`]: count and basis (confirmed
+/// across instances and primes), the best template over the action variables
+/// ([`best_template`](crate::template::best_template), on the analysed instance mod P1
+/// and its Gröbner basis), and validation against Gröbner normal forms on
+/// `opts.validate_instances` fresh instances; all within `opts.budget`.
+pub fn find_template<S: InstanceSource>(
+    src: &S,
+    opts: &TemplateOptions,
+) -> Result<Generated, TemplateError> {
+    let deadline = opts.budget.start();
+    let t0 = Instant::now();
+    let analysis = analyse_within(src, opts.seed, Some(deadline))?;
+    let t1 = Instant::now();
+    let opts = &TemplateOptions {
+        var_names: src.var_names(),
+        hidden_vars: src.hidden_vars(),
+        ..opts.clone()
+    };
+    let counted = |source: TemplateError| TemplateError::Counted {
+        count: analysis.count,
+        source: Box::new(source),
+    };
+    let (built, all) = best_template_within(&analysis, opts, &deadline).map_err(counted)?;
+    built
+        .template
+        .check_emittable(&opts.var_names)
+        .map_err(|e| counted(e.into()))?;
+    let t2 = Instant::now();
+    let validation = if opts.validate_instances > 0 {
+        Some(
+            validate_within(
+                &built.template,
+                src,
+                opts.validate_instances,
+                opts.seed ^ 0x7A11_DA7E,
+                Some(&deadline),
+            )
+            .map_err(counted)?,
+        )
+    } else {
+        None
+    };
+    let t3 = Instant::now();
+    Ok(Generated {
+        count: analysis.count,
+        basis: analysis.basis,
+        built,
+        per_action: all
+            .into_iter()
+            .map(|(v, r)| (v, r.ok().map(|b| b.template.eliminated_size())))
+            .collect(),
+        validation,
+        seconds: (
+            (t1 - t0).as_secs_f64(),
+            (t2 - t1).as_secs_f64(),
+            (t3 - t2).as_secs_f64(),
+        ),
+    })
+}
+
+/// Emits the solver source of a planned problem, as checked in under
+/// `solver/src/generated/` (header naming `templates/<name>.mp`).
+pub fn emit_plan(plan: &SolverPlan) -> Result<String, PipelineError> {
+    emit_plan_from(plan, &format!("templates/{}.mp", plan.problem.layout.name))
+}
+
+/// Emits the solver source of a planned problem, its header naming the problem file
+/// `problem_path`. The source is a self-contained module body for any crate that depends
+/// on `mingen-runtime`: it names no `crate::` path and has no inner attributes, so it can
+/// be a module file (`mod name;`) or `include!`d into `mod name { ... }`.
+pub fn emit_plan_from(plan: &SolverPlan, problem_path: &str) -> Result<String, PipelineError> {
+    let layout = &plan.problem.layout;
+    let tracer = Tracer::new();
+    let data = tracer.inputs(layout.data_slot_count());
+    let (equations, elimination) = plan.equations(&data);
+    let spec = SolverSpec {
+        layout: layout.clone(),
+        template: plan.generated.built.template.clone(),
+        equations,
+        problem_path: problem_path.to_string(),
+        elimination: elimination.map(|e| EliminationSpec {
+            eliminated: e.eliminated,
+            remaining: e.remaining,
+            coefficient_matrix: e.coefficient_matrix,
+        }),
+    };
+    emit_solver(&spec).map_err(|source| PipelineError::Emit {
+        file: plan.file.clone(),
+        source,
+    })
 }

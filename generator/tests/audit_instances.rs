@@ -3,9 +3,9 @@
 //! malformed lines are rejected naming the line and the column count.
 
 use mingen::audit::audit_plan_on;
-use mingen::generate::plan_file;
 use mingen::instance::random_data_f64;
 use mingen::instances_file::format_instances;
+use mingen::pipeline::plan_file;
 use mingen::template::TemplateOptions;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;

@@ -4,13 +4,14 @@ mod common;
 
 use common::Fixture;
 use mingen::groebner::GroebnerError;
+use mingen::pipeline::{find_template, Generated};
 use mingen::quotient::{analyse, AnalysisError};
-use mingen::template::{best_template, generate, validate, Generated, TemplateOptions};
+use mingen::template::{best_template, validate, TemplateOptions};
 use std::time::Instant;
 
 fn run(f: Fixture, opts: &TemplateOptions) -> Generated {
     let t = Instant::now();
-    let g = generate(&f, opts).unwrap_or_else(|e| panic!("{f:?}: {e}"));
+    let g = find_template(&f, opts).unwrap_or_else(|e| panic!("{f:?}: {e}"));
     let (r, c) = g.built.template.size();
     println!(
         "{f:?}: {} solutions, template {r}x{c} (action {:?}), per action {:?}; \
@@ -103,8 +104,8 @@ fn same_seed_same_template() {
             validate_instances: 0,
             ..TemplateOptions::default()
         };
-        let a = generate(&f, &opts).unwrap();
-        let b = generate(&f, &opts).unwrap();
+        let a = find_template(&f, &opts).unwrap();
+        let b = find_template(&f, &opts).unwrap();
         assert_eq!(a.built.template, b.built.template, "{f:?}");
         assert_eq!(a.built.history, b.built.history, "{f:?}");
         assert_eq!(a.basis, b.basis);
@@ -115,7 +116,7 @@ fn same_seed_same_template() {
 fn templates_from_another_seed_validate_too() {
     // Template built from one instance, checked on instances of another seed family.
     let a = analyse(&Fixture::Grsrp10, 99).unwrap();
-    let (b, _) = best_template(&a.equations, &a.basis, &TemplateOptions::default()).unwrap();
+    let (b, _) = best_template(&a, &TemplateOptions::default()).unwrap();
     validate(&b.template, &Fixture::Grsrp10, 20, 12345).unwrap();
 }
 

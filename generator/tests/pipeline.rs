@@ -1,8 +1,7 @@
 //! The pipeline on problem files: counts and template sizes of the shipped problems,
 //! degenerate systems with clear errors, and deterministic `inspect --json`.
 
-use mingen::generate::plan_file;
-use mingen::pipeline::plan;
+use mingen::pipeline::{plan, plan_file};
 use mingen::template::TemplateOptions;
 use mingen::Problem;
 use std::path::{Path, PathBuf};

@@ -39,7 +39,7 @@ fn nonzero_removes_the_component_and_is_never_returned() {
     );
     assert!(a.median_log10_residual < -9.0, "{a}");
     // The emitted solution type has the declared unknowns only (q and t).
-    let out = mingen::generate::emit_plan_from(&p, "t.mp").unwrap();
+    let out = mingen::pipeline::emit_plan_from(&p, "t.mp").unwrap();
     assert!(
         out.contains("pub const UNKNOWNS: usize = 6;"),
         "hidden unknown leaked into the solution type"

@@ -18,9 +18,9 @@ mod common;
 
 use common::{assert_all_emitted_listed, emitted, problem_file, Emitted};
 use mingen::algebra::Poly;
-use mingen::generate::plan_file;
 use mingen::instance::random_data_f64;
 use mingen::interpret::{normalized_residual, recover_eliminated, solve_template_real};
+use mingen::pipeline::plan_file;
 use mingen::pipeline::SolverPlan;
 use mingen::template::TemplateOptions;
 use rand::SeedableRng;

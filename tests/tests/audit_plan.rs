@@ -4,7 +4,7 @@ mod common;
 
 use common::problem_file;
 use mingen::audit::{audit_plan, AuditOptions};
-use mingen::generate::plan_file;
+use mingen::pipeline::plan_file;
 use mingen::template::TemplateOptions;
 
 fn audit(name: &str, instances: usize) -> mingen::audit::AuditReport {

@@ -3,24 +3,17 @@
 //! selected among the template's columns ([`super::select`]), and the final ordering of
 //! rows and columns into an [`EliminationTemplate`].
 //!
-//! ## Public API
-//! - [`build_template`]`(&equations, &basis, action_var, &opts)`: the shrunk template for
-//!   one action variable, from the equations of one random instance mod P.
-//!   Besides the given (standard-monomial) basis it tries bases selected among the
-//!   template's columns (`opts.basis_selection`) and keeps the smallest.
-//! - [`EliminationTemplate::fill`]: the template matrix of an instance, over any ring.
-//!
-//! The search over actions and degrees that calls this is [`super::search`].
+//! Public: [`BuiltTemplate`], and [`EliminationTemplate::fill`], the template matrix of an
+//! instance over any ring. The search over actions and degrees that builds templates is
+//! [`super::search`].
 
-use super::candidates::{candidate_bytes, candidates, start_degree, Blocks, Candidate, ShrinkStep};
-use super::linalg::{gauss_jordan, is_squarefree};
+use super::candidates::{candidate_bytes, candidates, Blocks, Candidate, ShrinkStep};
+use super::linalg::gauss_jordan;
 use super::select::{self, SelectedTemplate};
 use super::shrink::shrink;
-use super::validate::nf_action_charpoly;
 use super::{Action, EliminationTemplate, TemplateError, TemplateOptions};
 use crate::algebra::{Fp, Monomial, MonomialOrder, Poly, Ring};
 use crate::budget::Deadline;
-use crate::groebner::groebner;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// A template with how it was obtained.
@@ -37,37 +30,7 @@ pub struct BuiltTemplate {
     pub basis_choice: String,
 }
 
-/// The shrunk elimination template for action variable `action_var` from the equations of
-/// one random instance mod P and the quotient basis `basis` (descending grevlex, as from
-/// [`crate::quotient::standard_monomials`]).
-///
-/// Candidate rows are all multiples of the equations up to total degree `d`, for `d` from
-/// the largest degree among the equations and the reducible monomials upward (at most
-/// `opts.max_extra_degree` more), until every reducible monomial is reducible; then
-/// Shrinking (`shrink.rs`) removes rows and columns. Deterministic. (The adaptive search
-/// beyond `opts.max_extra_degree` is [`super::best_template`]'s.)
-pub fn build_template<const P: u32>(
-    eqs: &[Poly<Fp<P>>],
-    basis: &[Monomial],
-    action_var: usize,
-    opts: &TemplateOptions,
-) -> Result<BuiltTemplate, TemplateError> {
-    let nvars = basis.first().map(|b| b.nvars()).unwrap_or(0);
-    let action = Action::var(nvars, action_var);
-    let d0 = start_degree(eqs, basis, &action);
-    let distinct = match groebner(nvars, eqs) {
-        Ok(gb) => is_squarefree::<P>(&nf_action_charpoly::<P>(&gb, basis, &action)),
-        Err(_) => false,
-    };
-    let search = DegreeSearch {
-        degrees: d0..=d0 + opts.max_extra_degree,
-        basis_selection: opts.basis_selection,
-        deadline: None,
-    };
-    build_in_range::<P>(eqs, basis, &action, &search, distinct, opts)
-}
-
-/// The candidate degrees [`build_in_range`] tries, and its limits.
+/// The candidate degrees [`build_template`] tries, and its limits.
 pub(crate) struct DegreeSearch<'a> {
     /// Candidate degrees, tried in increasing order until one reduces.
     pub(crate) degrees: std::ops::RangeInclusive<u32>,
@@ -77,9 +40,16 @@ pub(crate) struct DegreeSearch<'a> {
     pub(crate) deadline: Option<&'a Deadline>,
 }
 
-/// [`build_template`] for the candidate degrees of `search`, with the distinct-eigenvalue
-/// flag computed by the caller.
-pub(crate) fn build_in_range<const P: u32>(
+/// The shrunk elimination template for `action` from the equations of one random instance
+/// mod P and the quotient basis `basis` (descending grevlex, as from
+/// [`crate::quotient::standard_monomials`]), with the distinct-eigenvalue flag computed by
+/// the caller.
+///
+/// Candidate rows are all multiples of the equations up to total degree `d`, for `d` in
+/// `search.degrees` in increasing order, until every reducible monomial is reducible; then
+/// shrinking removes rows and columns, and with `search.basis_selection` a selected basis
+/// replaces the standard one when its template is smaller. Deterministic.
+pub(crate) fn build_template<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     basis: &[Monomial],
     action: &Action,

@@ -58,8 +58,8 @@ pub use error::TemplateError;
 pub use options::{ActionChoice, TemplateOptions};
 pub use shape::ShapeError;
 
-pub use build::{build_template, BuiltTemplate};
-pub use search::{best_template, generate, Generated, PerAction};
+pub use build::BuiltTemplate;
+pub use search::{best_template, PerAction};
 pub use validate::{
     check_readoff, gb_action_matrix, template_action_matrix, validate, ValidationReport,
 };

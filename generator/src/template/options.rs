@@ -21,7 +21,8 @@ pub struct TemplateOptions {
     /// characteristic polynomial on the build instance), since the solutions are read off
     /// its eigenvectors. On by default.
     pub require_distinct_eigenvalues: bool,
-    /// Number of fresh instances [`super::generate`] validates the chosen template on.
+    /// Number of fresh instances [`crate::pipeline::find_template`] validates the chosen
+    /// template on.
     pub validate_instances: usize,
     /// How many exponent caps below the degree to try as extra candidate families
     /// (products with every exponent `<= d - 1, d - 2, ...`); 0 by default (no gain seen
@@ -39,10 +40,10 @@ pub struct TemplateOptions {
     /// pipeline applies them (`crate::pipeline::plan`); set by the command line.
     pub overrides: ProblemOptions,
     /// Number of hidden variables (the last ones, from `nonzero`), which the template need
-    /// not read off; [`super::generate`] fills it from its source.
+    /// not read off; [`crate::pipeline::find_template`] fills it from its source.
     pub hidden_vars: usize,
     /// Names of the unknowns, in variable order, for messages; empty renders them as
-    /// `x0, x1, ...`. [`super::generate`] fills them from its source.
+    /// `x0, x1, ...`. [`crate::pipeline::find_template`] fills them from its source.
     pub var_names: Vec<String>,
 }
 

@@ -2,8 +2,9 @@
 //!
 //! Pipeline (one module per stage, in order):
 //! `problem file -> lang (parse, check) -> expand -> eliminate -> instance (Z_p / f64 data)
-//!  -> groebner -> quotient (basis, #solutions) -> template (build, shrink) -> emit`,
-//! with `interpret` + `audit` solving the same template in f64 without compilation.
+//!  -> groebner -> quotient (basis, #solutions) -> template (search, build, shrink,
+//!  validate) -> emit`, with `interpret` + `audit` solving the same template in f64 without
+//! compilation. [`pipeline`] is the one module that runs the stages in that order.
 //!
 //! [`build`] is the build-script API (problem files to solvers in `$OUT_DIR`); the emitted
 //! code depends on the `mingen-runtime` crate only.

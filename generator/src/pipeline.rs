@@ -7,13 +7,16 @@
 //! (traced instances): all of them obtain the template's equations through
 //! [`SolverPlan::equations`], so every consumer sees the same elimination.
 
-use crate::algebra::{Fp, Poly, Ring};
+use crate::algebra::{Fp, Monomial, Poly, Ring};
 use crate::eliminate::{eliminate_linear, EliminateError, Eliminated};
 use crate::instance::random_data_fp;
 use crate::quotient::{InstanceRng, InstanceSource};
-use crate::template::{generate, ActionChoice, Generated, TemplateError, TemplateOptions};
+use crate::template::{
+    generate, order_for_sparse_elimination, ActionChoice, Generated, TemplateError, TemplateOptions,
+};
 use crate::Problem;
 use serde_json::{json, Value};
+use std::collections::HashSet;
 use std::time::Instant;
 use thiserror::Error;
 
@@ -196,18 +199,38 @@ pub fn plan(
             });
         }
     }
-    let generated = generate(&ProblemSource::new(&problem), options).map_err(|source| {
+    let mut generated = generate(&ProblemSource::new(&problem), options).map_err(|source| {
         PipelineError::Template {
             file: file.to_string(),
             source,
         }
     })?;
+    let supports = equation_supports(&problem, options.seed);
+    order_for_sparse_elimination(&mut generated.built.template, &supports);
     Ok(SolverPlan {
         problem,
         file: file.to_string(),
         generated,
         seconds: start.elapsed().as_secs_f64(),
     })
+}
+
+/// The monomials of each template equation for generic data: the union over two random
+/// instances mod p (a coefficient vanishes by chance in both with probability about 1/p²).
+fn equation_supports(problem: &Problem, seed: u64) -> Vec<Vec<Monomial>> {
+    let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(seed ^ 0x5eed);
+    let mut sets: Vec<HashSet<Monomial>> = Vec::new();
+    for _ in 0..2 {
+        let data = random_data_fp::<{ crate::algebra::P1 }>(&problem.layout, &mut rng);
+        let Ok((equations, _)) = system(problem, &data) else {
+            continue;
+        };
+        sets.resize_with(equations.len(), HashSet::new);
+        for (set, e) in sets.iter_mut().zip(&equations) {
+            set.extend(e.terms().map(|(m, _)| m.clone()));
+        }
+    }
+    sets.into_iter().map(|s| s.into_iter().collect()).collect()
 }
 
 impl SolverPlan {

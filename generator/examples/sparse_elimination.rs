@@ -31,7 +31,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let t = &plan.generated.built.template;
         let (rows, cols) = t.eliminated_size();
         let Some(sparse) = &t.sparse else {
-            println!("{} | {rows} x {cols} | dense (no sparse plan)", file.display());
+            println!(
+                "{} | {rows} x {cols} | dense (no sparse plan)",
+                file.display()
+            );
             continue;
         };
         let lu_plan = sparse.as_plan(t);

@@ -17,7 +17,10 @@ fn template_path(name: &str) -> std::path::PathBuf {
 fn sparse_plan_matches_the_dense_lu() {
     let plan = plan_file(&template_path("grsrp_gravity"), &TemplateOptions::default()).unwrap();
     let t = &plan.generated.built.template;
-    let e = t.sparse.as_ref().expect("a 90 x 102 template gets a sparse plan");
+    let e = t
+        .sparse
+        .as_ref()
+        .expect("a 90 x 102 template gets a sparse plan");
     assert!(e.sparse_updates < e.dense_updates);
     let lu = e.as_plan(t);
     let (rows, cols) = t.eliminated_size();
@@ -40,7 +43,9 @@ fn sparse_plan_matches_the_dense_lu() {
         compared += 1;
         for r in first..pivots {
             let row = r * cols..(r + 1) * cols;
-            let scale = dense[row.clone()].iter().fold(1.0f64, |a, x| a.max(x.abs()));
+            let scale = dense[row.clone()]
+                .iter()
+                .fold(1.0f64, |a, x| a.max(x.abs()));
             for (a, b) in sparse[row.clone()].iter().zip(&dense[row.clone()]) {
                 assert!((a - b).abs() <= 1e-12 * scale, "row {r}: {a} vs {b}");
             }

@@ -331,9 +331,7 @@ mod tests {
         m[5] = f64::NAN;
         assert!(!lu_solve_template_sparse(&mut m, &p));
         let mut m = orig.clone();
-        for c in 0..cols {
-            m[c] = 0.0;
-        }
+        m[..cols].fill(0.0);
         assert!(!lu_solve_template_sparse(&mut m, &p));
         let bad = SparseLuPlan {
             pattern_start: &owned.0[1..],

@@ -554,8 +554,16 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         Some(e) => {
             let ty = rt::sparse_lu_plan();
             let lu = rt::lu_solve_template_sparse();
-            let u32s = |v: &[u32]| v.iter().map(|&x| Literal::u32_unsuffixed(x)).collect::<Vec<_>>();
-            let u16s = |v: &[u16]| v.iter().map(|&x| Literal::u16_unsuffixed(x)).collect::<Vec<_>>();
+            let u32s = |v: &[u32]| {
+                v.iter()
+                    .map(|&x| Literal::u32_unsuffixed(x))
+                    .collect::<Vec<_>>()
+            };
+            let u16s = |v: &[u16]| {
+                v.iter()
+                    .map(|&x| Literal::u16_unsuffixed(x))
+                    .collect::<Vec<_>>()
+            };
             let (ps, p, ts, tg) = (
                 u32s(&e.pattern_start),
                 u16s(&e.pattern),

@@ -145,7 +145,12 @@ const COST_CANDIDATES: usize = 32;
 /// step the column whose elimination costs the least multiply-adds under the union rule
 /// (`(candidates - 1) * (union pattern - 1)`), its row the candidate with the fewest
 /// non-zeros. `None` if some column has no candidate row (structurally singular).
-fn markowitz(mut bits: Bits, rows: usize, first: usize, pivots: usize) -> Option<Vec<(usize, usize)>> {
+fn markowitz(
+    mut bits: Bits,
+    rows: usize,
+    first: usize,
+    pivots: usize,
+) -> Option<Vec<(usize, usize)>> {
     // Transposed structure of the pivot columns over the active rows.
     let mut by_col = Bits::new(pivots, rows);
     for r in 0..rows {
@@ -157,7 +162,11 @@ fn markowitz(mut bits: Bits, rows: usize, first: usize, pivots: usize) -> Option
     let mut order = Vec::with_capacity(pivots);
     let mut union = vec![0u64; bits.words];
     for step in 0..pivots {
-        let (lo, hi) = if step < first { (0, first) } else { (first, pivots) };
+        let (lo, hi) = if step < first {
+            (0, first)
+        } else {
+            (first, pivots)
+        };
         let mut open: Vec<(usize, usize)> = (lo..hi)
             .filter(|&c| !done[c])
             .map(|c| (by_col.count(c), c))
@@ -177,7 +186,7 @@ fn markowitz(mut bits: Bits, rows: usize, first: usize, pivots: usize) -> Option
             }
             let width: usize = union.iter().map(|w| w.count_ones() as usize).sum();
             let cost = (n - 1) * (width - 1);
-            if best.is_none_or(|b| cost < b.0) {
+            if best.map_or(true, |b| cost < b.0) {
                 best = Some((cost, c));
             }
         }
@@ -207,7 +216,13 @@ fn markowitz(mut bits: Bits, rows: usize, first: usize, pivots: usize) -> Option
 
 /// The plan of eliminating `bits` (already in step order) in its natural order under the
 /// union rule (see `mingen_runtime::SparseLuPlan`).
-fn plan(mut bits: Bits, rows: usize, cols: usize, pivots: usize, first: usize) -> SparseElimination {
+fn plan(
+    mut bits: Bits,
+    rows: usize,
+    cols: usize,
+    pivots: usize,
+    first: usize,
+) -> SparseElimination {
     let rhs = cols - pivots;
     let mut e = SparseElimination {
         pattern_start: vec![0],
@@ -268,11 +283,7 @@ pub fn order_for_sparse_elimination(t: &mut EliminationTemplate, supports: &[Vec
     row_order.iter().for_each(|&r| used[r] = true);
     row_order.extend((0..rows).filter(|&r| !used[r]));
     // Eliminated columns: pivot columns in step order, the right-hand side unchanged.
-    let col_order: Vec<usize> = order
-        .iter()
-        .map(|&(_, c)| c)
-        .chain(pivots..cols)
-        .collect();
+    let col_order: Vec<usize> = order.iter().map(|&(_, c)| c).chain(pivots..cols).collect();
     let mut permuted = Bits::new(rows, cols);
     for (new_r, &r) in row_order.iter().enumerate() {
         for (new_c, &c) in col_order.iter().enumerate() {
@@ -290,9 +301,17 @@ pub fn order_for_sparse_elimination(t: &mut EliminationTemplate, supports: &[Vec
     // block, c + n_dependent after it.
     let template_col = |c: usize| if c < first { c } else { c + t.n_dependent };
     let mut columns: Vec<Monomial> = Vec::with_capacity(t.columns.len());
-    columns.extend(order[..first].iter().map(|&(_, c)| t.columns[template_col(c)].clone()));
+    columns.extend(
+        order[..first]
+            .iter()
+            .map(|&(_, c)| t.columns[template_col(c)].clone()),
+    );
     columns.extend_from_slice(&t.columns[first..t.n_excess]);
-    columns.extend(order[first..].iter().map(|&(_, c)| t.columns[template_col(c)].clone()));
+    columns.extend(
+        order[first..]
+            .iter()
+            .map(|&(_, c)| t.columns[template_col(c)].clone()),
+    );
     columns.extend_from_slice(&t.columns[t.n_excess + t.n_reducible..]);
     t.rows = row_order.iter().map(|&r| t.rows[r].clone()).collect();
     t.columns = columns;

@@ -152,8 +152,9 @@ pub fn fill_template(
 
 /// The action matrix (|B| x |B|) of the template on these equations, per the convention:
 /// `M v = action(s) v` for `v = (b_0(s), ..., b_{n-1}(s))`. The filled template is reduced
-/// by [`mingen_runtime::lu_solve_template`] with the emitted solvers' arguments (back
-/// substitution of the reducible rows only).
+/// as the emitted solvers reduce it: by [`mingen_runtime::lu_solve_template_sparse`] in the
+/// template's fixed order if it has one and every pivot passes, otherwise by
+/// [`mingen_runtime::lu_solve_template`] (back substitution of the reducible rows only).
 pub fn action_matrix(
     template: &EliminationTemplate,
     equations: &[Poly<f64>],
@@ -162,7 +163,15 @@ pub fn action_matrix(
     let (rows, cols) = template.eliminated_size();
     let pivots = template.pivot_columns();
     let first_row = template.n_excess - template.n_dependent;
-    if !mingen_runtime::lu_solve_template(&mut m, rows, cols, pivots, first_row) {
+    let sparse_done = template.sparse.as_ref().is_some_and(|s| {
+        let mut reduced = m.clone();
+        let ok = mingen_runtime::lu_solve_template_sparse(&mut reduced, &s.as_plan(template));
+        if ok {
+            m = reduced;
+        }
+        ok
+    });
+    if !sparse_done && !mingen_runtime::lu_solve_template(&mut m, rows, cols, pivots, first_row) {
         return Err(InterpretError::Singular);
     }
     let column: HashMap<&Monomial, usize> = template
@@ -401,6 +410,7 @@ mod tests {
             n_hidden: 0,
             basis: vec![mono(&[1, 0]), mono(&[0, 1]), mono(&[0, 0])],
             action: crate::template::Action::var(2, 0),
+            sparse: None,
         };
         (template, vec![e0, e1])
     }

@@ -22,10 +22,12 @@ use crate::quotient::{analyse_within, InstanceRng, InstanceSource};
 use crate::template::search::best_template_within;
 use crate::template::validate::validate_within;
 use crate::template::{
-    Action, ActionChoice, BuiltTemplate, TemplateError, TemplateOptions, ValidationReport,
+    order_for_sparse_elimination, Action, ActionChoice, BuiltTemplate, TemplateError,
+    TemplateOptions, ValidationReport,
 };
 use crate::{Problem, ProblemError};
 use serde_json::{json, Value};
+use std::collections::HashSet;
 use std::path::Path;
 use std::time::Instant;
 use thiserror::Error;
@@ -229,18 +231,39 @@ pub fn plan(
             });
         }
     }
-    let generated = find_template(&ProblemSource::new(&problem), options).map_err(|source| {
-        PipelineError::Template {
-            file: file.to_string(),
-            source,
-        }
-    })?;
+    let mut generated =
+        find_template(&ProblemSource::new(&problem), options).map_err(|source| {
+            PipelineError::Template {
+                file: file.to_string(),
+                source,
+            }
+        })?;
+    let supports = equation_supports(&problem, options.seed);
+    order_for_sparse_elimination(&mut generated.built.template, &supports);
     Ok(SolverPlan {
         problem,
         file: file.to_string(),
         generated,
         seconds: start.elapsed().as_secs_f64(),
     })
+}
+
+/// The monomials of each template equation for generic data: the union over two random
+/// instances mod p (a coefficient vanishes by chance in both with probability about 1/p²).
+fn equation_supports(problem: &Problem, seed: u64) -> Vec<Vec<Monomial>> {
+    let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(seed ^ 0x5eed);
+    let mut sets: Vec<HashSet<Monomial>> = Vec::new();
+    for _ in 0..2 {
+        let data = random_data_fp::<{ crate::algebra::P1 }>(&problem.layout, &mut rng);
+        let Ok((equations, _)) = system(problem, &data) else {
+            continue;
+        };
+        sets.resize_with(equations.len(), HashSet::new);
+        for (set, e) in sets.iter_mut().zip(&equations) {
+            set.extend(e.terms().map(|(m, _)| m.clone()));
+        }
+    }
+    sets.into_iter().map(|s| s.into_iter().collect()).collect()
 }
 
 impl SolverPlan {

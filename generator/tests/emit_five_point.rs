@@ -137,6 +137,7 @@ fn five_point_template() -> EliminationTemplate {
         n_hidden: 0,
         basis,
         action: mingen::template::Action::var(3, 0),
+        sparse: None,
     }
 }
 
@@ -449,6 +450,7 @@ fn elimination_emission_parses() {
         n_hidden: 0,
         basis: vec![s.clone(), one.clone()],
         action: mingen::template::Action::var(1, 0),
+        sparse: None,
     };
     let cst = |c: Traced| Poly::constant(1, c);
     let sv = Poly::<Traced>::var(1, 0);

@@ -55,6 +55,7 @@ fn five_point_template() -> EliminationTemplate {
         n_hidden: 0,
         basis,
         action: mingen::template::Action::var(3, 0),
+        sparse: None,
     }
 }
 
@@ -265,6 +266,7 @@ fn audit_with_eliminated_unknowns() {
         n_hidden: 0,
         basis: vec![m2([1, 0]), m2([0, 1]), m2([0, 0])],
         action: mingen::template::Action::var(2, 0),
+        sparse: None,
     };
     let widen = |p: &P| {
         Poly::from_terms(

@@ -16,8 +16,8 @@ mod planted;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use mingen_runtime::nalgebra::SMatrix;
 use mingen_runtime::{
-    gauss_jordan, lu_solve_template, real_eigenpairs_hqr, real_eigenpairs_sturm, MinimalSolver,
-    Stages,
+    gauss_jordan, lu_solve_template, lu_solve_template_sparse, real_eigenpairs_hqr,
+    real_eigenpairs_sturm, MinimalSolver, SparseLuPlan, Stages,
 };
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -58,7 +58,13 @@ impl Stages for Capture {
 }
 
 /// The stage benchmarks of solver `S` (`NB` = `S::MAX_SOLUTIONS`, the action matrix size).
-fn stages<S: MinimalSolver, const NB: usize>(c: &mut Criterion, pool: &[S::Data]) {
+/// `sparse`: the solver's sparse elimination plan, if it has one (benchmarked beside the
+/// dense LU on the same templates).
+fn stages<S: MinimalSolver, const NB: usize>(
+    c: &mut Criterion,
+    pool: &[S::Data],
+    sparse: Option<&SparseLuPlan>,
+) {
     assert_eq!(NB, S::MAX_SOLUTIONS, "action matrix size of {}", S::NAME);
     let [rows, cols, pivots, first] = S::TEMPLATE_SHAPE;
     let mut templates = Vec::new();
@@ -107,6 +113,15 @@ fn stages<S: MinimalSolver, const NB: usize>(c: &mut Criterion, pool: &[S::Data]
             black_box(lu_solve_template(&mut buf, rows, cols, pivots, first))
         })
     });
+    if let Some(plan) = sparse {
+        g.bench_function("lu_solve_template_sparse", |b| {
+            b.iter(|| {
+                k = (k + 1) % templates.len();
+                buf.copy_from_slice(&templates[k]);
+                black_box(lu_solve_template_sparse(&mut buf, plan))
+            })
+        });
+    }
     g.bench_function("eigen Sturm", |b| {
         b.iter(|| {
             k = (k + 1) % actions.len();
@@ -133,10 +148,10 @@ fn bench_stages(c: &mut Criterion) {
     let gr: Vec<grsrp_gravity::Data> = (0..64)
         .map(|_| planted::gravity_instance(&mut rng).data)
         .collect();
-    stages::<gs5pt::Solver, 10>(c, &g5);
-    stages::<grsrp10::Solver, 10>(c, &r10);
-    stages::<grsrp_gravity::Solver, 12>(c, &gr);
-    stages::<grsrp::Solver, 20>(c, &r20);
+    stages::<gs5pt::Solver, 10>(c, &g5, None);
+    stages::<grsrp10::Solver, 10>(c, &r10, None);
+    stages::<grsrp_gravity::Solver, 12>(c, &gr, Some(&grsrp_gravity::SPARSE_PLAN));
+    stages::<grsrp::Solver, 20>(c, &r20, Some(&grsrp::SPARSE_PLAN));
 }
 
 criterion_group! {

@@ -16,7 +16,7 @@ pub const PIVOT_TOL: f64 = 1e-14;
 /// four lanes so that it vectorises (non-finite entries make the lane sums non-finite; a
 /// finite matrix whose entries sum beyond `f64::MAX` is rejected as well).
 #[inline]
-fn scale_of(m: &[f64]) -> Option<f64> {
+pub(crate) fn scale_of(m: &[f64]) -> Option<f64> {
     let mut mx = [0.0f64; 4];
     let mut sum = [0.0f64; 4];
     let chunks = m.chunks_exact(4);

@@ -49,6 +49,7 @@ mod null;
 mod readout;
 mod solution_set;
 mod solver;
+mod sparse_elim;
 mod stages;
 mod sturm;
 
@@ -60,5 +61,6 @@ pub use null::{null_vector3, null_vector3_rows};
 pub use readout::{read_unknowns, MIN_UNIT_ENTRY};
 pub use solution_set::SolutionSet;
 pub use solver::{FlatValues, MinimalSolver};
+pub use sparse_elim::{lu_solve_template_sparse, lu_solve_template_sparse_fixed, SparseLuPlan};
 pub use stages::Stages;
 pub use sturm::real_eigenpairs_sturm;

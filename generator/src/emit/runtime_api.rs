@@ -19,6 +19,19 @@ pub(crate) fn lu_solve_template() -> TokenStream {
     quote!(mingen_runtime::lu_solve_template_fixed)
 }
 
+/// `lu_solve_template_sparse_fixed::<COLS, PIVOTS>(m: &mut [f64], plan: &SparseLuPlan)
+/// -> bool`: the same result as [`lu_solve_template`]'s along a precomputed structure.
+pub(crate) fn lu_solve_template_sparse() -> TokenStream {
+    quote!(mingen_runtime::lu_solve_template_sparse_fixed)
+}
+
+/// The structure of a sparse elimination: `SparseLuPlan<'a>` with the public fields
+/// `rows, cols, pivot_cols, first_row: usize`, `pattern_start, target_start: &[u32]`,
+/// `pattern, targets: &[u16]`.
+pub(crate) fn sparse_lu_plan() -> TokenStream {
+    quote!(mingen_runtime::SparseLuPlan)
+}
+
 /// `real_eigenpairs_hqr::<N>`: same signature as `real_eigenpairs` (Hessenberg + Francis
 /// double-shift QR with exceptional shifts + inverse iteration).
 pub(crate) fn real_eigenpairs_hqr() -> TokenStream {

@@ -541,8 +541,59 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         }
     }
 
-    let lu = rt::lu_solve_template();
     let first_row = lit(t.n_excess - t.n_dependent);
+    let (sparse_plan, reduce) = match &t.sparse {
+        Some(e) => {
+            let ty = rt::sparse_lu_plan();
+            let lu = rt::lu_solve_template_sparse();
+            let u32s = |v: &[u32]| {
+                v.iter()
+                    .map(|&x| Literal::u32_unsuffixed(x))
+                    .collect::<Vec<_>>()
+            };
+            let u16s = |v: &[u16]| {
+                v.iter()
+                    .map(|&x| Literal::u16_unsuffixed(x))
+                    .collect::<Vec<_>>()
+            };
+            let (ps, p, ts, tg) = (
+                u32s(&e.pattern_start),
+                u16s(&e.pattern),
+                u32s(&e.target_start),
+                u16s(&e.targets),
+            );
+            (
+                quote! {
+                    /// The structure of the template's sparse LU with partial pivoting (a bound
+                    /// over every pivot choice; see `mingen_runtime::SparseLuPlan`).
+                    #[rustfmt::skip]
+                    pub static SPARSE_PLAN: #ty<'static> = #ty {
+                        rows: #rows_l,
+                        cols: #cols_l,
+                        pivot_cols: #pivots_l,
+                        first_row: #first_row,
+                        pattern_start: &[#(#ps),*],
+                        pattern: &[#(#p),*],
+                        target_start: &[#(#ts),*],
+                        targets: &[#(#tg),*],
+                    };
+                },
+                quote!(#lu::<#cols_l, #pivots_l>(&mut m, &SPARSE_PLAN)),
+            )
+        }
+        None => {
+            let lu = rt::lu_solve_template();
+            (
+                quote!(),
+                quote!(#lu::<#rows_l, #cols_l, #pivots_l, #first_row>(&mut m)),
+            )
+        }
+    };
+    let lu_words = if t.sparse.is_some() {
+        "sparse LU with partial pivoting"
+    } else {
+        "LU with partial pivoting"
+    };
     let eig = if nb <= mingen_runtime::STURM_MAX_BASIS {
         rt::real_eigenpairs_sturm()
     } else {
@@ -559,8 +610,8 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         ),
         String::new(),
         format!(
-            "Fills a {rows} x {cols} elimination template, reduces it (LU with partial \
-             pivoting, back substitution of the {} reducible rows only), builds the {nb} x {nb} \
+            "Fills a {rows} x {cols} elimination template, reduces it ({lu_words}, \
+             back substitution of the {} reducible rows only), builds the {nb} x {nb} \
              action matrix of `{}` on the basis [{}] and reads each unknown `x` off the real \
              eigenvectors `v` as the least-squares ratio of the entries `v[x b]` and `v[b]` \
              over the basis monomials `b` with `x b` in the basis (`v[x] / v[1]` if that is the \
@@ -576,6 +627,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let solve = quote! {
         /// The elimination template's `[rows, cols, pivot columns, first reduced row]`.
         pub const TEMPLATE_SHAPE: [usize; 4] = [#rows_l, #cols_l, #pivots_l, #first_row];
+        #sparse_plan
 
         #(#docs)*
         #[must_use]
@@ -605,7 +657,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
             if !stages.filled(&m) {
                 return out;
             }
-            if !#lu::<#rows_l, #cols_l, #pivots_l, #first_row>(&mut m) {
+            if !#reduce {
                 return out;
             }
             if !stages.eliminated(&m) {

@@ -220,6 +220,7 @@ pub(crate) fn assemble<const P: u32>(
         basis: blocks.basis.clone(),
         n_hidden,
         action: action.clone(),
+        sparse: None,
     }
 }
 

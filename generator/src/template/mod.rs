@@ -50,6 +50,7 @@ pub mod search;
 pub mod select;
 mod shape;
 pub mod shrink;
+pub mod sparse_order;
 pub mod validate;
 
 pub use action::Action;
@@ -57,6 +58,9 @@ pub use candidates::ShrinkStep;
 pub use error::TemplateError;
 pub use options::{ActionChoice, TemplateOptions};
 pub use shape::ShapeError;
+pub use sparse_order::{
+    order_for_sparse_elimination, SparseElimination, SPARSE_MIN_GAIN, SPARSE_MIN_PIVOTS,
+};
 
 pub use build::BuiltTemplate;
 pub use search::{best_template, PerAction};
@@ -101,6 +105,10 @@ pub struct EliminationTemplate {
     /// columns `x_i * b` (coefficient of `x_i` non-zero) outside B are the reducible ones,
     /// and row j of the action matrix is `sum_i c_i` times the row of `x_i * b_j`.
     pub action: Action,
+    /// The fixed-order sparse elimination of this template, when it pays (see
+    /// [`order_for_sparse_elimination`], which also orders the rows and columns for it);
+    /// `None`: the dense LU with partial pivoting.
+    pub sparse: Option<SparseElimination>,
 }
 
 impl EliminationTemplate {

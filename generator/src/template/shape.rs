@@ -213,6 +213,7 @@ mod tests {
             n_hidden: 0,
             basis: vec![m([0, 1]), m([1, 0]), m([0, 0])],
             action: super::super::Action::var(2, 0),
+            sparse: None,
         }
     }
 

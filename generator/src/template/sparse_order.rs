@@ -1,0 +1,319 @@
+//! Fill-reducing order of a template for sparse elimination.
+//!
+//! Template rows are monomial multiples of the equations, so a large template is mostly
+//! zeros at positions fixed by the problem. [`order_for_sparse_elimination`] permutes the
+//! rows and, within their blocks, the excess and the reducible columns so that step `k`
+//! eliminates column `k` (excess columns first, so that only the reducible rows are
+//! back-substituted), in a Markowitz-style order. The runtime pivots partially among each
+//! step's candidate rows, so the structure recorded ([`SparseElimination`],
+//! `mingen_runtime::SparseLuPlan`) is a bound over all pivot choices: after step `k`
+//! every candidate holds the union of the candidates' patterns. The numbers are then those
+//! of the dense LU with partial pivoting; the plan is kept for templates of at least
+//! [`SPARSE_MIN_PIVOTS`] pivot columns whose operation count beats the dense LU's by
+//! [`SPARSE_MIN_GAIN`]; other templates are left as they are. Large steps (a pattern over
+//! half the remaining columns) run as contiguous row operations at run time.
+
+use super::EliminationTemplate;
+use crate::algebra::Monomial;
+use std::collections::HashMap;
+
+/// The sparse elimination is used only when the dense LU needs at least this many times
+/// its multiply-adds (its indexed updates cost more per operation than the dense rows).
+pub const SPARSE_MIN_GAIN: usize = 3;
+
+/// Templates with fewer pivot columns keep the dense LU: it is already cheap there, and
+/// the per-step bookkeeping of the sparse one would not pay.
+pub const SPARSE_MIN_PIVOTS: usize = 32;
+
+/// The structure of a template's elimination in its (permuted) natural order: the
+/// owned form of `mingen_runtime::SparseLuPlan` (see there for the fields' meaning).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SparseElimination {
+    /// Offsets into `pattern`, one per pivot step plus the end.
+    pub pattern_start: Vec<u32>,
+    /// Pivot columns `c > k` where a candidate row of step `k` may be non-zero.
+    pub pattern: Vec<u16>,
+    /// Offsets into `targets`, one per pivot step plus the end.
+    pub target_start: Vec<u32>,
+    /// Rows `i > k` that may be non-zero in column `k` at step `k`.
+    pub targets: Vec<u16>,
+    /// Multiply-adds of the sparse elimination (forward and back substitution).
+    pub sparse_updates: usize,
+    /// Multiply-adds of the dense LU on the same template (an upper bound).
+    pub dense_updates: usize,
+}
+
+impl SparseElimination {
+    /// The plan the runtime executes, for template `t` (the template it was computed for).
+    pub fn as_plan<'a>(&'a self, t: &EliminationTemplate) -> mingen_runtime::SparseLuPlan<'a> {
+        let (rows, cols) = t.eliminated_size();
+        mingen_runtime::SparseLuPlan {
+            rows,
+            cols,
+            pivot_cols: t.pivot_columns(),
+            first_row: t.n_excess - t.n_dependent,
+            pattern_start: &self.pattern_start,
+            pattern: &self.pattern,
+            target_start: &self.target_start,
+            targets: &self.targets,
+        }
+    }
+}
+
+/// Row-wise bit sets over the columns of the eliminated matrix.
+#[derive(Clone)]
+struct Bits {
+    words: usize,
+    data: Vec<u64>,
+}
+
+impl Bits {
+    fn new(rows: usize, cols: usize) -> Bits {
+        let words = cols.div_ceil(64);
+        Bits {
+            words,
+            data: vec![0; rows * words],
+        }
+    }
+    fn row(&self, r: usize) -> &[u64] {
+        &self.data[r * self.words..(r + 1) * self.words]
+    }
+    fn get(&self, r: usize, c: usize) -> bool {
+        self.data[r * self.words + c / 64] >> (c % 64) & 1 == 1
+    }
+    fn set(&mut self, r: usize, c: usize, on: bool) {
+        let w = &mut self.data[r * self.words + c / 64];
+        if on {
+            *w |= 1 << (c % 64);
+        } else {
+            *w &= !(1 << (c % 64));
+        }
+    }
+    fn count(&self, r: usize) -> usize {
+        self.row(r).iter().map(|w| w.count_ones() as usize).sum()
+    }
+    /// The set columns of row `r` in `lo..hi`, ascending.
+    fn ones(&self, r: usize, lo: usize, hi: usize) -> impl Iterator<Item = usize> + '_ {
+        self.row(r).iter().enumerate().flat_map(move |(wi, &w)| {
+            let mut w = w;
+            std::iter::from_fn(move || {
+                if w == 0 {
+                    return None;
+                }
+                let b = w.trailing_zeros() as usize;
+                w &= w - 1;
+                Some(wi * 64 + b)
+            })
+            .filter(move |&c| c >= lo && c < hi)
+        })
+    }
+}
+
+/// The structural non-zeros of `t` (eliminated matrix: dependent excess columns left out)
+/// when equation `e` has the monomials `supports[e]`.
+fn structure(t: &EliminationTemplate, supports: &[Vec<Monomial>]) -> Option<Bits> {
+    let (rows, cols) = t.eliminated_size();
+    let column: HashMap<&Monomial, usize> =
+        t.columns.iter().enumerate().map(|(i, m)| (m, i)).collect();
+    let mut bits = Bits::new(rows, cols);
+    for (i, row) in t.rows.iter().enumerate() {
+        for mono in supports.get(row.equation)? {
+            let c = *column.get(&row.multiplier.mul(mono))?;
+            if let Some(c) = t.eliminated_column(c) {
+                bits.set(i, c, true);
+            }
+        }
+    }
+    Some(bits)
+}
+
+/// Multiply-adds of the dense LU with partial pivoting (forward elimination of every row
+/// below the pivot, back substitution of the reducible rows over the right-hand side).
+fn dense_updates(rows: usize, cols: usize, pivots: usize, first_row: usize) -> usize {
+    let forward: usize = (0..pivots).map(|j| (rows - j - 1) * (cols - j - 1)).sum();
+    let back = (first_row..pivots)
+        .map(|k| (pivots - k - 1) * (cols - pivots))
+        .sum::<usize>();
+    forward + back
+}
+
+/// Columns whose cost is evaluated exactly at each step, among those with the fewest
+/// candidate rows, when the block has more remaining columns than this.
+const COST_CANDIDATES: usize = 32;
+
+/// The order of steps, `(row, column)` each, excess columns (`< first`) first: at every
+/// step the column whose elimination costs the least multiply-adds under the union rule
+/// (`(candidates - 1) * (union pattern - 1)`), its row the candidate with the fewest
+/// non-zeros. `None` if some column has no candidate row (structurally singular).
+fn markowitz(
+    mut bits: Bits,
+    rows: usize,
+    first: usize,
+    pivots: usize,
+) -> Option<Vec<(usize, usize)>> {
+    // Transposed structure of the pivot columns over the active rows.
+    let mut by_col = Bits::new(pivots, rows);
+    for r in 0..rows {
+        for c in bits.ones(r, 0, pivots) {
+            by_col.set(c, r, true);
+        }
+    }
+    let mut done = vec![false; pivots];
+    let mut order = Vec::with_capacity(pivots);
+    let mut union = vec![0u64; bits.words];
+    for step in 0..pivots {
+        let (lo, hi) = if step < first {
+            (0, first)
+        } else {
+            (first, pivots)
+        };
+        let mut open: Vec<(usize, usize)> = (lo..hi)
+            .filter(|&c| !done[c])
+            .map(|c| (by_col.count(c), c))
+            .collect();
+        if open.len() > COST_CANDIDATES {
+            open.sort_unstable();
+            open.truncate(COST_CANDIDATES);
+        }
+        let mut best: Option<(usize, usize)> = None;
+        for &(n, c) in &open {
+            if n == 0 {
+                return None;
+            }
+            union.iter_mut().for_each(|w| *w = 0);
+            for r in by_col.ones(c, 0, rows) {
+                union.iter_mut().zip(bits.row(r)).for_each(|(u, w)| *u |= w);
+            }
+            let width: usize = union.iter().map(|w| w.count_ones() as usize).sum();
+            let cost = (n - 1) * (width - 1);
+            if best.map_or(true, |b| cost < b.0) {
+                best = Some((cost, c));
+            }
+        }
+        let (_, pc) = best?;
+        let candidates: Vec<usize> = by_col.ones(pc, 0, rows).collect();
+        let pr = *candidates.iter().min_by_key(|&&r| (bits.count(r), r))?;
+        union.iter_mut().for_each(|w| *w = 0);
+        for &r in &candidates {
+            union.iter_mut().zip(bits.row(r)).for_each(|(u, w)| *u |= w);
+        }
+        for c in bits.ones(pr, 0, pivots) {
+            by_col.set(c, pr, false);
+        }
+        for &r in candidates.iter().filter(|&&r| r != pr) {
+            bits.data[r * bits.words..(r + 1) * bits.words].copy_from_slice(&union);
+            bits.set(r, pc, false);
+            for c in bits.ones(r, 0, pivots) {
+                by_col.set(c, r, true);
+            }
+        }
+        by_col.data[pc * by_col.words..(pc + 1) * by_col.words].fill(0);
+        done[pc] = true;
+        order.push((pr, pc));
+    }
+    Some(order)
+}
+
+/// The plan of eliminating `bits` (already in step order) in its natural order under the
+/// union rule (see `mingen_runtime::SparseLuPlan`).
+fn plan(
+    mut bits: Bits,
+    rows: usize,
+    cols: usize,
+    pivots: usize,
+    first: usize,
+) -> SparseElimination {
+    let rhs = cols - pivots;
+    let mut e = SparseElimination {
+        pattern_start: vec![0],
+        pattern: Vec::new(),
+        target_start: vec![0],
+        targets: Vec::new(),
+        sparse_updates: 0,
+        dense_updates: 0,
+    };
+    let mut union = vec![0u64; bits.words];
+    for k in 0..pivots {
+        let targets: Vec<usize> = (k + 1..rows).filter(|&i| bits.get(i, k)).collect();
+        union.copy_from_slice(bits.row(k));
+        for &i in &targets {
+            union.iter_mut().zip(bits.row(i)).for_each(|(u, w)| *u |= w);
+        }
+        for &i in &targets {
+            bits.data[i * bits.words..(i + 1) * bits.words].copy_from_slice(&union);
+            bits.set(i, k, false);
+        }
+        bits.data[k * bits.words..(k + 1) * bits.words].copy_from_slice(&union);
+        let pattern: Vec<usize> = bits.ones(k, k + 1, pivots).collect();
+        e.sparse_updates += targets.len() * (pattern.len() + rhs);
+        if k >= first {
+            e.sparse_updates += pattern.len() * rhs;
+        }
+        e.pattern.extend(pattern.iter().map(|&c| c as u16));
+        e.targets.extend(targets.iter().map(|&i| i as u16));
+        e.pattern_start.push(e.pattern.len() as u32);
+        e.target_start.push(e.targets.len() as u32);
+    }
+    e
+}
+
+/// Orders `t` for sparse elimination and records the plan in `t.sparse` when it pays (see
+/// the module documentation); `supports[e]` are the monomials of equation `e` for generic
+/// data. Leaves `t` unchanged (and `t.sparse` empty) when the template is small
+/// ([`SPARSE_MIN_PIVOTS`]) or the dense LU is about as cheap,
+/// when the supports do not cover the template, or when the template has more rows than
+/// the plan's 16-bit indices hold.
+pub fn order_for_sparse_elimination(t: &mut EliminationTemplate, supports: &[Vec<Monomial>]) {
+    t.sparse = None;
+    let (rows, cols) = t.eliminated_size();
+    let pivots = t.pivot_columns();
+    let first = t.n_excess - t.n_dependent;
+    if pivots < SPARSE_MIN_PIVOTS || pivots > rows || rows > usize::from(u16::MAX) {
+        return;
+    }
+    let Some(bits) = structure(t, supports) else {
+        return;
+    };
+    let Some(order) = markowitz(bits.clone(), rows, first, pivots) else {
+        return;
+    };
+    // Rows: pivot rows in step order, then the others in their order.
+    let mut row_order: Vec<usize> = order.iter().map(|&(r, _)| r).collect();
+    let mut used = vec![false; rows];
+    row_order.iter().for_each(|&r| used[r] = true);
+    row_order.extend((0..rows).filter(|&r| !used[r]));
+    // Eliminated columns: pivot columns in step order, the right-hand side unchanged.
+    let col_order: Vec<usize> = order.iter().map(|&(_, c)| c).chain(pivots..cols).collect();
+    let mut permuted = Bits::new(rows, cols);
+    for (new_r, &r) in row_order.iter().enumerate() {
+        for (new_c, &c) in col_order.iter().enumerate() {
+            if bits.get(r, c) {
+                permuted.set(new_r, new_c, true);
+            }
+        }
+    }
+    let mut e = plan(permuted, rows, cols, pivots, first);
+    e.dense_updates = dense_updates(rows, cols, pivots, first);
+    if e.sparse_updates.saturating_mul(SPARSE_MIN_GAIN) > e.dense_updates {
+        return;
+    }
+    // Template columns: eliminated column c is template column c below the dependent
+    // block, c + n_dependent after it.
+    let template_col = |c: usize| if c < first { c } else { c + t.n_dependent };
+    let mut columns: Vec<Monomial> = Vec::with_capacity(t.columns.len());
+    columns.extend(
+        order[..first]
+            .iter()
+            .map(|&(_, c)| t.columns[template_col(c)].clone()),
+    );
+    columns.extend_from_slice(&t.columns[first..t.n_excess]);
+    columns.extend(
+        order[first..]
+            .iter()
+            .map(|&(_, c)| t.columns[template_col(c)].clone()),
+    );
+    columns.extend_from_slice(&t.columns[t.n_excess + t.n_reducible..]);
+    t.rows = row_order.iter().map(|&r| t.rows[r].clone()).collect();
+    t.columns = columns;
+    t.sparse = Some(e);
+}

@@ -14,7 +14,10 @@
 //! - [`SolutionSet`]: fixed-capacity, stack-allocated list of solutions.
 //! - [`gauss_jordan`]: in-place Gauss-Jordan elimination of a row-major template;
 //!   [`lu_solve_template`]: the same result for the rows that matter, by forward elimination
-//!   plus a partial back substitution (faster; see its documentation for measurements).
+//!   plus a partial back substitution (faster; see its documentation for measurements);
+//!   [`lu_solve_template_sparse`]: the same pivots and numbers along a structure the
+//!   generator bounds over every pivot choice (large sparse templates). Both LU routines run
+//!   an AVX2 build when the CPU has it (no FMA: bit-identical results).
 //! - [`real_eigenpairs`]: real eigenvalues and eigenvectors of a small dense matrix (the
 //!   action matrix), by nalgebra's real Schur decomposition with an iteration cap (the
 //!   reference; not used by emitted solvers: it stalls on ±λ spectra).

@@ -55,10 +55,30 @@ pub fn real_eigenpairs_sturm<const N: usize>(
     m: &SMatrix<f64, N, N>,
 ) -> SolutionSet<(f64, SVector<f64, N>), N> {
     let mut out = SolutionSet::filled_with((0.0, SVector::zeros()));
-    match sturm_eigenpairs(m, &mut out) {
+    #[cfg(target_arch = "x86_64")]
+    let found = if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU supports AVX2, checked just above.
+        unsafe { sturm_eigenpairs_avx2(m, &mut out) }
+    } else {
+        sturm_eigenpairs(m, &mut out)
+    };
+    #[cfg(not(target_arch = "x86_64"))]
+    let found = sturm_eigenpairs(m, &mut out);
+    match found {
         Some(()) => out,
         None => real_eigenpairs_hqr(m),
     }
+}
+
+/// [`sturm_eigenpairs`] compiled with AVX2 enabled. Without FMA every operation is the
+/// baseline build's, so the results are bit-identical.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn sturm_eigenpairs_avx2<const N: usize>(
+    m: &SMatrix<f64, N, N>,
+    out: &mut SolutionSet<(f64, SVector<f64, N>), N>,
+) -> Option<()> {
+    sturm_eigenpairs(m, out)
 }
 
 /// The Sturm path of [`real_eigenpairs_sturm`], filling the empty `out` (in place: the

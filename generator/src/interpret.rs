@@ -4,7 +4,8 @@
 //! It runs the numeric code of the emitted solvers, from `mingen-runtime`, at the
 //! template's sizes: the template is filled with `multiplier * equations[equation]` (the
 //! dependent excess columns left out, [`EliminationTemplate::eliminated_size`]), reduced
-//! by [`mingen_runtime::lu_solve_template`], the action matrix is assembled row by row,
+//! by [`mingen_runtime::lu_solve_template`] (or [`mingen_runtime::lu_solve_template_sparse`]
+//! when the template has a sparse plan), the action matrix is assembled row by row,
 //! its real eigenpairs come from [`mingen_runtime::real_eigenpairs_dyn`] (the back end an
 //! emitted solver of that size calls), each unknown is read off by
 //! [`mingen_runtime::read_unknowns`] through [`readout_pairs`], and eliminated unknowns
@@ -152,9 +153,10 @@ pub fn fill_template(
 
 /// The action matrix (|B| x |B|) of the template on these equations, per the convention:
 /// `M v = action(s) v` for `v = (b_0(s), ..., b_{n-1}(s))`. The filled template is reduced
-/// as the emitted solvers reduce it: by [`mingen_runtime::lu_solve_template_sparse`] in the
-/// template's fixed order if it has one and every pivot passes, otherwise by
-/// [`mingen_runtime::lu_solve_template`] (back substitution of the reducible rows only).
+/// as the emitted solvers reduce it: by [`mingen_runtime::lu_solve_template_sparse`] along
+/// the template's sparse plan if it has one, otherwise by
+/// [`mingen_runtime::lu_solve_template`] (both: partial pivoting, the same pivots, back
+/// substitution of the reducible rows only).
 pub fn action_matrix(
     template: &EliminationTemplate,
     equations: &[Poly<f64>],
@@ -163,15 +165,11 @@ pub fn action_matrix(
     let (rows, cols) = template.eliminated_size();
     let pivots = template.pivot_columns();
     let first_row = template.n_excess - template.n_dependent;
-    let sparse_done = template.sparse.as_ref().is_some_and(|s| {
-        let mut reduced = m.clone();
-        let ok = mingen_runtime::lu_solve_template_sparse(&mut reduced, &s.as_plan(template));
-        if ok {
-            m = reduced;
-        }
-        ok
-    });
-    if !sparse_done && !mingen_runtime::lu_solve_template(&mut m, rows, cols, pivots, first_row) {
+    let reduced = match &template.sparse {
+        Some(s) => mingen_runtime::lu_solve_template_sparse(&mut m, &s.as_plan(template)),
+        None => mingen_runtime::lu_solve_template(&mut m, rows, cols, pivots, first_row),
+    };
+    if !reduced {
         return Err(InterpretError::Singular);
     }
     let column: HashMap<&Monomial, usize> = template

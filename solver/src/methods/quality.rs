@@ -210,8 +210,8 @@ fn homography_residual(pts: &[(Vector3<f64>, Vector3<f64>)], thr: f64, seed: u64
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut best: Option<(usize, Matrix3<f64>)> = None;
     for _ in 0..HOMOGRAPHY_SAMPLES {
-        let sample: Vec<usize> = (0..4).map(|_| rng.gen_range(0..xs.len())).collect();
-        let Some(h) = fit_homography(sample.iter().map(|&i| &xs[i])) else {
+        let sample: [usize; 4] = std::array::from_fn(|_| rng.gen_range(0..xs.len()));
+        let Some(h) = homography_from_4(&sample.map(|i| xs[i])) else {
             continue;
         };
         let count = errors(&h).iter().filter(|&&e| e < thr).count();
@@ -230,6 +230,25 @@ fn homography_residual(pts: &[(Vector3<f64>, Vector3<f64>)], thr: f64, seed: u64
     } else {
         median(e2.into_iter())
     })
+}
+
+/// The homography through four correspondences (points with z = 1), by mapping each
+/// image's quadruple from the projective basis: `A = [p1 p2 p3] diag(λ)` with
+/// `[p1 p2 p3] λ = p4` sends `e1, e2, e3, (1, 1, 1)` to the four points, so `H = B A⁻¹`.
+/// `None` when three points of either image are collinear (the basis does not exist).
+fn homography_from_4(pts: &[(Vector3<f64>, Vector3<f64>); 4]) -> Option<Matrix3<f64>> {
+    let basis = |p: [&Vector3<f64>; 4]| -> Option<Matrix3<f64>> {
+        let m = Matrix3::from_columns(&[*p[0], *p[1], *p[2]]);
+        let l = m.lu().solve(p[3])?;
+        if l.iter().any(|x| x.abs() < 1e-12 || !x.is_finite()) {
+            return None;
+        }
+        Some(m * Matrix3::from_diagonal(&l))
+    };
+    let a = basis([&pts[0].0, &pts[1].0, &pts[2].0, &pts[3].0])?;
+    let b = basis([&pts[0].1, &pts[1].1, &pts[2].1, &pts[3].1])?;
+    let h = b * a.try_inverse()?;
+    h.iter().all(|x| x.is_finite()).then_some(h)
 }
 
 /// Least-squares DLT homography `x2 ~ H x1` (points with z = 1), from the 9x9 normal
@@ -272,4 +291,40 @@ fn fit_homography<'a>(
     let h = e.eigenvectors.column(e.eigenvalues.imin());
     let m = Matrix3::new(h[0], h[1], h[2], h[3], h[4], h[5], h[6], h[7], h[8]);
     m.iter().all(|x| x.is_finite()).then_some(m)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn apply(h: &Matrix3<f64>, p: &Vector3<f64>) -> Vector3<f64> {
+        let q = h * p;
+        q / q.z
+    }
+
+    #[test]
+    fn four_point_homography_reproduces_a_known_one() {
+        let h = Matrix3::new(1.1, 0.05, 0.2, -0.03, 0.95, -0.1, 0.02, 0.01, 1.0);
+        let xs = [
+            (0.1, 0.2),
+            (-0.3, 0.25),
+            (0.2, -0.4),
+            (-0.15, -0.2),
+            (0.05, 0.33),
+        ]
+        .map(|(x, y)| Vector3::new(x, y, 1.0));
+        let pts: [(Vector3<f64>, Vector3<f64>); 4] =
+            std::array::from_fn(|i| (xs[i], apply(&h, &xs[i])));
+        let fit = homography_from_4(&pts).unwrap();
+        for x in &xs {
+            assert!((apply(&fit, x) - apply(&h, x)).norm() < 1e-12);
+        }
+        // Agrees with the least-squares fit on the same points.
+        let ls = fit_homography(pts.iter()).unwrap();
+        assert!((apply(&ls, &xs[4]) - apply(&h, &xs[4])).norm() < 1e-9);
+        // Three collinear points: no homography.
+        let mut bad = pts;
+        bad[2].0 = Vector3::new(0.5 * (xs[0].x + xs[1].x), 0.5 * (xs[0].y + xs[1].y), 1.0);
+        assert!(homography_from_4(&bad).is_none());
+    }
 }

@@ -6,6 +6,13 @@
 //! residual's units are the estimator's (algebraic, Sampson in normalised image units, ...);
 //! the threshold must be in the same units. Sampling is deterministic given the seed
 //! (ChaCha8).
+//!
+//! Local optimisation (as in RansacLib and PoseLib): a minimal model that scores better
+//! than every *minimal* model before it is refined once on its approximate inliers
+//! (`r² < 5τ²`, [`LO_INLIER_FACTOR`]), and the refined model replaces the best if it scores
+//! better. Comparing with the best minimal model, not the best refined one, matters: a
+//! sample from the right basin rarely beats a refined model from a wrong one before its
+//! own refinement, and would otherwise never be refined.
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -22,9 +29,24 @@ pub trait RansacEstimator {
     fn generate_models(&mut self, sample: &[usize], models: &mut Vec<Self::Model>);
     /// Squared residual of data point `i` under `model` (non-finite counts as an outlier).
     fn residual_sq(&self, model: &Self::Model, i: usize) -> f64;
-    /// Local optimisation / final refinement of `model` on the inlier indices. Returns
-    /// `None` if refinement is not possible (the caller keeps the unrefined model).
-    fn refine(&self, model: &Self::Model, inliers: &[usize]) -> Option<Self::Model>;
+    /// Local optimisation of `model` on `inliers`, the indices of its approximate inliers
+    /// (`r² < LO_INLIER_FACTOR · threshold_sq`): the cost should give no weight to points
+    /// beyond the threshold, as MSAC does (e.g. a truncated quadratic, so that points can
+    /// enter or leave as the model moves). Returns `None` if refinement is not possible
+    /// (the caller keeps the unrefined model).
+    fn refine(
+        &self,
+        model: &Self::Model,
+        inliers: &[usize],
+        threshold_sq: f64,
+    ) -> Option<Self::Model>;
+    /// Finish a model that scored better than the best so far, before local optimisation
+    /// (e.g. decompose an essential matrix into a pose: scoring needs only the matrix, so
+    /// only the few winners pay for it). `false` discards the model. Called right after
+    /// [`generate_models`](Self::generate_models) for that sample. Default: nothing to do.
+    fn complete(&mut self, _model: &mut Self::Model) -> bool {
+        true
+    }
     /// MSAC score and inlier count of `model` at squared threshold `threshold_sq`.
     fn score(&self, model: &Self::Model, threshold_sq: f64) -> Score {
         msac_score(self, model, threshold_sq)
@@ -120,8 +142,9 @@ pub struct RansacOptions {
     pub adaptive: bool,
     /// Desired probability of drawing at least one all-inlier sample (adaptive mode).
     pub success_probability: f64,
-    /// Run [`RansacEstimator::refine`] each time a better model is found (LO-RANSAC) and keep
-    /// the refined model if it scores better.
+    /// Run [`RansacEstimator::refine`] on each minimal model that beats every earlier
+    /// minimal model (LO-RANSAC; see the module documentation) and keep the refined model
+    /// if it scores better than the best.
     pub local_optimisation: bool,
     /// Seed of the sampler.
     pub seed: u64,
@@ -153,6 +176,10 @@ pub struct RansacResult<M> {
     /// Inlier mask of the best model.
     pub inliers: Vec<bool>,
 }
+
+/// Local optimisation refines a model on the points within this multiple of the squared
+/// threshold (PoseLib's choice): points just outside the threshold may join as it moves.
+pub const LO_INLIER_FACTOR: f64 = 5.0;
 
 /// Number of iterations needed to draw an all-inlier sample with probability `p` when the
 /// inlier ratio is `w` and the sample size `s`.
@@ -196,6 +223,7 @@ pub fn ransac<E: RansacEstimator>(est: &mut E, options: &RansacOptions) -> Ransa
     let mut sample = Vec::with_capacity(s);
     let mut models = Vec::new();
     let mut needed = options.max_iterations as f64;
+    let mut best_minimal = Score::worst();
     let thr = options.threshold_sq;
     let mut iter = 0;
     while iter < options.max_iterations {
@@ -207,36 +235,35 @@ pub fn ransac<E: RansacEstimator>(est: &mut E, options: &RansacOptions) -> Ransa
         models.clear();
         est.generate_models(&sample, &mut models);
         for m in &models {
-            let sc = est.score_bounded(m, thr, result.score.msac);
-            if !sc.better_than(&result.score) {
+            // Only a model beating every minimal model so far can be refined into the best.
+            let sc = est.score_bounded(m, thr, best_minimal.msac);
+            if !sc.better_than(&best_minimal) {
                 continue;
             }
-            let mut best_model = m.clone();
-            let mut best_score = sc;
+            best_minimal = sc;
+            let mut model = m.clone();
+            if !est.complete(&mut model) {
+                continue;
+            }
+            let mut score = sc;
             if options.local_optimisation {
-                // Iterate refine -> rescore while it improves (bounded).
-                for _ in 0..4 {
-                    let inl = inlier_indices(est, &best_model, thr);
-                    if inl.len() < s {
-                        break;
-                    }
-                    match est.refine(&best_model, &inl) {
-                        Some(r) => {
-                            let rs = est.score_bounded(&r, thr, best_score.msac);
-                            if rs.better_than(&best_score) {
-                                best_model = r;
-                                best_score = rs;
-                            } else {
-                                break;
-                            }
+                let near = inlier_indices(est, &model, LO_INLIER_FACTOR * thr);
+                if near.len() >= s {
+                    if let Some(r) = est.refine(&model, &near, thr) {
+                        let rs = est.score_bounded(&r, thr, score.msac);
+                        if rs.better_than(&score) {
+                            model = r;
+                            score = rs;
                         }
-                        None => break,
                     }
                 }
             }
-            result.model = Some(best_model);
-            result.score = best_score;
-            let w = best_score.inliers as f64 / n as f64;
+            if !score.better_than(&result.score) {
+                continue;
+            }
+            result.model = Some(model);
+            result.score = score;
+            let w = score.inliers as f64 / n as f64;
             needed = required_iterations(w, s, options.success_probability);
         }
     }
@@ -278,11 +305,16 @@ mod tests {
             let (x, y) = self.pts[i];
             (m.0 * x + m.1 - y).powi(2)
         }
-        fn refine(&self, _m: &(f64, f64), inl: &[usize]) -> Option<(f64, f64)> {
-            // Least squares line.
+        fn refine(&self, m: &(f64, f64), inl: &[usize], thr_sq: f64) -> Option<(f64, f64)> {
+            // Least squares line through the points within the threshold.
+            let inl: Vec<usize> = inl
+                .iter()
+                .copied()
+                .filter(|&i| self.residual_sq(m, i) < thr_sq)
+                .collect();
             let n = inl.len() as f64;
             let (mut sx, mut sy, mut sxx, mut sxy) = (0.0, 0.0, 0.0, 0.0);
-            for &i in inl {
+            for &i in &inl {
                 let (x, y) = self.pts[i];
                 sx += x;
                 sy += y;

@@ -323,10 +323,7 @@ pub fn velocity_information(
     problem.residuals_and_jacobian(state, &mut r, &mut jac);
     let mut h = SMatrix::<f64, DIM, DIM>::zeros();
     for (x, j) in r.iter().zip(&jac).take(problem.robust_residuals()) {
-        let w = match problem.loss {
-            Loss::Trivial => 1.0,
-            Loss::Cauchy(c) => 1.0 / (1.0 + x * x / (c * c)),
-        };
+        let w = problem.loss.weight(x * x);
         if w.is_finite() && x.is_finite() && j.iter().all(|v| v.is_finite()) {
             h.syger(w, j, j, 1.0);
         }

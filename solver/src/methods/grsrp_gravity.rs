@@ -86,8 +86,8 @@ impl RansacEstimator for GravityRansac<'_> {
     fn score_bounded(&self, m: &Hypothesis, thr_sq: f64, bound: f64) -> Score {
         self.exact.score_bounded(m, thr_sq, bound)
     }
-    fn refine(&self, m: &Hypothesis, inliers: &[usize]) -> Option<Hypothesis> {
-        self.exact.refine(m, inliers)
+    fn refine(&self, m: &Hypothesis, inliers: &[usize], thr_sq: f64) -> Option<Hypothesis> {
+        self.exact.refine(m, inliers, thr_sq)
     }
 }
 

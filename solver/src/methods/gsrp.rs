@@ -21,15 +21,7 @@ pub(crate) fn run_on(
     options: &EstimateOptions,
 ) -> Result<Estimate, EstimateError> {
     let (kind, thr_sq) = gs_threshold(view1, view2, &options.robust);
-    let mut est = EssentialRansac {
-        data,
-        undistorted: false,
-        model: PoseModel::GlobalShutter,
-        kind,
-        solver: options.essential_solver,
-        lm: options.refinement.clone(),
-        es: Vec::new(),
-    };
+    let mut est = EssentialRansac::new(data, false, PoseModel::GlobalShutter, kind, options);
     let (mut h, res) = run(&mut est, options, thr_sq)?;
     let mut inliers = res.inliers;
     let mut refinement_iterations = 0;

@@ -20,6 +20,17 @@ pub(crate) struct Hypothesis {
 }
 
 impl Hypothesis {
+    /// An essential matrix not yet decomposed (`r`, `t` zero), scaled to `‖E‖_F = √2`, the
+    /// norm of `[t]× R` with a unit `t`, so that algebraic residuals match the pose's.
+    /// [`EssentialRansac`] decomposes it in [`RansacEstimator::complete`].
+    fn essential(e: &Matrix3<f64>) -> Self {
+        Hypothesis {
+            r: Matrix3::zeros(),
+            t: Vector3::zeros(),
+            e: e * (std::f64::consts::SQRT_2 / e.norm()),
+        }
+    }
+
     pub fn new(r: Matrix3<f64>, t: Vector3<f64>) -> Self {
         Hypothesis {
             r,
@@ -99,7 +110,8 @@ pub(crate) fn ransac_options(r: &RobustOptions, thr_sq: f64) -> RansacOptions {
     }
 }
 
-/// LM settings for local optimisation (a few iterations).
+/// LM settings for local optimisation (a few iterations, with a truncated quadratic at the
+/// inlier threshold: the MSAC cost).
 fn lo_options(base: &LmOptions) -> LmOptions {
     LmOptions {
         max_iterations: base.max_iterations.min(10),
@@ -117,29 +129,36 @@ pub(crate) struct EssentialRansac<'a> {
     pub solver: EssentialSolver,
     pub lm: LmOptions,
     pub es: Vec<Matrix3<f64>>,
+    /// The current sample's bearings (for the cheirality test of [`RansacEstimator::complete`]).
+    pub sample: ([Vector3<f64>; 8], [Vector3<f64>; 8], usize),
 }
 
 impl<'a> EssentialRansac<'a> {
-    /// Essential-matrix RANSAC on gyro-undistorted bearings scored with the exact angular
-    /// model (`rectified`'s), with the options' solver and LM settings.
-    pub fn exact(data: &'a PointData, kind: ResidualKind, options: &EstimateOptions) -> Self {
+    /// Essential-matrix RANSAC on bearings `m` (`undistorted = false`) or the
+    /// gyro-undistorted `b`, scored with `model` and `kind`.
+    pub fn new(
+        data: &'a PointData,
+        undistorted: bool,
+        model: PoseModel,
+        kind: ResidualKind,
+        options: &EstimateOptions,
+    ) -> Self {
         EssentialRansac {
             data,
-            undistorted: true,
-            model: PoseModel::ExactAngular,
+            undistorted,
+            model,
             kind,
             solver: options.essential_solver,
             lm: options.refinement.clone(),
             es: Vec::new(),
+            sample: ([Vector3::zeros(); 8], [Vector3::zeros(); 8], 0),
         }
     }
 
-    fn bearings(&self) -> (&[Vector3<f64>], &[Vector3<f64>]) {
-        if self.undistorted {
-            (&self.data.b1, &self.data.b2)
-        } else {
-            (&self.data.m1, &self.data.m2)
-        }
+    /// Essential-matrix RANSAC on gyro-undistorted bearings scored with the exact angular
+    /// model (`rectified`'s), with the options' solver and LM settings.
+    pub fn exact(data: &'a PointData, kind: ResidualKind, options: &EstimateOptions) -> Self {
+        Self::new(data, true, PoseModel::ExactAngular, kind, options)
     }
 }
 
@@ -152,24 +171,37 @@ impl RansacEstimator for EssentialRansac<'_> {
         self.data.len()
     }
     fn generate_models(&mut self, sample: &[usize], models: &mut Vec<Hypothesis>) {
-        let (b1, b2) = self.bearings();
-        let mut buf1 = [Vector3::zeros(); 8];
-        let mut buf2 = [Vector3::zeros(); 8];
-        let k = sample.len().min(8);
-        for (j, &i) in sample.iter().take(k).enumerate() {
+        let (b1, b2) = if self.undistorted {
+            (&self.data.b1, &self.data.b2)
+        } else {
+            (&self.data.m1, &self.data.m2)
+        };
+        let (buf1, buf2, k) = &mut self.sample;
+        *k = sample.len().min(8);
+        for (j, &i) in sample.iter().take(*k).enumerate() {
             buf1[j] = b1[i];
             buf2[j] = b2[i];
         }
-        let (s1, s2) = (&buf1[..k], &buf2[..k]);
         let mut es = std::mem::take(&mut self.es);
         es.clear();
-        self.solver.solve(s1, s2, &mut es);
-        for e in &es {
-            if let Some((r, t)) = pose_from_essential(e, s1, s2) {
-                models.push(Hypothesis::new(r, t));
-            }
-        }
+        self.solver.solve(&buf1[..*k], &buf2[..*k], &mut es);
+        // Scoring needs only E; the pose is extracted for the winners (`complete`).
+        models.extend(
+            es.iter()
+                .filter(|e| e.norm() > 0.0 && e.iter().all(|x| x.is_finite()))
+                .map(Hypothesis::essential),
+        );
         self.es = es;
+    }
+    fn complete(&mut self, m: &mut Hypothesis) -> bool {
+        let (s1, s2, k) = &self.sample;
+        match pose_from_essential(&m.e, &s1[..*k], &s2[..*k]) {
+            Some((r, t)) => {
+                *m = Hypothesis::new(r, t);
+                true
+            }
+            None => false,
+        }
     }
     fn residual_sq(&self, m: &Hypothesis, i: usize) -> f64 {
         let r = self
@@ -187,13 +219,13 @@ impl RansacEstimator for EssentialRansac<'_> {
             .msac(self.model, self.kind, &m.r, &m.t, &m.e, thr_sq, bound);
         Score { msac, inliers }
     }
-    fn refine(&self, m: &Hypothesis, inliers: &[usize]) -> Option<Hypothesis> {
+    fn refine(&self, m: &Hypothesis, inliers: &[usize], thr_sq: f64) -> Option<Hypothesis> {
         let res = refine_pose(
             self.data,
             inliers,
             self.model,
             self.kind,
-            Loss::Trivial,
+            Loss::Truncated(thr_sq.sqrt()),
             m.pose(),
             &lo_options(&self.lm),
         );
@@ -255,13 +287,13 @@ impl RansacEstimator for GrsrpRansac<'_> {
         );
         Score { msac, inliers }
     }
-    fn refine(&self, m: &Hypothesis, inliers: &[usize]) -> Option<Hypothesis> {
+    fn refine(&self, m: &Hypothesis, inliers: &[usize], thr_sq: f64) -> Option<Hypothesis> {
         let res = refine_pose(
             self.data,
             inliers,
             PoseModel::PaperLinear,
             self.kind,
-            Loss::Trivial,
+            Loss::Truncated(thr_sq.sqrt()),
             m.pose(),
             &lo_options(&self.lm),
         );

@@ -288,78 +288,80 @@ impl PointData {
             g1.x * g1.x + g1.y * g1.y + g2.x * g2.x + g2.y * g2.y
         };
         match (model, kind) {
-            (PoseModel::GlobalShutter, ResidualKind::Algebraic) => {
-                self.msac_with(thr_sq, bound, |i| {
-                    let x = self.m2[i].dot(&(e * self.m1[i]));
-                    x * x
-                })
-            }
-            (PoseModel::GlobalShutter, ResidualKind::Sampson) => {
-                self.msac_with(thr_sq, bound, |i| {
-                    let g2 = e * self.m1[i];
-                    let g1 = e.tr_mul(&self.m2[i]);
-                    let x = self.m2[i].dot(&g2);
-                    x * x / sq2(&g1, &g2)
-                })
-            }
-            (PoseModel::ExactAngular, ResidualKind::Algebraic) => {
-                self.msac_with(thr_sq, bound, |i| {
-                    let x = self.b2[i].dot(&(e * self.b1[i]));
-                    x * x
-                })
-            }
+            (PoseModel::GlobalShutter, ResidualKind::Algebraic) => msac_of(
+                thr_sq,
+                bound,
+                self.m1.iter().zip(&self.m2).map(|(m1, m2)| {
+                    let x = m2.dot(&(e * m1));
+                    (x * x, 1.0)
+                }),
+            ),
+            (PoseModel::GlobalShutter, ResidualKind::Sampson) => msac_of(
+                thr_sq,
+                bound,
+                self.m1.iter().zip(&self.m2).map(|(m1, m2)| {
+                    let g2 = e * m1;
+                    let g1 = e.tr_mul(m2);
+                    let x = m2.dot(&g2);
+                    (x * x, sq2(&g1, &g2))
+                }),
+            ),
+            (PoseModel::ExactAngular, ResidualKind::Algebraic) => msac_of(
+                thr_sq,
+                bound,
+                self.b1.iter().zip(&self.b2).map(|(b1, b2)| {
+                    let x = b2.dot(&(e * b1));
+                    (x * x, 1.0)
+                }),
+            ),
             (PoseModel::ExactAngular, ResidualKind::Sampson) => {
-                self.msac_with(thr_sq, bound, |i| {
-                    let u = e * self.b1[i];
-                    let x = self.b2[i].dot(&u);
-                    let g2 = self.omega2[i] * u;
-                    let g1 = self.omega1[i] * e.tr_mul(&self.b2[i]);
-                    let w = self.weight(PoseModel::ExactAngular, i);
-                    w * w * x * x / sq2(&g1, &g2)
-                })
+                let rows = self.omega1.iter().zip(&self.omega2);
+                let w = weights(&self.scale[0]);
+                msac_of(
+                    thr_sq,
+                    bound,
+                    self.b1.iter().zip(&self.b2).zip(rows).zip(w).map(
+                        |(((b1, b2), (o1, o2)), w)| {
+                            let u = e * b1;
+                            let x = b2.dot(&u);
+                            let g2 = o2 * u;
+                            let g1 = o1 * e.tr_mul(b2);
+                            (w * w * x * x, sq2(&g1, &g2))
+                        },
+                    ),
+                )
             }
             (PoseModel::PaperLinear, _) => {
                 // [t]× (I + v2 [w2]×) R = E + v2 F with F = [t]× [w2]× R.
                 let f = skew(t) * skew(&self.w2) * r;
+                let rows = self.v1.iter().zip(&self.v2);
+                let points = self.l1.iter().zip(&self.m2).zip(rows);
                 if kind == ResidualKind::Algebraic {
-                    self.msac_with(thr_sq, bound, |i| {
-                        let l1 = &self.l1[i];
-                        let g2 = e * l1 + (f * l1) * self.v2[i];
-                        let x = self.m2[i].dot(&g2);
-                        x * x
-                    })
+                    msac_of(
+                        thr_sq,
+                        bound,
+                        points.map(|((l1, m2), (_, &v2))| {
+                            let g2 = e * l1 + (f * l1) * v2;
+                            let x = m2.dot(&g2);
+                            (x * x, 1.0)
+                        }),
+                    )
                 } else {
-                    self.msac_with(thr_sq, bound, |i| {
-                        let (l1, m2, v2) = (&self.l1[i], &self.m2[i], self.v2[i]);
-                        let g2 = e * l1 + (f * l1) * v2;
-                        let h = e.tr_mul(m2) + f.tr_mul(m2) * v2;
-                        let g1 = h + (self.w1 * self.v1[i]).cross(&h);
-                        let x = m2.dot(&g2);
-                        let w = self.weight(PoseModel::PaperLinear, i);
-                        w * w * x * x / sq2(&g1, &g2)
-                    })
+                    let w = weights(&self.scale[1]);
+                    msac_of(
+                        thr_sq,
+                        bound,
+                        points.zip(w).map(|(((l1, m2), (&v1, &v2)), w)| {
+                            let g2 = e * l1 + (f * l1) * v2;
+                            let h = e.tr_mul(m2) + f.tr_mul(m2) * v2;
+                            let g1 = h + (self.w1 * v1).cross(&h);
+                            let x = m2.dot(&g2);
+                            (w * w * x * x, sq2(&g1, &g2))
+                        }),
+                    )
                 }
             }
         }
-    }
-
-    #[inline(always)]
-    fn msac_with(&self, thr_sq: f64, bound: f64, sq: impl Fn(usize) -> f64) -> (f64, usize) {
-        let mut sum = 0.0;
-        let mut inliers = 0;
-        for i in 0..self.len() {
-            let x = sq(i);
-            if x < thr_sq {
-                sum += x;
-                inliers += 1;
-            } else {
-                sum += thr_sq;
-            }
-            if sum > bound {
-                break;
-            }
-        }
-        (sum, inliers)
     }
 
     /// Signed residual of point `i` (algebraic `r`, or Sampson `r / |∇r|` times the point's
@@ -381,6 +383,30 @@ impl PointData {
             }
         }
     }
+}
+
+/// The MSAC sum and inlier count of squared residuals given as `(numerator, denominator)`
+/// (`r² = n / d`), stopping once the sum exceeds `bound`. A pair failing `n < τ² d`
+/// (including a zero or non-finite denominator) is an outlier and adds `τ²`.
+#[inline(always)]
+fn msac_of(thr_sq: f64, bound: f64, residuals: impl Iterator<Item = (f64, f64)>) -> (f64, usize) {
+    let mut sum = 0.0;
+    let mut inliers = 0;
+    for (n, d) in residuals {
+        // Branch-free (whether a point is an inlier is as good as random to the branch
+        // predictor): `min` also maps a non-finite ratio (zero denominator) to τ².
+        sum += (n / d).min(thr_sq);
+        inliers += usize::from(n < thr_sq * d);
+        if sum > bound {
+            break;
+        }
+    }
+    (sum, inliers)
+}
+
+/// Per-point weights, 1 where none are set.
+fn weights(w: &[f64]) -> impl Iterator<Item = f64> + '_ {
+    w.iter().copied().chain(std::iter::repeat(1.0))
 }
 
 #[cfg(test)]

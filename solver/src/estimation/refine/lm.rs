@@ -10,19 +10,32 @@ pub enum Loss {
     Trivial,
     /// `ρ(s) = c² ln(1 + s/c²)` with scale `c` (residual units).
     Cauchy(f64),
+    /// `ρ(s) = min(s, c²)` with threshold `c` (residual units): MSAC's truncated quadratic,
+    /// so points beyond `c` carry no weight (their set is re-decided every iteration).
+    Truncated(f64),
 }
 
 impl Loss {
-    fn rho(&self, s: f64) -> f64 {
+    /// `ρ(s)` of a squared residual `s`.
+    pub fn rho(&self, s: f64) -> f64 {
         match *self {
             Loss::Trivial => s,
             Loss::Cauchy(c) => c * c * (s / (c * c)).ln_1p(),
+            Loss::Truncated(c) => s.min(c * c),
         }
     }
-    fn weight(&self, s: f64) -> f64 {
+    /// The IRLS weight `ρ'(s)` of a squared residual `s`.
+    pub fn weight(&self, s: f64) -> f64 {
         match *self {
             Loss::Trivial => 1.0,
             Loss::Cauchy(c) => 1.0 / (1.0 + s / (c * c)),
+            Loss::Truncated(c) => {
+                if s < c * c {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
         }
     }
 }

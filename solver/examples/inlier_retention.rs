@@ -1,6 +1,8 @@
 //! How many true inliers the library defaults keep, and how many outliers they accept, on
 //! the paper's simulated protocol (1 px, no linear velocity) at several gyro-noise levels and
-//! outlier fractions: `cargo run --release -p rspose --example inlier_retention [SCENES]`.
+//! outlier fractions:
+//! `cargo run --release -p rspose --example inlier_retention [SCENES] [--no-fit]`
+//! (`--no-fit`: without the fit of the pair's gyro noise, `RobustOptions::fit_gyro_noise`).
 //!
 //! Every scene is simulated with a known inlier mask (`GroundTruth::inliers`); a match is a
 //! kept true inlier when the mask and the estimate's inlier flag are both true, an accepted
@@ -33,7 +35,9 @@ struct Tally {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let scenes: u64 = match std::env::args().nth(1) {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let fit = !args.iter().any(|a| a == "--no-fit");
+    let scenes: u64 = match args.iter().find(|a| *a != "--no-fit") {
         Some(s) => s
             .parse()
             .map_err(|_| format!("SCENES must be a positive integer, got `{s}`"))?,
@@ -55,7 +59,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         outliers,
     });
     let methods = [Method::Rectified, Method::Grsrp, Method::GrsrpPlus];
-    println!("{scenes} scenes a row, library defaults (EstimateOptions::for_method)");
+    println!(
+        "{scenes} scenes a row, library defaults (EstimateOptions::for_method){}",
+        if fit {
+            ""
+        } else {
+            " without the gyro-noise fit"
+        }
+    );
     println!("| rad/s | gyro noise | outliers | method | true inliers kept | outliers accepted | mean rotation / translation error (deg) | failures |");
     println!("|---|---|---|---|---|---|---|---|");
     for s in &settings {
@@ -76,6 +87,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 let (view1, view2) = pair.views()?;
                 let mut options = EstimateOptions::for_method(m);
                 options.robust.seed = seed;
+                options.robust.fit_gyro_noise = fit;
                 let flags = match estimate_relative_pose(&view1, &view2, &pair.matches, &options) {
                     Ok(est) => {
                         tally.rotation_error_deg +=

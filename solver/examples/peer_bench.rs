@@ -3,8 +3,8 @@
 //! `peer_bench write DIR` writes the instances both sides run:
 //! - `five_point.txt`: 64 minimal problems, one per line, 30 numbers: five unit bearings in
 //!   image 1 then five in image 2 (random scenes, noise-free);
-//! - `pairs.txt`: 50 global-shutter pairs of the paper's protocol (150 matches, 1 px noise,
-//!   30 % outliers), each a header line `N fx fy cx cy r00 .. r22 t0 t1 t2` (ground truth
+//! - `pairs.txt`: global-shutter pairs of the paper's protocol (150 matches, 1 px noise,
+//!   30 % outliers; 50 unless `write DIR PAIRS` says otherwise), each a header line `N fx fy cx cy r00 .. r22 t0 t1 t2` (ground truth
 //!   `x2 = R x1 + t`) and N lines `u1 v1 u2 v2`.
 //!
 //! `peer_bench time DIR [ROUNDS]` times ours on them: essential matrices from 5 bearings,
@@ -35,7 +35,7 @@ struct Pair {
     truth: GroundTruth,
 }
 
-fn write(dir: &Path) -> Result<(), String> {
+fn write(dir: &Path, num_pairs: u64) -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
     let mut five = String::new();
     for seed in 1..=64 {
@@ -59,7 +59,7 @@ fn write(dir: &Path) -> Result<(), String> {
     }
     std::fs::write(dir.join("five_point.txt"), five).map_err(|e| e.to_string())?;
     let mut pairs = String::new();
-    for seed in 0..50 {
+    for seed in 0..num_pairs {
         let p = simulate(&SimulationOptions {
             angular_velocity: 0.0,
             gyro_noise: 0.0,
@@ -169,13 +169,23 @@ fn time(rounds: usize, calls: usize, mut f: impl FnMut(usize)) -> f64 {
 }
 
 fn run(args: &[String]) -> Result<(), String> {
-    let usage = "usage: peer_bench write DIR | peer_bench time DIR [ROUNDS]";
+    let usage = "usage: peer_bench write DIR [PAIRS] | peer_bench time DIR [ROUNDS]";
     let (Some(cmd), Some(dir)) = (args.get(1), args.get(2)) else {
         return Err(usage.into());
     };
     let dir = Path::new(dir);
     match cmd.as_str() {
-        "write" => return write(dir),
+        "write" => {
+            let num_pairs = match args.get(3) {
+                Some(s) => s
+                    .parse()
+                    .ok()
+                    .filter(|&n| n > 0)
+                    .ok_or(format!("PAIRS must be a positive integer, got `{s}`"))?,
+                None => 50,
+            };
+            return write(dir, num_pairs);
+        }
         "time" => {}
         _ => return Err(usage.into()),
     }

@@ -1,17 +1,19 @@
 #!/usr/bin/env bash
 # Same-data, same-work comparison of rspose with PoseLib, interleaved in rounds.
 #
-#   tools/peer/poselib/run.sh POSELIB_CHECKOUT [ROUNDS]
+#   tools/peer/poselib/run.sh POSELIB_CHECKOUT [ROUNDS] [PAIRS]
 #
 # Builds PoseLib from the given checkout (CMake, Release, PoseLib's own flags; needs cmake
 # and Eigen 3, e.g. Debian's cmake and libeigen3-dev) into POSELIB_CHECKOUT/_build, the
 # driver (driver.cc, our code) against it, and `peer_bench` (solver/examples); writes the
-# instances once, then alternates the two programs ROUNDS times (default 9), each pinned to
+# instances once (PAIRS estimator pairs, default 50; more give steadier accuracy figures),
+# then alternates the two programs ROUNDS times (default 9), each pinned to
 # one core, and prints every figure per round and the medians of the same-round ratios
 # ours/PoseLib with each side's accuracy. Nothing of PoseLib is copied into this repository.
 set -euo pipefail
-poselib="$(cd "${1:?usage: $0 POSELIB_CHECKOUT [ROUNDS]}" && pwd)"
+poselib="$(cd "${1:?usage: $0 POSELIB_CHECKOUT [ROUNDS] [PAIRS]}" && pwd)"
 rounds="${2:-9}"
+pairs="${3:-50}"
 here="$(cd "$(dirname "$0")" && pwd)"
 repo="$(cd "$here/../../.." && pwd)"
 work="$(mktemp -d)"
@@ -24,7 +26,7 @@ g++ -O3 -std=c++17 -I"$poselib" -I"$poselib/_build/generated_headers" -I/usr/inc
   "$here/driver.cc" -L"$poselib/_build/PoseLib" -lPoseLib -o "$work/driver"
 cargo build --release -q -p rspose --example peer_bench --manifest-path "$repo/Cargo.toml"
 ours="$repo/target/release/examples/peer_bench"
-"$ours" write "$work/data"
+"$ours" write "$work/data" "$pairs"
 
 pin=""
 command -v taskset >/dev/null && pin="taskset -c 0"

@@ -171,7 +171,9 @@ pub struct RobustOptions {
     /// 1000 minimal-solver calls; the adaptive rule stops far earlier once a model with a
     /// reasonable inlier ratio is found, e.g. 59 iterations at 70 % inliers).
     pub max_iterations: usize,
-    /// Local optimisation on each improvement (LO-RANSAC).
+    /// Local optimisation (LO-RANSAC): every minimal model that beats all earlier minimal
+    /// models is refined once (a truncated quadratic at the threshold over its 5τ²
+    /// neighbourhood) and kept if it then scores best (see [`crate::estimation::ransac`]).
     pub local_optimisation: bool,
     /// Refine the final `gsrp` model on its inliers (Sampson, global-shutter model).
     pub final_refinement: bool,

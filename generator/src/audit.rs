@@ -5,7 +5,9 @@
 
 use crate::algebra::Poly;
 use crate::instance::random_data_f64;
-use crate::interpret::{normalized_residual, recover_eliminated, solve_template};
+use crate::interpret::{
+    newton_polish_polys, normalized_residual, recover_eliminated, solve_template,
+};
 use crate::pipeline::SolverPlan;
 use crate::template::EliminationTemplate;
 use rand::SeedableRng;
@@ -61,6 +63,8 @@ pub struct AuditInstance {
     pub original: Vec<Poly<f64>>,
     /// The eliminated unknowns, if the problem eliminates some.
     pub eliminated: Option<EliminatedUnknowns>,
+    /// Gauss-Newton steps polishing each solution on `original` (`option newton`).
+    pub newton_steps: usize,
 }
 
 /// Result of an audit (serialised by [`AuditReport::to_json`]).
@@ -143,6 +147,10 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
                 full
             }
         };
+        let mut full = full;
+        if inst.newton_steps > 0 {
+            newton_polish_polys(&inst.original, &mut full, inst.newton_steps);
+        }
         real += 1;
         let r = worst_residual(&inst.original, &full);
         let r = if r.is_nan() { f64::INFINITY } else { r };
@@ -400,6 +408,7 @@ fn plan_instance(plan: &SolverPlan, data: &[f64]) -> AuditInstance {
             matrix: e.coefficient_matrix,
             positions: e.eliminated,
         }),
+        newton_steps: plan.problem.layout.options.newton.unwrap_or(0) as usize,
     }
 }
 

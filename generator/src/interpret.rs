@@ -297,6 +297,48 @@ pub fn solve_template_real(
     solve_template(template, equations).map_or_else(|_| Vec::new(), |s| s.solutions)
 }
 
+/// Polishes `x` by up to `steps` Gauss-Newton steps on `equations` (polynomials in `x`'s
+/// unknowns, possibly with more variables that do not occur) with [`mingen_runtime::newton_polish`], as an emitted solver of a problem
+/// with `option newton = N` does. Returns the steps taken (0 if an exponent exceeds 255).
+pub fn newton_polish_polys(equations: &[Poly<f64>], x: &mut [f64], steps: usize) -> usize {
+    let mut coefficients = Vec::new();
+    let mut exponents: Vec<Vec<Vec<u8>>> = Vec::with_capacity(equations.len());
+    for p in equations {
+        let mut eq = Vec::new();
+        for (m, &c) in p.terms() {
+            // Variables beyond x's (hidden unknowns) must not occur.
+            let (head, tail) = m.0.split_at(x.len().min(m.0.len()));
+            if tail.iter().any(|&d| d != 0) {
+                return 0;
+            }
+            let Ok(e) = head
+                .iter()
+                .map(|&d| u8::try_from(d))
+                .collect::<Result<Vec<u8>, _>>()
+            else {
+                return 0;
+            };
+            coefficients.push(c);
+            eq.push(e);
+        }
+        exponents.push(eq);
+    }
+    let mut next = 0;
+    let terms: Vec<Vec<mingen_runtime::NewtonTerm>> = exponents
+        .iter()
+        .map(|eq| {
+            eq.iter()
+                .map(|e| {
+                    next += 1;
+                    (next - 1, e.as_slice())
+                })
+                .collect()
+        })
+        .collect();
+    let terms: Vec<&[mingen_runtime::NewtonTerm]> = terms.iter().map(Vec::as_slice).collect();
+    mingen_runtime::newton_polish(x, &terms, &coefficients, steps)
+}
+
 /// Evaluates a real polynomial at a point.
 pub fn eval(p: &Poly<f64>, x: &[f64]) -> f64 {
     p.terms().map(|(m, &c)| c * monomial_value(m, x)).sum()

@@ -119,6 +119,10 @@ struct SearchArgs {
     /// selected among the template's columns; the default).
     #[arg(long, value_name = "standard|selected", value_parser = ["standard", "selected"])]
     basis: Option<String>,
+    /// Gauss-Newton steps polishing every solution on the original equations (0 to 8;
+    /// default: the file's `option newton`, else 0).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=8))]
+    newton: Option<u32>,
 }
 
 impl SearchArgs {
@@ -135,6 +139,7 @@ impl SearchArgs {
                 action: self.action.clone(),
                 extra_degree: self.extra_degree,
                 basis: self.basis.clone(),
+                newton: self.newton,
             },
             ..TemplateOptions::default()
         })

@@ -16,7 +16,9 @@
 
 use crate::algebra::{Fp, Monomial, Poly, Ring};
 use crate::eliminate::{eliminate_linear, EliminateError, Eliminated};
-use crate::emit::{emit_solver, EliminationSpec, EmitError, SolverSpec, Tracer};
+use crate::emit::{
+    emit_solver, EliminationSpec, EmitError, PolishSpec, SolverSpec, Traced, Tracer,
+};
 use crate::instance::random_data_fp;
 use crate::quotient::{analyse_within, InstanceRng, InstanceSource};
 use crate::template::search::best_template_within;
@@ -193,11 +195,16 @@ pub fn plan_file(path: &Path, options: &TemplateOptions) -> Result<SolverPlan, P
 /// Runs the algebra pipeline on `problem` (see the module documentation), with the
 /// options of [`resolve_options`].
 pub fn plan(
-    problem: Problem,
+    mut problem: Problem,
     file: &str,
     options: &TemplateOptions,
 ) -> Result<SolverPlan, PipelineError> {
     let start = Instant::now();
+    // Solution polishing is not part of the search: the command line's value replaces the
+    // file's in the layout the emitter and the audit read.
+    if let Some(n) = options.overrides.newton {
+        problem.layout.options.newton = Some(n);
+    }
     let options = &resolve_options(&problem, options);
     if let Some(a) = &options.overrides.action {
         let names = ProblemSource::new(&problem).var_names();
@@ -407,6 +414,26 @@ pub fn emit_plan_from(plan: &SolverPlan, problem_path: &str) -> Result<String, P
     let tracer = Tracer::new();
     let data = tracer.inputs(layout.data_slot_count());
     let (equations, elimination) = plan.equations(&data);
+    let polish = match layout.options.newton {
+        Some(steps) if steps > 0 => {
+            let unknowns = layout.unknown_count() - layout.hidden_count();
+            let equations = plan
+                .problem
+                .evaluate::<Traced>(&data)
+                .into_iter()
+                .filter(|p| {
+                    p.terms()
+                        .all(|(m, _)| m.0[unknowns..].iter().all(|&e| e == 0))
+                })
+                .collect();
+            Some(PolishSpec {
+                steps: steps as usize,
+                equations,
+                unknowns,
+            })
+        }
+        _ => None,
+    };
     let spec = SolverSpec {
         layout: layout.clone(),
         template: plan.generated.built.template.clone(),
@@ -417,6 +444,7 @@ pub fn emit_plan_from(plan: &SolverPlan, problem_path: &str) -> Result<String, P
             remaining: e.remaining,
             coefficient_matrix: e.coefficient_matrix,
         }),
+        polish,
     };
     emit_solver(&spec).map_err(|source| PipelineError::Emit {
         file: plan.file.clone(),

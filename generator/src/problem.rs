@@ -119,6 +119,12 @@ pub struct ProblemOptions {
     /// `option basis = standard` (grevlex standard monomials only) or `selected` (also
     /// bases selected among the template's columns, the default).
     pub basis: Option<String>,
+    /// `option newton = N` (0 to 8, default 0): Gauss-Newton steps polishing every solution
+    /// on the problem's original equations (eliminated unknowns included), each step kept
+    /// only if it lowers their squared residual. For problems whose action matrix is too
+    /// inaccurate on its own (`mingen audit` shows it); it costs a few evaluations of the
+    /// equations and their gradients per solution and step.
+    pub newton: Option<u32>,
 }
 
 /// The symbols of a problem: what emitted solvers take as data and return as solutions.

@@ -151,6 +151,7 @@ fn five_point_spec() -> (SolverSpec, Tracer) {
         equations,
         problem_path: "templates/fivept.mp".into(),
         elimination: None,
+        polish: None,
     };
     (spec, tracer)
 }
@@ -472,6 +473,7 @@ fn elimination_emission_parses() {
             remaining: vec![0],
             coefficient_matrix,
         }),
+        polish: None,
     };
     let a = emit_solver(&spec).unwrap();
     assert_eq!(a, emit_solver(&spec).unwrap());

@@ -152,6 +152,7 @@ fn instance(rng: &mut ChaCha8Rng) -> AuditInstance {
         equations: eqs.clone(),
         original: eqs,
         eliminated: None,
+        newton_steps: 0,
     }
 }
 
@@ -305,6 +306,7 @@ fn audit_with_eliminated_unknowns() {
             matrix: matrix.clone(),
             positions: vec![2, 3, 4],
         }),
+        newton_steps: 0,
     });
     assert_eq!(report.failures, 0, "{report}");
     assert!(report.p99_log10_residual < -13.0, "{report}");

@@ -79,6 +79,8 @@ fn options_choose_the_action_and_are_checked() {
         ("option action = z", "option action"),
         ("option extra_degree = 99", "option extra_degree"),
         ("option basis = best", "option basis"),
+        ("option newton = 9", "option newton"),
+        ("option newton = fast", "option newton"),
         ("option speed = 3", "unknown option 'speed'"),
     ] {
         let e = Problem::parse(&format!("{src}{line}\n"), "c.mp").unwrap_err();
@@ -102,4 +104,48 @@ fn an_exhausted_budget_is_a_clear_error() {
     assert!(err.contains("4 solutions, but no template"), "{err}");
     assert!(err.contains("up to degree"), "{err}");
     assert!(err.contains("time budget"), "{err}");
+}
+
+#[test]
+fn newton_polishes_solutions_in_the_audit_and_the_emitted_solver() {
+    // A circle and a hyperbola (4 solutions): polishing may only lower the residuals, and
+    // the emitted solver carries the steps.
+    let src = "problem c\nunknown x, y\ndata a: scalar, b: scalar\nx*x + y*y = a\nx*y = b\n";
+    let plain = planned(src, &TemplateOptions::default()).unwrap();
+    let polished = planned(
+        &format!("{src}option newton = 2\n"),
+        &TemplateOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(polished.problem.layout.options.newton, Some(2));
+    let audit = |p: &mingen::pipeline::SolverPlan| {
+        mingen::audit::audit_plan(
+            p,
+            &mingen::audit::AuditOptions {
+                instances: 200,
+                seed: 3,
+            },
+        )
+    };
+    let (a, b) = (audit(&plain), audit(&polished));
+    assert!(
+        b.median_log10_residual <= a.median_log10_residual,
+        "{a} {b}"
+    );
+    assert!(b.failures <= a.failures, "{a} {b}");
+    let source = mingen::pipeline::emit_plan(&polished).unwrap();
+    assert!(source.contains("newton_polish(&mut x, &NEWTON_TERMS, &newton_c, 2)"));
+    assert!(!mingen::pipeline::emit_plan(&plain)
+        .unwrap()
+        .contains("newton_polish"));
+    // The command line's value replaces the file's.
+    let opts = TemplateOptions {
+        overrides: ProblemOptions {
+            newton: Some(0),
+            ..ProblemOptions::default()
+        },
+        ..TemplateOptions::default()
+    };
+    let p = planned(&format!("{src}option newton = 2\n"), &opts).unwrap();
+    assert_eq!(p.problem.layout.options.newton, Some(0));
 }

@@ -48,6 +48,7 @@ mod eigen;
 mod elim;
 mod hessenberg;
 mod hqr;
+mod newton;
 mod null;
 mod readout;
 mod solution_set;
@@ -60,6 +61,7 @@ pub use dynamic::{real_eigenpairs_dyn, DynEigenpair, MAX_DYNAMIC_BASIS, STURM_MA
 pub use eigen::{real_eigenpairs, NEAR_REAL_TOL};
 pub use elim::{gauss_jordan, lu_solve_template, lu_solve_template_fixed, PIVOT_TOL};
 pub use hqr::real_eigenpairs_hqr;
+pub use newton::{newton_polish, NewtonTerm, MAX_NEWTON_UNKNOWNS};
 pub use null::{null_vector3, null_vector3_rows};
 pub use readout::{read_unknowns, MIN_UNIT_ENTRY};
 pub use solution_set::SolutionSet;

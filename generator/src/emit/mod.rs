@@ -20,6 +20,7 @@
 
 pub mod coefficients;
 mod files;
+mod polish;
 mod runtime_api;
 mod solver;
 mod structs;
@@ -70,6 +71,18 @@ pub struct EliminationSpec {
     pub coefficient_matrix: Vec<Vec<Poly<Traced>>>,
 }
 
+/// Polishing of every solution by Gauss-Newton steps (`option newton = N`).
+#[derive(Clone, Debug)]
+pub struct PolishSpec {
+    /// Steps per solution (at most; each is kept only if it lowers the residual).
+    pub steps: usize,
+    /// The problem's original equations in its declared unknowns (flat numbering; those
+    /// involving hidden unknowns left out), with traced coefficients.
+    pub equations: Vec<Poly<Traced>>,
+    /// The number of declared (visible) unknowns: the equations' first variables.
+    pub unknowns: usize,
+}
+
 /// Everything needed to emit one solver.
 #[derive(Clone, Debug)]
 pub struct SolverSpec {
@@ -85,4 +98,6 @@ pub struct SolverSpec {
     pub problem_path: String,
     /// Linear elimination info, if the problem eliminates unknowns.
     pub elimination: Option<EliminationSpec>,
+    /// Newton polishing of the solutions, if the problem asks for it.
+    pub polish: Option<PolishSpec>,
 }

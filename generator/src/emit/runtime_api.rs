@@ -50,6 +50,12 @@ pub(crate) fn read_unknowns() -> TokenStream {
     quote!(mingen_runtime::read_unknowns)
 }
 
+/// `newton_polish(x: &mut [f64], equations: &[&[NewtonTerm]], coefficients: &[f64],
+/// steps: usize) -> usize`: Gauss-Newton polishing of a solution.
+pub(crate) fn newton_polish() -> TokenStream {
+    quote!(mingen_runtime::newton_polish)
+}
+
 /// The stage-observer trait `Stages` (`filled`, `eliminated`, `action`: `&[f64] -> bool`),
 /// implemented by `()`.
 pub(crate) fn stages() -> TokenStream {

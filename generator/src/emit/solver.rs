@@ -442,6 +442,13 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
             elim_terms.push(r);
         }
     }
+    // Polishing: the original equations' coefficients, bound before the loop with the
+    // elimination matrix's.
+    let n_elim_vals = elim_vals.len();
+    let polish_terms = match &spec.polish {
+        Some(p) => super::polish::coefficients(p, &mut elim_vals)?,
+        None => Vec::new(),
+    };
     let program = Program::build(&fill_vals, &elim_vals, n_slots)?;
     let stats = Stats {
         ops: program.op_count(),
@@ -516,17 +523,35 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     } else {
         quote!()
     };
+    let source_value = |i: usize| match plan.source[i] {
+        Ok(k) => {
+            let u = format_ident!("u{}", k);
+            quote!(#u)
+        }
+        Err(j) => {
+            let j = lit(j);
+            quote!(n[#j])
+        }
+    };
+    let (polish_consts, polish_block) = match &spec.polish {
+        Some(p) => super::polish::tokens(
+            p,
+            &polish_terms,
+            &program.outputs[fill_vals.len() + n_elim_vals..],
+            (0..p.unknowns).map(source_value).collect(),
+        ),
+        None => (quote!(), quote!()),
+    };
     let mut field_inits = Vec::new();
     for u in layout.declared_unknowns() {
         let id = field_ident(&u.name, "unknown")?;
-        let val = |i: usize| match plan.source[i] {
-            Ok(k) => {
-                let u = format_ident!("u{}", k);
-                quote!(#u)
-            }
-            Err(j) => {
-                let j = lit(j);
-                quote!(n[#j])
+        let polished = spec.polish.is_some();
+        let val = |i: usize| {
+            if polished {
+                let i = lit(i);
+                quote!(x[#i])
+            } else {
+                source_value(i)
             }
         };
         match u.len {
@@ -623,6 +648,19 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         String::new(),
         "Never panics: non-finite or degenerate data gives no solutions.".into(),
     ];
+    let mut docs = docs.to_vec();
+    if let Some(p) = &spec.polish {
+        docs.insert(
+            3,
+            format!(
+                "Then polishes each solution by up to {} Gauss-Newton steps on the problem's \
+                 original equations (`option newton`), each kept only if it lowers their \
+                 squared residual.",
+                p.steps
+            ),
+        );
+        docs.insert(4, String::new());
+    }
     let docs: Vec<TokenStream> = docs.iter().map(doc).collect();
     let solve = quote! {
         /// The elimination template's `[rows, cols, pivot columns, first reduced row]`.
@@ -670,6 +708,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
                 return out;
             }
             let pairs = #eig::<#nb_l>(&a);
+            #polish_consts
             const READOUT: [&[(usize, usize)]; #nvars_l] = [#(#readout_pairs),*];
             for (_, v) in pairs.iter() {
                 let mut u = [0.0f64; #nvars_l];
@@ -678,6 +717,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
                 }
                 let [#(#unknown_idents),*] = u;
                 #elim_block
+                #polish_block
                 if !out.push(Solution { #(#field_inits)* }) {
                     break;
                 }

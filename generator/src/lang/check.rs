@@ -23,6 +23,9 @@ mod expr;
 pub const BUILTINS: [&str; 4] = ["I", "skew", "det", "trace"];
 
 const MAX_ARRAY_LEN: usize = 100_000;
+/// Most Gauss-Newton steps `option newton` may ask for (polishing converges in one or two
+/// from an eigenvector's solution; more only costs time).
+pub const MAX_NEWTON_STEPS: u32 = 8;
 const MAX_NODES: usize = 2_000_000;
 const MAX_ITERATIONS: usize = 1_000_000;
 const MAX_EQUATIONS: usize = 100_000;
@@ -311,7 +314,8 @@ impl Checker {
         }
     }
 
-    /// Checks the `option` statements into `layout.options`.
+    /// Checks the `option` statements into `layout.options` (`newton` at most
+    /// [`MAX_NEWTON_STEPS`]).
     fn check_options(&mut self) -> Result<(), LangError> {
         let names = self.layout.unknown_names();
         for (name, value) in std::mem::take(&mut self.options) {
@@ -349,11 +353,19 @@ impl Checker {
                     }
                     o.basis.replace(v).is_some()
                 }
+                "newton" => match v.parse::<u32>() {
+                    Ok(d) if d <= MAX_NEWTON_STEPS => o.newton.replace(d).is_some(),
+                    _ => {
+                        return bad(&format!(
+                            "option newton: expected an integer from 0 to {MAX_NEWTON_STEPS}, found '{v}'"
+                        ))
+                    }
+                },
                 other => {
                     return Err(LangError::new(
                         name.pos,
                         format!(
-                            "unknown option '{other}' (the options are action, extra_degree, basis)"
+                            "unknown option '{other}' (the options are action, extra_degree, basis, newton)"
                         ),
                     ))
                 }

@@ -1,0 +1,230 @@
+//! Polishing a solution by Gauss-Newton steps on the problem's polynomial equations
+//! (`option newton = N` of a problem file).
+//!
+//! An equation is a list of terms `c · x^e`: the index of the coefficient `c` in a
+//! coefficient slice and the exponents `e` of the unknowns. Each step evaluates every
+//! equation `f_i` and its gradient `g_i` at `x`, solves the normal equations
+//! `(Σ g_i g_iᵀ) δ = −Σ f_i g_i` (Cholesky, with a relative ridge of 1e-14 on the diagonal
+//! for rank-deficient directions) and takes `x + δ` only if it lowers `Σ f_i²`; otherwise
+//! polishing stops. Near a simple root each step roughly squares the error, so the one or
+//! two steps a solution from an inaccurate action matrix needs bring it to rounding level.
+//! No heap allocation: at most [`MAX_NEWTON_UNKNOWNS`] unknowns.
+
+/// One term of an equation: the index of its coefficient and the exponent of each unknown.
+pub type NewtonTerm<'a> = (usize, &'a [u8]);
+
+/// Most unknowns [`newton_polish`] accepts.
+pub const MAX_NEWTON_UNKNOWNS: usize = 24;
+
+/// Value and gradient of `Σ_terms c x^e` at `x` (gradient into `grad[..x.len()]`).
+fn value_and_gradient(
+    terms: &[NewtonTerm<'_>],
+    coefficients: &[f64],
+    x: &[f64],
+    grad: &mut [f64],
+) -> Option<f64> {
+    let n = x.len();
+    grad[..n].iter_mut().for_each(|g| *g = 0.0);
+    let mut value = 0.0;
+    for &(c, e) in terms {
+        let c = *coefficients.get(c)?;
+        if e.len() != n {
+            return None;
+        }
+        let mut mono = 1.0;
+        for (&xi, &ei) in x.iter().zip(e) {
+            mono *= xi.powi(i32::from(ei));
+        }
+        value += c * mono;
+        for k in 0..n {
+            if e[k] == 0 {
+                continue;
+            }
+            // ∂/∂x_k of x^e: e_k x_k^(e_k - 1) times the other factors.
+            let mut d = c * f64::from(e[k]) * x[k].powi(i32::from(e[k]) - 1);
+            for j in (0..n).filter(|&j| j != k) {
+                d *= x[j].powi(i32::from(e[j]));
+            }
+            grad[k] += d;
+        }
+    }
+    Some(value)
+}
+
+/// `Σ_i f_i(x)²`, or `None` if an equation is malformed or a value not finite.
+fn squared_residual(
+    equations: &[&[NewtonTerm<'_>]],
+    coefficients: &[f64],
+    x: &[f64],
+) -> Option<f64> {
+    let mut grad = [0.0; MAX_NEWTON_UNKNOWNS];
+    let mut sum = 0.0;
+    for eq in equations {
+        let f = value_and_gradient(eq, coefficients, x, &mut grad)?;
+        sum += f * f;
+    }
+    sum.is_finite().then_some(sum)
+}
+
+/// Solves `h δ = b` for the symmetric positive semi-definite `n x n` leading block of `h`
+/// (Cholesky with a relative ridge), in place into `b`; `false` if it breaks down.
+#[allow(clippy::needless_range_loop)] // triangular index ranges read clearer than iterators
+fn solve_normal(
+    h: &mut [[f64; MAX_NEWTON_UNKNOWNS]; MAX_NEWTON_UNKNOWNS],
+    b: &mut [f64],
+    n: usize,
+) -> bool {
+    let scale = (0..n).map(|i| h[i][i]).fold(0.0f64, f64::max);
+    if !(scale.is_finite() && scale > 0.0) {
+        return false;
+    }
+    for i in 0..n {
+        h[i][i] += 1e-14 * scale;
+    }
+    for j in 0..n {
+        let mut d = h[j][j];
+        for k in 0..j {
+            d -= h[j][k] * h[j][k];
+        }
+        if d.is_nan() || d <= 0.0 {
+            return false;
+        }
+        let d = d.sqrt();
+        h[j][j] = d;
+        for i in j + 1..n {
+            let mut s = h[i][j];
+            for k in 0..j {
+                s -= h[i][k] * h[j][k];
+            }
+            h[i][j] = s / d;
+        }
+    }
+    for i in 0..n {
+        let mut s = b[i];
+        for k in 0..i {
+            s -= h[i][k] * b[k];
+        }
+        b[i] = s / h[i][i];
+    }
+    for i in (0..n).rev() {
+        let mut s = b[i];
+        for k in i + 1..n {
+            s -= h[k][i] * b[k];
+        }
+        b[i] = s / h[i][i];
+    }
+    b[..n].iter().all(|v| v.is_finite())
+}
+
+/// Up to `steps` Gauss-Newton steps on `equations` (terms indexing `coefficients`) from
+/// `x`, each kept only if it lowers the sum of squared residuals (see the module
+/// documentation). Returns the number of steps taken; `x` is never made worse. Nothing
+/// is done for more than [`MAX_NEWTON_UNKNOWNS`] unknowns, fewer equations than
+/// unknowns, a malformed term or non-finite values.
+#[allow(clippy::needless_range_loop)] // the normal equations' triangular index ranges
+pub fn newton_polish(
+    x: &mut [f64],
+    equations: &[&[NewtonTerm<'_>]],
+    coefficients: &[f64],
+    steps: usize,
+) -> usize {
+    let n = x.len();
+    if n == 0 || n > MAX_NEWTON_UNKNOWNS || equations.len() < n {
+        return 0;
+    }
+    let Some(mut cost) = squared_residual(equations, coefficients, x) else {
+        return 0;
+    };
+    let mut taken = 0;
+    let mut grad = [0.0; MAX_NEWTON_UNKNOWNS];
+    for _ in 0..steps {
+        if cost == 0.0 {
+            break;
+        }
+        let mut h = [[0.0; MAX_NEWTON_UNKNOWNS]; MAX_NEWTON_UNKNOWNS];
+        let mut b = [0.0; MAX_NEWTON_UNKNOWNS];
+        for eq in equations {
+            let Some(f) = value_and_gradient(eq, coefficients, x, &mut grad) else {
+                return taken;
+            };
+            for i in 0..n {
+                b[i] -= f * grad[i];
+                for j in 0..=i {
+                    h[i][j] += grad[i] * grad[j];
+                }
+            }
+        }
+        if !solve_normal(&mut h, &mut b, n) {
+            break;
+        }
+        let mut next = [0.0; MAX_NEWTON_UNKNOWNS];
+        for i in 0..n {
+            next[i] = x[i] + b[i];
+        }
+        match squared_residual(equations, coefficients, &next[..n]) {
+            Some(c) if c < cost => {
+                x.copy_from_slice(&next[..n]);
+                cost = c;
+                taken += 1;
+            }
+            _ => break,
+        }
+    }
+    taken
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// x² + y² − 2 = 0, x − y = 0, x y − 1 = 0 (overdetermined; root (1, 1)).
+    fn system() -> (Vec<Vec<NewtonTerm<'static>>>, Vec<f64>) {
+        const X2: [u8; 2] = [2, 0];
+        const Y2: [u8; 2] = [0, 2];
+        const ONE: [u8; 2] = [0, 0];
+        const X: [u8; 2] = [1, 0];
+        const Y: [u8; 2] = [0, 1];
+        const XY: [u8; 2] = [1, 1];
+        let eqs = vec![
+            vec![(0, &X2[..]), (1, &Y2[..]), (2, &ONE[..])],
+            vec![(1, &X[..]), (3, &Y[..])],
+            vec![(1, &XY[..]), (3, &ONE[..])],
+        ];
+        (eqs, vec![1.0, 1.0, -2.0, -1.0])
+    }
+
+    #[test]
+    fn converges_quadratically_to_a_root() {
+        let (eqs, c) = system();
+        let eqs: Vec<&[NewtonTerm]> = eqs.iter().map(Vec::as_slice).collect();
+        let mut x = [1.0 + 1e-5, 1.0 - 3e-6];
+        let steps = newton_polish(&mut x, &eqs, &c, 3);
+        assert!(steps >= 1);
+        assert!(
+            (x[0] - 1.0).abs() < 1e-14 && (x[1] - 1.0).abs() < 1e-14,
+            "{x:?}"
+        );
+    }
+
+    #[test]
+    fn never_makes_a_solution_worse_and_rejects_bad_input() {
+        let (eqs, c) = system();
+        let eqs: Vec<&[NewtonTerm]> = eqs.iter().map(Vec::as_slice).collect();
+        // An exact root: nothing to do.
+        let mut x = [1.0, 1.0];
+        assert_eq!(newton_polish(&mut x, &eqs, &c, 3), 0);
+        assert_eq!(x, [1.0, 1.0]);
+        // Non-finite start, coefficient out of range, too few equations: untouched.
+        let mut x = [f64::NAN, 1.0];
+        assert_eq!(newton_polish(&mut x, &eqs, &c, 3), 0);
+        let mut x = [1.1, 0.9];
+        assert_eq!(newton_polish(&mut x, &eqs, &c[..2], 3), 0);
+        assert_eq!(x, [1.1, 0.9]);
+        assert_eq!(newton_polish(&mut x, &eqs[..1], &c, 3), 0);
+        // Far from a root the cost still only goes down.
+        let before = squared_residual(&eqs, &c, &[3.0, -2.0]).unwrap();
+        let mut x = [3.0, -2.0];
+        newton_polish(&mut x, &eqs, &c, 8);
+        assert!(squared_residual(&eqs, &c, &x).unwrap() <= before);
+    }
+}

@@ -1,0 +1,86 @@
+//! Emission of `option newton`: the original equations' coefficients (computed with the
+//! template's, from the same shared intermediates), their terms as a constant table, and
+//! the call of `mingen_runtime::newton_polish` on each solution.
+
+use super::coefficients::Expr;
+use super::runtime_api as rt;
+use super::tokens::lit;
+use super::{EmitError, PolishSpec, Traced};
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
+
+/// One equation's terms: (index among the polishing coefficients, exponents of the declared
+/// unknowns).
+pub(super) type EquationTerms = Vec<(usize, Vec<u8>)>;
+
+/// Appends the coefficients of `p`'s equations to `values` and returns each equation's
+/// terms: (index among the appended coefficients, exponents of the declared unknowns).
+pub(super) fn coefficients(
+    p: &PolishSpec,
+    values: &mut Vec<Traced>,
+) -> Result<Vec<EquationTerms>, EmitError> {
+    if p.unknowns > mingen_runtime::MAX_NEWTON_UNKNOWNS || p.equations.len() < p.unknowns {
+        return Err(EmitError::Unsupported(format!(
+            "option newton needs at most {} unknowns and as many equations ({} unknowns, {} equations)",
+            mingen_runtime::MAX_NEWTON_UNKNOWNS,
+            p.unknowns,
+            p.equations.len()
+        )));
+    }
+    let first = values.len();
+    let mut out = Vec::with_capacity(p.equations.len());
+    for eq in &p.equations {
+        let mut terms = Vec::new();
+        for (m, c) in eq.terms() {
+            let e = m.0[..p.unknowns]
+                .iter()
+                .map(|&d| u8::try_from(d))
+                .collect::<Result<Vec<u8>, _>>()
+                .map_err(|_| {
+                    EmitError::Unsupported("option newton with an exponent above 255".into())
+                })?;
+            terms.push((values.len() - first, e));
+            values.push(c.clone());
+        }
+        out.push(terms);
+    }
+    Ok(out)
+}
+
+/// `(before the solution loop, inside it)`: the coefficient array `newton_c` and the term
+/// table `NEWTON_TERMS`; then `x`, the solution in declared-unknown order (`values`), and
+/// its polishing. `outputs` are the program outputs of the coefficients of
+/// [`coefficients`], in order.
+pub(super) fn tokens(
+    p: &PolishSpec,
+    terms: &[EquationTerms],
+    outputs: &[Expr],
+    values: Vec<TokenStream>,
+) -> (TokenStream, TokenStream) {
+    let coeffs: Vec<TokenStream> = outputs.iter().map(Expr::to_tokens).collect();
+    let nc = lit(coeffs.len());
+    let neq = lit(terms.len());
+    let eqs: Vec<TokenStream> = terms
+        .iter()
+        .map(|terms| {
+            let ts = terms.iter().map(|(c, e)| {
+                let c = lit(*c);
+                let e = e.iter().map(|&x| Literal::u8_unsuffixed(x));
+                quote!((#c, &[#(#e),*]))
+            });
+            quote!(&[#(#ts),*])
+        })
+        .collect();
+    let steps = lit(p.steps);
+    let polish = rt::newton_polish();
+    (
+        quote! {
+            let newton_c: [f64; #nc] = [#(#coeffs),*];
+            const NEWTON_TERMS: [&[(usize, &[u8])]; #neq] = [#(#eqs),*];
+        },
+        quote! {
+            let mut x = [#(#values),*];
+            #polish(&mut x, &NEWTON_TERMS, &newton_c, #steps);
+        },
+    )
+}

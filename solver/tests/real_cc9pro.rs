@@ -127,3 +127,54 @@ fn readout_and_time_offset_from_the_recording() {
     assert!((0.024..=0.031).contains(&c.readout), "{}", c.readout);
     assert!(c.offset.abs() <= 0.003, "{}", c.offset);
 }
+
+#[test]
+fn per_pair_readout_refinement_agrees_with_the_calibration() {
+    use rspose::estimation::readout::{refine_readout_scale, ReadoutOptions};
+    // Each pair alone: `rectified` at the pair files' nominal readout, then the pose and a
+    // readout scale refined together. Single pairs see the readout only through a few
+    // hundredths of a radian of rolling-shutter rotation, so they scatter; their median
+    // must land where the twelve-pair calibration does (about 30 ms), away from the nominal.
+    let mut readouts: Vec<f64> = pairs()
+        .iter()
+        .map(|p| {
+            let (v1, v2) = p.views().unwrap();
+            let est = estimate_relative_pose(
+                &v1,
+                &v2,
+                &p.matches,
+                &EstimateOptions::for_method(Method::Rectified),
+            )
+            .unwrap();
+            let fit = refine_readout_scale(
+                &v1,
+                &v2,
+                &p.matches,
+                &est.inliers,
+                &est.rotation,
+                &est.translation,
+                &ReadoutOptions::default(),
+            )
+            .unwrap();
+            assert!(fit.cost <= fit.cost_nominal);
+            v1.camera.readout * v1.camera.height * fit.scale
+        })
+        .collect();
+    readouts.sort_by(f64::total_cmp);
+    let n = readouts.len();
+    let median = 0.5 * (readouts[n / 2] + readouts[(n - 1) / 2]);
+    let (v1, _) = pairs()[0].views().unwrap();
+    let nominal = v1.camera.readout * v1.camera.height;
+    eprintln!(
+        "per-pair readout: median {:.2} ms (nominal {:.2} ms), range {:.2}-{:.2} ms",
+        median * 1e3,
+        nominal * 1e3,
+        readouts[0] * 1e3,
+        readouts[n - 1] * 1e3
+    );
+    assert!((0.028..=0.033).contains(&median), "{median}");
+    assert!(
+        (median - nominal).abs() > 0.002,
+        "{median} vs nominal {nominal}"
+    );
+}

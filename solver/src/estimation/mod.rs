@@ -1,7 +1,9 @@
 //! Robust estimation and refinement shared by the methods: RANSAC, Levenberg-Marquardt
-//! problems, the linear-velocity model, and calibration from real pairs.
+//! problems, the linear-velocity model, one pair's readout time refined with its pose, and
+//! calibration from real pairs.
 
 pub mod calibrate;
 pub mod ransac;
+pub mod readout;
 pub mod refine;
 pub mod velocity;

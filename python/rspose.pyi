@@ -230,6 +230,9 @@ class Estimate:
     @property
     def noise_fit(self) -> Optional[dict[str, float]]:
         """With ``fit_gyro_noise``: the fitted ``gyro_noise`` (rad/s) and ``truncation``."""
+    @property
+    def readout_scale(self) -> Optional[float]:
+        """With ``refine_readout=True``: the refined readout time over the nominal one."""
     def to_dict(self) -> dict[str, Any]:
         """The object ``rspose estimate --json`` prints, without ``seconds`` and reference
         errors (``inliers`` is the count there)."""
@@ -263,7 +266,8 @@ def estimate_relative_pose(
     ``fit_gyro_noise``, ``max_points``, ``gravity_noise_deg``), ``refinement``, ``quality`` and ``velocity``
     as dicts, ``essential_solver`` (five_point, eight_point), ``grsrp_solver`` (ten,
     twenty), ``gravity_solver`` (six, twelve), ``r0_source`` (gsrp, rectified, gyro or a
-    3 x 3 rotation), ``nrsrp_cauchy_px``. Defaults: ``options()``.
+    3 x 3 rotation), ``nrsrp_cauchy_px``, ``refine_readout`` (refine a common scale of the
+    views' readout times with the pose; gyro-aided methods). Defaults: ``options()``.
     """
 
 def estimate_many(

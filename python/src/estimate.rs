@@ -153,6 +153,13 @@ impl Estimate {
             .transpose()
     }
 
+    /// With ``refine_readout=True``: the readout time the pose was refined with, over the
+    /// views' nominal one; else None.
+    #[getter]
+    fn readout_scale(&self) -> Option<f64> {
+        self.inner.readout_scale
+    }
+
     /// The object ``rspose estimate --json`` prints, without ``seconds`` and the pair file's
     /// reference errors (``inliers`` is the count there).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {

@@ -321,6 +321,10 @@ pub fn request(
                 }
                 "r0_source" => r0 = r0_request(&v)?,
                 "nrsrp_cauchy_px" => o.nrsrp_cauchy_px = float(&v, &key)?,
+                "refine_readout" => {
+                    o.readout =
+                        flag(&v, &key)?.then(rspose::estimation::readout::ReadoutOptions::default)
+                }
                 other => {
                     if !set_robust(&mut o.robust, other, &v)? {
                         return Err(PyTypeError::new_err(format!(
@@ -394,6 +398,7 @@ pub fn options_dict<'py>(py: Python<'py>, req: &Request) -> PyResult<Bound<'py, 
         (_, R0Source::Given(m)) => d.set_item("r0_source", matrix_array(py, &m))?,
     }
     d.set_item("nrsrp_cauchy_px", o.nrsrp_cauchy_px)?;
+    d.set_item("refine_readout", o.readout.is_some())?;
     let q = &o.quality;
     let quality = PyDict::new(py);
     quality.set_item("min_inliers", q.min_inliers)?;

@@ -142,3 +142,20 @@ def test_simulate_and_its_ground_truth():
     e = a.estimate("rectified")
     assert rspose.rotation_error_deg(gt.rotation, e.rotation) < 2.0
     assert e.inliers[gt.inliers].mean() > 0.9
+
+
+def test_refine_readout_recovers_a_wrong_nominal_readout():
+    p = rspose.simulate(angular_velocity=2.5, seed=4)
+    cam = p.camera
+    wrong = rspose.Camera(cam.fx, cam.fy, cam.cx, cam.cy, cam.width, cam.height, 0.7 * cam.readout)
+    plain = rspose.estimate_relative_pose(p.x1, p.x2, wrong, p.gyro1, p.gyro2, "rectified")
+    fitted = rspose.estimate_relative_pose(p.x1, p.x2, wrong, p.gyro1, p.gyro2, "rectified",
+                                           refine_readout=True)
+    assert plain.readout_scale is None and rspose.options()["refine_readout"] is False
+    assert abs(fitted.readout_scale * 0.7 - 1.0) < 0.1
+    assert fitted.to_dict()["readout_scale"] == fitted.readout_scale
+    gt = p.ground_truth
+    assert rspose.rotation_error_deg(gt.rotation, fitted.rotation) < rspose.rotation_error_deg(
+        gt.rotation, plain.rotation)
+    with pytest.raises(ValueError, match="readout"):
+        rspose.estimate_relative_pose(p.x1, p.x2, wrong, p.gyro1, p.gyro2, "gsrp", refine_readout=True)

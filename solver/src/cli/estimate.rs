@@ -31,6 +31,10 @@ pub struct Args {
     /// mean rate over each readout). Without a log the constant `gyro` rates are used.
     #[arg(long, value_enum, default_value_t = Rows::Integrated)]
     rows: Rows,
+    /// Refine the readout time with the pose (a common scale of both views' nominal
+    /// readout; gyro-aided methods only) and print it.
+    #[arg(long)]
+    refine_readout: bool,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -93,6 +97,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
     }
     let mut options = a.preset.options(method, a.seed);
     apply_r0(&mut options, a.r0, &pair, &a.pair)?;
+    if a.refine_readout {
+        options.readout = Some(rspose::estimation::readout::ReadoutOptions::default());
+    }
     let start = Instant::now();
     let est = estimate_relative_pose(&v1, &v2, &pair.matches, &options).map_err(|e| match e {
         EstimateError::NoSolution => CliError::failed(format!("{}: {e}", a.pair.display())),
@@ -160,6 +167,13 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 } else {
                     String::new()
                 }
+            );
+        }
+        if let Some(k) = est.readout_scale {
+            println!(
+                "readout      {:.2} ms (nominal {:.2} ms, x{k:.3})",
+                k * v1.camera.readout * v1.camera.height * 1e3,
+                v1.camera.readout * v1.camera.height * 1e3
             );
         }
         if let Some([d1, d2]) = est.linear_velocity {

@@ -95,5 +95,6 @@ pub fn estimate(
         linear_velocity: None,
         velocity_fit: None,
         noise_fit,
+        readout_scale: None,
     })
 }

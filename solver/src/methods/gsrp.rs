@@ -60,6 +60,7 @@ pub(crate) fn run_on(
         linear_velocity: None,
         velocity_fit: None,
         noise_fit: None,
+        readout_scale: None,
     })
 }
 

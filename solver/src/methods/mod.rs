@@ -25,6 +25,7 @@ pub mod rectified_v;
 mod subset;
 
 use crate::data::pair_file::Match;
+use crate::estimation::readout::{refine_readout_scale, ReadoutOptions};
 use crate::estimation::refine::LmOptions;
 use crate::minimal::{EssentialSolver, GravitySolver, GrsrpSolver};
 use crate::model::camera::{CameraError, View};
@@ -238,6 +239,12 @@ pub struct EstimateOptions {
     pub quality: QualityOptions,
     /// The velocity stage of `rectified+v`.
     pub velocity: VelocityOptions,
+    /// For a readout time known only roughly: after the method, refine the pose together
+    /// with a common scale of both views' readout times
+    /// ([`crate::estimation::readout::refine_readout_scale`], exact angular model, on the
+    /// method's inliers) and report it in [`Estimate::readout_scale`]. Gyro-aided methods
+    /// only (not `gsrp` or `nrsrp`); default `None` (the readout is taken as given).
+    pub readout: Option<ReadoutOptions>,
 }
 
 impl EstimateOptions {
@@ -316,6 +323,7 @@ impl Default for EstimateOptions {
             nrsrp_cauchy_px: 2.0,
             quality: QualityOptions::default(),
             velocity: VelocityOptions::default(),
+            readout: None,
         }
     }
 }
@@ -354,6 +362,9 @@ pub struct Estimate {
     /// pair ([`RobustOptions::fit_gyro_noise`]; `rectified`, `grsrp`, `grsrp+`,
     /// `grsrp-gravity`, and `rectified+v` when it falls back to `rectified`).
     pub noise_fit: Option<NoiseFit>,
+    /// With [`EstimateOptions::readout`]: the readout time the pose was refined with, over
+    /// the views' nominal one.
+    pub readout_scale: Option<f64>,
 }
 
 impl Estimate {
@@ -397,6 +408,9 @@ impl Estimate {
                 "gyro_noise": fit.gyro_noise,
                 "truncation": fit.truncation,
             });
+        }
+        if let Some(k) = self.readout_scale {
+            obj["readout_scale"] = k.into();
         }
         obj
     }
@@ -536,6 +550,24 @@ fn validate_options(o: &EstimateOptions) -> Result<(), EstimateError> {
             return bad("r0_source", "given R_0 is not a rotation");
         }
     }
+    if let Some(ro) = &o.readout {
+        if matches!(o.method, Method::Gsrp | Method::Nrsrp) {
+            return bad(
+                "readout",
+                "refining the readout needs a gyro-aided method (not gsrp or nrsrp)",
+            );
+        }
+        let (lo, hi) = ro.scale_range;
+        if !(lo > 0.0 && lo <= 1.0 && hi >= 1.0 && hi.is_finite()) {
+            return bad(
+                "readout.scale_range",
+                "must be (lo, hi) with 0 < lo <= 1 <= hi",
+            );
+        }
+        if !(ro.loss_px.is_finite() && ro.loss_px > 0.0) {
+            return bad("readout.loss_px", "must be finite and positive");
+        }
+    }
     Ok(())
 }
 
@@ -627,6 +659,23 @@ pub fn estimate_relative_pose(
     }?;
     if large {
         est.inliers = subset::classify_all(view1, view2, matches, &est, options);
+    }
+    if let Some(ro) = &options.readout {
+        // The method's inliers stay: they were classified at the nominal readout, with a
+        // threshold that already allows for the rows' gyro error.
+        if let Some(fit) = refine_readout_scale(
+            view1,
+            view2,
+            matches,
+            &est.inliers,
+            &est.rotation,
+            &est.translation,
+            ro,
+        ) {
+            est.rotation = fit.rotation;
+            est.translation = fit.translation;
+            est.readout_scale = Some(fit.scale);
+        }
     }
     // The bearings each method works on: gyro-undistorted, undistorted with `nrsrp`'s own
     // rotation estimates, or raw.

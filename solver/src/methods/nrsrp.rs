@@ -73,5 +73,6 @@ pub fn estimate(
             .then(|| [s.delta[0] / per_frame1, s.delta[1] / per_frame2]),
         velocity_fit: None,
         noise_fit: None,
+        readout_scale: None,
     })
 }

@@ -79,6 +79,7 @@ pub(crate) fn refine_exact(
         linear_velocity: None,
         velocity_fit: None,
         noise_fit,
+        readout_scale: None,
     }
 }
 

@@ -488,3 +488,50 @@ fn large_inputs_estimate_on_a_subset_and_classify_every_match() {
         }
     }
 }
+
+#[test]
+fn the_readout_option_refines_a_wrong_nominal_readout() {
+    let p = pair(SimulationOptions {
+        angular_velocity: 2.5,
+        seed: 8,
+        ..Default::default()
+    });
+    let gt = p.ground_truth.clone().unwrap();
+    let (mut v1, mut v2) = p.views().unwrap();
+    v1.camera.readout *= 1.3;
+    v2.camera.readout *= 1.3;
+    let plain = EstimateOptions::for_method(Method::Rectified);
+    let with = EstimateOptions {
+        readout: Some(ReadoutOptions::default()),
+        ..plain.clone()
+    };
+    let a = estimate_relative_pose(&v1, &v2, &p.matches, &plain).unwrap();
+    let b = estimate_relative_pose(&v1, &v2, &p.matches, &with).unwrap();
+    assert_eq!(a.readout_scale, None);
+    let k = b.readout_scale.unwrap();
+    assert!((k * 1.3 - 1.0).abs() < 0.1, "{k}");
+    let (ea, eb) = (pose_errors(&a, &gt), pose_errors(&b, &gt));
+    assert!(
+        eb.rotation_error_deg < ea.rotation_error_deg,
+        "{ea:?} {eb:?}"
+    );
+    assert_eq!(b.report_json()["readout_scale"], serde_json::json!(k));
+    // Methods that ignore the gyro cannot refine it; bad settings are named.
+    for (m, bad) in [
+        (Method::Gsrp, ReadoutOptions::default()),
+        (
+            Method::Rectified,
+            ReadoutOptions {
+                scale_range: (1.5, 2.0),
+                ..ReadoutOptions::default()
+            },
+        ),
+    ] {
+        let o = EstimateOptions {
+            readout: Some(bad),
+            ..EstimateOptions::for_method(m)
+        };
+        let e = estimate_relative_pose(&v1, &v2, &p.matches, &o).unwrap_err();
+        assert!(matches!(e, EstimateError::InvalidOption { .. }), "{e}");
+    }
+}

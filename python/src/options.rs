@@ -322,8 +322,8 @@ pub fn request(
                 "r0_source" => r0 = r0_request(&v)?,
                 "nrsrp_cauchy_px" => o.nrsrp_cauchy_px = float(&v, &key)?,
                 "refine_readout" => {
-                    o.readout =
-                        flag(&v, &key)?.then(rspose::estimation::readout::ReadoutOptions::default)
+                    o.readout = flag(&v, &key)?
+                        .then(rspose_core::estimation::readout::ReadoutOptions::default)
                 }
                 other => {
                     if !set_robust(&mut o.robust, other, &v)? {

@@ -127,7 +127,7 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
     let mut worst: Option<f64> = None;
     let mut real = 0;
     for s in &solved.solutions {
-        let full = match &inst.eliminated {
+        let mut full = match &inst.eliminated {
             None => s.clone(),
             Some(el) => {
                 let Some(e) = recover_eliminated(&el.matrix, s) else {
@@ -147,7 +147,6 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
                 full
             }
         };
-        let mut full = full;
         if inst.newton_steps > 0 {
             newton_polish_polys(&inst.original, &mut full, inst.newton_steps);
         }
@@ -383,27 +382,12 @@ pub fn audit_plan_on(plan: &SolverPlan, instances: &[Vec<f64>]) -> AuditReport {
     )
 }
 
-/// The original equations free of hidden unknowns (those of `nonzero`, whose equations
-/// `u * EXPR = 1` only define them): solutions are read without hidden values.
-fn visible_equations(plan: &SolverPlan, data: &[f64]) -> Vec<Poly<f64>> {
-    let layout = &plan.problem.layout;
-    let visible = layout.unknown_count() - layout.hidden_count();
-    plan.problem
-        .evaluate::<f64>(data)
-        .into_iter()
-        .filter(|p| {
-            p.terms()
-                .all(|(m, _)| m.0[visible..].iter().all(|&e| e == 0))
-        })
-        .collect()
-}
-
 /// The audit instance of one data vector.
 fn plan_instance(plan: &SolverPlan, data: &[f64]) -> AuditInstance {
     let (equations, eliminated) = plan.equations::<f64>(data);
     AuditInstance {
         equations,
-        original: visible_equations(plan, data),
+        original: plan.visible_equations(data),
         eliminated: eliminated.map(|e| EliminatedUnknowns {
             matrix: e.coefficient_matrix,
             positions: e.eliminated,

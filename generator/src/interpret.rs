@@ -301,16 +301,14 @@ pub fn solve_template_real(
 /// unknowns, possibly with more variables that do not occur) with [`mingen_runtime::newton_polish`], as an emitted solver of a problem
 /// with `option newton = N` does. Returns the steps taken (0 if an exponent exceeds 255).
 pub fn newton_polish_polys(equations: &[Poly<f64>], x: &mut [f64], steps: usize) -> usize {
+    // One coefficient per term, numbered in order; each term's exponents of x's unknowns.
     let mut coefficients = Vec::new();
-    let mut exponents: Vec<Vec<Vec<u8>>> = Vec::with_capacity(equations.len());
+    let mut exponents: Vec<Vec<(usize, Vec<u8>)>> = Vec::with_capacity(equations.len());
     for p in equations {
         let mut eq = Vec::new();
         for (m, &c) in p.terms() {
             // Variables beyond x's (hidden unknowns) must not occur.
             let (head, tail) = m.0.split_at(x.len().min(m.0.len()));
-            if tail.iter().any(|&d| d != 0) {
-                return 0;
-            }
             let Ok(e) = head
                 .iter()
                 .map(|&d| u8::try_from(d))
@@ -318,22 +316,17 @@ pub fn newton_polish_polys(equations: &[Poly<f64>], x: &mut [f64], steps: usize)
             else {
                 return 0;
             };
+            if tail.iter().any(|&d| d != 0) {
+                return 0;
+            }
+            eq.push((coefficients.len(), e));
             coefficients.push(c);
-            eq.push(e);
         }
         exponents.push(eq);
     }
-    let mut next = 0;
     let terms: Vec<Vec<mingen_runtime::NewtonTerm>> = exponents
         .iter()
-        .map(|eq| {
-            eq.iter()
-                .map(|e| {
-                    next += 1;
-                    (next - 1, e.as_slice())
-                })
-                .collect()
-        })
+        .map(|eq| eq.iter().map(|(c, e)| (*c, e.as_slice())).collect())
         .collect();
     let terms: Vec<&[mingen_runtime::NewtonTerm]> = terms.iter().map(Vec::as_slice).collect();
     mingen_runtime::newton_polish(x, &terms, &coefficients, steps)

@@ -16,9 +16,7 @@
 
 use crate::algebra::{Fp, Monomial, Poly, Ring};
 use crate::eliminate::{eliminate_linear, EliminateError, Eliminated};
-use crate::emit::{
-    emit_solver, EliminationSpec, EmitError, PolishSpec, SolverSpec, Traced, Tracer,
-};
+use crate::emit::{emit_solver, EliminationSpec, EmitError, PolishSpec, SolverSpec, Tracer};
 use crate::instance::random_data_fp;
 use crate::quotient::{analyse_within, InstanceRng, InstanceSource};
 use crate::template::search::best_template_within;
@@ -280,6 +278,27 @@ impl SolverPlan {
         system(&self.problem, data).unwrap_or_default()
     }
 
+    /// The problem's original equations for one data instance, in all its unknowns, free
+    /// of hidden unknowns (those of `nonzero`, whose equations `u * EXPR = 1` only define
+    /// them): what solutions are checked and polished on, without hidden values.
+    pub fn visible_equations<C: Ring>(&self, data: &[C]) -> Vec<Poly<C>> {
+        let visible = self.visible_unknowns();
+        self.problem
+            .evaluate::<C>(data)
+            .into_iter()
+            .filter(|p| {
+                p.terms()
+                    .all(|(m, _)| m.0[visible..].iter().all(|&e| e == 0))
+            })
+            .collect()
+    }
+
+    /// The number of declared (not hidden) unknowns: the first variables of every system.
+    pub fn visible_unknowns(&self) -> usize {
+        let layout = &self.problem.layout;
+        layout.unknown_count() - layout.hidden_count()
+    }
+
     /// Names of the template's variables (the unknowns that were not eliminated).
     pub fn variable_names(&self) -> Vec<String> {
         ProblemSource::new(&self.problem).var_names()
@@ -415,23 +434,11 @@ pub fn emit_plan_from(plan: &SolverPlan, problem_path: &str) -> Result<String, P
     let data = tracer.inputs(layout.data_slot_count());
     let (equations, elimination) = plan.equations(&data);
     let polish = match layout.options.newton {
-        Some(steps) if steps > 0 => {
-            let unknowns = layout.unknown_count() - layout.hidden_count();
-            let equations = plan
-                .problem
-                .evaluate::<Traced>(&data)
-                .into_iter()
-                .filter(|p| {
-                    p.terms()
-                        .all(|(m, _)| m.0[unknowns..].iter().all(|&e| e == 0))
-                })
-                .collect();
-            Some(PolishSpec {
-                steps: steps as usize,
-                equations,
-                unknowns,
-            })
-        }
+        Some(steps) if steps > 0 => Some(PolishSpec {
+            steps: steps as usize,
+            equations: plan.visible_equations(&data),
+            unknowns: plan.visible_unknowns(),
+        }),
         _ => None,
     };
     let spec = SolverSpec {

@@ -628,7 +628,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let smat = rt::smatrix();
     let read = rt::read_unknowns();
     let basis: Vec<String> = t.basis.iter().map(|b| plan.mono(b)).collect();
-    let docs = [
+    let mut docs = vec![
         format!(
             "Solves `{}`: all real solutions of the problem's equations for the given data.",
             layout.name
@@ -646,21 +646,17 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
             basis.join(", ")
         ),
         String::new(),
-        "Never panics: non-finite or degenerate data gives no solutions.".into(),
     ];
-    let mut docs = docs.to_vec();
     if let Some(p) = &spec.polish {
-        docs.insert(
-            3,
-            format!(
-                "Then polishes each solution by up to {} Gauss-Newton steps on the problem's \
-                 original equations (`option newton`), each kept only if it lowers their \
-                 squared residual.",
-                p.steps
-            ),
-        );
-        docs.insert(4, String::new());
+        docs.push(format!(
+            "Then polishes each solution by up to {} Gauss-Newton steps on the problem's \
+             original equations (`option newton`), each kept only if it lowers their \
+             squared residual.",
+            p.steps
+        ));
+        docs.push(String::new());
     }
+    docs.push("Never panics: non-finite or degenerate data gives no solutions.".into());
     let docs: Vec<TokenStream> = docs.iter().map(doc).collect();
     let solve = quote! {
         /// The elimination template's `[rows, cols, pivot columns, first reduced row]`.

@@ -45,6 +45,24 @@ impl Default for ReadoutOptions {
     }
 }
 
+impl ReadoutOptions {
+    /// The first invalid setting, named as in `EstimateOptions` (`readout.scale_range`,
+    /// `readout.loss_px`), with what is wrong; `None` if all are valid.
+    pub fn invalid(&self) -> Option<(&'static str, &'static str)> {
+        let (lo, hi) = self.scale_range;
+        if !(lo > 0.0 && lo <= 1.0 && hi >= 1.0 && hi.is_finite()) {
+            return Some((
+                "readout.scale_range",
+                "must be (lo, hi) with 0 < lo <= 1 <= hi",
+            ));
+        }
+        if !(self.loss_px.is_finite() && self.loss_px > 0.0) {
+            return Some(("readout.loss_px", "must be finite and positive"));
+        }
+        None
+    }
+}
+
 /// The result of [`refine_readout_scale`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct ReadoutFit {
@@ -122,7 +140,8 @@ impl LmProblem<6> for ReadoutProblem<'_> {
 /// Refines the pose `(rotation, translation)` of `view1`/`view2` (their cameras' readout
 /// times nominal) together with a common scale of the readout times, over the matches
 /// flagged in `inliers` (see the module documentation). `None` with fewer than 8 inliers,
-/// an `inliers` mask of the wrong length, an invalid range or a non-finite result.
+/// an `inliers` mask of the wrong length, invalid options ([`ReadoutOptions::invalid`]) or
+/// a non-finite result.
 pub fn refine_readout_scale(
     view1: &View,
     view2: &View,
@@ -132,10 +151,10 @@ pub fn refine_readout_scale(
     translation: &Vector3<f64>,
     options: &ReadoutOptions,
 ) -> Option<ReadoutFit> {
-    let (lo, hi) = options.scale_range;
-    if inliers.len() != matches.len() || !(lo > 0.0 && lo <= 1.0 && hi >= 1.0 && hi.is_finite()) {
+    if inliers.len() != matches.len() || options.invalid().is_some() {
         return None;
     }
+    let (lo, hi) = options.scale_range;
     let kept: Vec<Match> = matches
         .iter()
         .zip(inliers)

@@ -363,7 +363,8 @@ pub struct Estimate {
     /// `grsrp-gravity`, and `rectified+v` when it falls back to `rectified`).
     pub noise_fit: Option<NoiseFit>,
     /// With [`EstimateOptions::readout`]: the readout time the pose was refined with, over
-    /// the views' nominal one.
+    /// the views' nominal one (`None` if the refinement could not run: fewer than 8
+    /// inliers or a non-finite result; the method's pose is then kept).
     pub readout_scale: Option<f64>,
 }
 
@@ -557,15 +558,8 @@ fn validate_options(o: &EstimateOptions) -> Result<(), EstimateError> {
                 "refining the readout needs a gyro-aided method (not gsrp or nrsrp)",
             );
         }
-        let (lo, hi) = ro.scale_range;
-        if !(lo > 0.0 && lo <= 1.0 && hi >= 1.0 && hi.is_finite()) {
-            return bad(
-                "readout.scale_range",
-                "must be (lo, hi) with 0 < lo <= 1 <= hi",
-            );
-        }
-        if !(ro.loss_px.is_finite() && ro.loss_px > 0.0) {
-            return bad("readout.loss_px", "must be finite and positive");
+        if let Some((option, reason)) = ro.invalid() {
+            return bad(option, reason);
         }
     }
     Ok(())
@@ -657,16 +651,15 @@ pub fn estimate_relative_pose(
         Method::GrsrpPlus => grsrp::estimate(view1, view2, working, options, true),
         Method::Nrsrp => nrsrp::estimate(view1, view2, working, options),
     }?;
-    if large {
-        est.inliers = subset::classify_all(view1, view2, matches, &est, options);
-    }
     if let Some(ro) = &options.readout {
-        // The method's inliers stay: they were classified at the nominal readout, with a
-        // threshold that already allows for the rows' gyro error.
+        // On the method's own matches (the subset of a large input, before every match is
+        // classified against the result). The method's inliers stay: they were classified
+        // at the nominal readout, with a threshold that already allows for the rows' gyro
+        // error.
         if let Some(fit) = refine_readout_scale(
             view1,
             view2,
-            matches,
+            working,
             &est.inliers,
             &est.rotation,
             &est.translation,
@@ -676,6 +669,9 @@ pub fn estimate_relative_pose(
             est.translation = fit.translation;
             est.readout_scale = Some(fit.scale);
         }
+    }
+    if large {
+        est.inliers = subset::classify_all(view1, view2, matches, &est, options);
     }
     // The bearings each method works on: gyro-undistorted, undistorted with `nrsrp`'s own
     // rotation estimates, or raw.

@@ -20,7 +20,9 @@
 use crate::data::pair_file::Match;
 use crate::model::camera::View;
 use crate::model::geometry::skew;
+use crate::model::sampson_kernel::{msac_sampson, BearingColumns};
 use nalgebra::{Matrix3, Vector3};
+use std::sync::OnceLock;
 
 /// Which two-view model a residual follows (see the module documentation).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -43,6 +45,10 @@ pub enum ResidualKind {
 }
 
 /// Matches converted to bearings, with the per-point row quantities every model needs.
+///
+/// Built by [`PointData::new`] or [`PointData::select`]; the fields are public for reading
+/// and must not be changed afterwards (the scores read a copy of `m1` and `m2` by
+/// coordinate).
 #[derive(Debug, Clone)]
 pub struct PointData {
     /// Bearings in image 1, `K^-1 [u1, v1, 1]`.
@@ -71,6 +77,9 @@ pub struct PointData {
     /// (`[exact angular, paper]`; empty: all 1), from [`RowNoise`] (see
     /// [`PointData::set_row_noise`]).
     pub scale: [Vec<f64>; 2],
+    /// `m1`, `m2` by coordinate for the global-shutter Sampson score, built on its first
+    /// use (the gyro-aided models never need it).
+    columns: OnceLock<BearingColumns>,
 }
 
 /// The noise of a match's epipolar residual, growing with its rows: pixel noise `σ_px`
@@ -105,6 +114,7 @@ impl PointData {
             b2: Vec::with_capacity(n),
             l1: Vec::with_capacity(n),
             scale: [Vec::new(), Vec::new()],
+            columns: OnceLock::new(),
         };
         for m in matches {
             let m1 = view1.camera.bearing(m[0][0], m[0][1]);
@@ -215,6 +225,7 @@ impl PointData {
                 .scale
                 .clone()
                 .map(|w| if w.is_empty() { w } else { pick(&w) }),
+            columns: OnceLock::new(),
         }
     }
 
@@ -296,16 +307,12 @@ impl PointData {
                     (x * x, 1.0)
                 }),
             ),
-            (PoseModel::GlobalShutter, ResidualKind::Sampson) => msac_of(
-                thr_sq,
-                bound,
-                self.m1.iter().zip(&self.m2).map(|(m1, m2)| {
-                    let g2 = e * m1;
-                    let g1 = e.tr_mul(m2);
-                    let x = m2.dot(&g2);
-                    (x * x, sq2(&g1, &g2))
-                }),
-            ),
+            (PoseModel::GlobalShutter, ResidualKind::Sampson) => {
+                let columns = self
+                    .columns
+                    .get_or_init(|| BearingColumns::new(&self.m1, &self.m2));
+                msac_sampson(columns, e, thr_sq, bound)
+            }
             (PoseModel::ExactAngular, ResidualKind::Algebraic) => msac_of(
                 thr_sq,
                 bound,

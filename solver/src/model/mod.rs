@@ -6,3 +6,4 @@ pub mod epipolar;
 pub mod geometry;
 pub mod gyro_log;
 pub mod rolling_shutter;
+pub mod sampson_kernel;

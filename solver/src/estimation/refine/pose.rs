@@ -93,13 +93,32 @@ impl LmProblem<5> for PoseProblem<'_> {
         out: &mut [f64],
         jac: &mut [SVector<f64, 5>],
     ) -> bool {
+        // One loop per model, so that the per-point `match`es on it fold away.
+        match self.model {
+            PoseModel::GlobalShutter => self.fill_jacobian::<0>(s, out, jac),
+            PoseModel::ExactAngular => self.fill_jacobian::<1>(s, out, jac),
+            PoseModel::PaperLinear => self.fill_jacobian::<2>(s, out, jac),
+        }
+        true
+    }
+}
+
+impl PoseProblem<'_> {
+    /// [`LmProblem::residuals_and_jacobian`] for the model numbered `M` (0 global shutter, 1
+    /// exact angular, 2 the paper's), which must be `self.model`.
+    fn fill_jacobian<const M: u8>(&self, s: &Pose, out: &mut [f64], jac: &mut [SVector<f64, 5>]) {
+        let model = match M {
+            0 => PoseModel::GlobalShutter,
+            1 => PoseModel::ExactAngular,
+            _ => PoseModel::PaperLinear,
+        };
         let d = self.data;
         let rot = s.matrix();
         let t = s.translation;
         let (tb1, tb2) = tangent_basis(&t);
         let w2r = skew(&d.w2) * rot;
         for ((o, j), &i) in out.iter_mut().zip(jac.iter_mut()).zip(self.indices) {
-            let (c1, c2, m) = match self.model {
+            let (c1, c2, m) = match model {
                 PoseModel::GlobalShutter => (d.m1[i], d.m2[i], rot),
                 PoseModel::ExactAngular => (d.b1[i], d.b2[i], rot),
                 PoseModel::PaperLinear => (d.l1[i], d.m2[i], rot + w2r * d.v2[i]),
@@ -136,20 +155,22 @@ impl LmProblem<5> for PoseProblem<'_> {
                 m.tr_mul(&c2.cross(&tb1)),
                 m.tr_mul(&c2.cross(&tb2)),
             ];
-            let model = self.model;
-            let (om1, om2) = (&d.omega1[i], &d.omega2[i]);
-            let a1 = d.w1 * d.v1[i];
-            let p1 = |x: &Vector3<f64>| match model {
-                PoseModel::GlobalShutter => *x,
-                PoseModel::ExactAngular => om1 * x,
-                PoseModel::PaperLinear => x + a1.cross(x),
-            };
-            let p2 = |x: &Vector3<f64>| {
-                if model == PoseModel::ExactAngular {
-                    om2 * x
-                } else {
-                    *x
+            // The projections of the image gradients, read only by the models using them.
+            let (om1, om2, a1) = match model {
+                PoseModel::GlobalShutter => (None, None, Vector3::zeros()),
+                PoseModel::ExactAngular => {
+                    (Some(&d.omega1[i]), Some(&d.omega2[i]), Vector3::zeros())
                 }
+                PoseModel::PaperLinear => (None, None, d.w1 * d.v1[i]),
+            };
+            let p1 = |x: &Vector3<f64>| match (model, om1) {
+                (PoseModel::ExactAngular, Some(o)) => o * x,
+                (PoseModel::PaperLinear, _) => x + a1.cross(x),
+                _ => *x,
+            };
+            let p2 = |x: &Vector3<f64>| match om2 {
+                Some(o) => o * x,
+                None => *x,
             };
             let g1 = p1(&w);
             let g2 = p2(&u);
@@ -169,7 +190,6 @@ impl LmProblem<5> for PoseProblem<'_> {
                 j[q] = wt * (jr[q] / sn - k * dss);
             }
         }
-        true
     }
 }
 

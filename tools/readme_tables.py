@@ -8,26 +8,29 @@ same runs)."""
 import csv
 import sys
 
-METHODS = ["gsrp", "nrsrp", "grsrp", "grsrp+", "rectified", "rectified+v", "grsrp-gravity"]
 HEADERS = {
     "angular": "angular velocity (rad/s)",
     "angular-linear": "level (0.5 rad/s + 4 m/s each)",
     "gyro-noise": "gyro noise (rad/s), at 2.5 rad/s + 20 m/s",
     "pixel-noise": "pixel noise (px), at 2.5 rad/s + 20 m/s",
     "gravity-noise": "gravity noise (deg), at 2.5 rad/s, 50 % outliers",
+    "readout-error": "nominal / true readout time, at 2.5 rad/s",
 }
 
 
 def table(directory, sweep):
     rows = list(csv.DictReader(open(f"{directory}/{sweep}.csv")))
-    levels = []
+    # Levels and methods (every method, then variants such as `rectified+k`) in file order.
+    levels, methods = [], []
     for r in rows:
         if r["level"] not in levels:
             levels.append(r["level"])
-    out = [f"| {HEADERS[sweep]} | " + " | ".join(METHODS) + " |", "|---" * (len(METHODS) + 1) + "|"]
+        if r["method"] not in methods:
+            methods.append(r["method"])
+    out = [f"| {HEADERS[sweep]} | " + " | ".join(methods) + " |", "|---" * (len(methods) + 1) + "|"]
     for level in levels:
         cells = []
-        for m in METHODS:
+        for m in methods:
             r = next(x for x in rows if x["level"] == level and x["method"] == m)
             cells.append(f"{float(r['rot_mean']):.2f} / {float(r['trans_mean']):.2f}")
         out.append(f"| {level} | " + " | ".join(cells) + " |")

@@ -14,7 +14,7 @@ use std::path::Path;
 
 const SEED: u64 = 2024;
 const TRIALS: usize = 100;
-const SWEEPS: [Sweep; 5] = Sweep::ALL;
+const SWEEPS: [Sweep; 6] = Sweep::ALL;
 
 fn read(path: &Path) -> String {
     std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
@@ -61,18 +61,17 @@ fn check(dir: &Path, paper: bool) {
         let trials = read(&dir.join(format!("{}-trials.csv", sweep.name())));
         let lines: Vec<&str> = trials.lines().skip(1).collect();
         let levels = sweep.levels();
-        assert_eq!(
-            lines.len(),
-            levels.len() * TRIALS * methods.len(),
-            "{sweep:?}"
-        );
+        // Every method, and the sweep's variants (`rectified+k`).
+        let per_trial = methods.len() + usize::from(levels[0].compare_readout_refinement);
+        assert_eq!(lines.len(), levels.len() * TRIALS * per_trial, "{sweep:?}");
         // Re-run two trials of every level.
         for (li, level) in levels.iter().enumerate() {
             for ti in [0, TRIALS - 1] {
                 let seed = trial_seed(SEED, li, ti);
                 let outcomes = scene_trial(level, seed, &methods, |m| options(paper, m, seed));
+                assert_eq!(outcomes.len(), per_trial, "{sweep:?}");
                 for (k, o) in outcomes.iter().enumerate() {
-                    let at = (li * TRIALS + ti) * methods.len() + k;
+                    let at = (li * TRIALS + ti) * per_trial + k;
                     assert_eq!(
                         trial_line(level.value, ti, o).trim_end(),
                         lines[at],
@@ -86,7 +85,7 @@ fn check(dir: &Path, paper: bool) {
         let mut outcomes: Vec<Vec<MethodOutcome>> = vec![Vec::new(); levels.len() * TRIALS];
         for (i, line) in lines.iter().enumerate() {
             let (trial, o) = parse_outcome(line);
-            outcomes[(i / (TRIALS * methods.len())) * TRIALS + trial].push(o);
+            outcomes[(i / (TRIALS * per_trial)) * TRIALS + trial].push(o);
         }
         let summary = to_csv(&summarize_levels(&levels, TRIALS, &outcomes));
         assert_eq!(
@@ -129,20 +128,28 @@ fn readme_tables_come_from_the_committed_results() {
                 .skip(1)
                 .map(|l| l.split(',').collect())
                 .collect();
-            let mut levels: Vec<&str> = Vec::new();
+            // Levels and methods (and variants such as `rectified+k`) in the file's order.
+            let (mut levels, mut methods): (Vec<&str>, Vec<&str>) = (Vec::new(), Vec::new());
             for r in &rows {
                 if !levels.contains(&r[0]) {
                     levels.push(r[0]);
                 }
+                if !methods.contains(&r[1]) {
+                    methods.push(r[1]);
+                }
             }
+            let names: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
+            assert_eq!(
+                methods[..names.len()],
+                names[..],
+                "{dir}/{}.csv",
+                sweep.name()
+            );
             for level in levels {
-                let cells: Vec<String> = Method::ALL
+                let cells: Vec<String> = methods
                     .iter()
                     .map(|m| {
-                        let r = rows
-                            .iter()
-                            .find(|r| r[0] == level && r[1] == m.name())
-                            .unwrap();
+                        let r = rows.iter().find(|r| r[0] == level && r[1] == *m).unwrap();
                         let f = |s: &str| s.parse::<f64>().unwrap();
                         format!("{:.2} / {:.2}", f(r[2]), f(r[5]))
                     })

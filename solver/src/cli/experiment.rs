@@ -1,5 +1,5 @@
-//! `rspose experiment SWEEP`: one of the paper's synthetic sweeps or the gravity-noise
-//! sweep, every method.
+//! `rspose experiment SWEEP`: one of the paper's synthetic sweeps or one of this library's
+//! (gravity noise, readout error), every method.
 
 use super::{CliError, Preset, ALL_METHODS};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -12,7 +12,7 @@ use std::path::PathBuf;
 /// Options of `rspose experiment`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// angular, angular-linear, gyro-noise, pixel-noise or gravity-noise.
+    /// angular, angular-linear, gyro-noise, pixel-noise, gravity-noise or readout-error.
     sweep: String,
     /// Trials (scenes) per level.
     #[arg(long, default_value_t = 100)]

@@ -15,13 +15,14 @@ mod sweep;
 #[cfg(feature = "plot")]
 pub use plot::{render_svg, write_svg};
 pub use stats::{median, summarize};
-pub use sweep::{Level, Sweep, UnknownSweep};
+pub use sweep::{Level, Sweep, UnknownSweep, READOUT_REFINED_LABEL};
 
 /// Output files are written whole or not at all (see [`crate::data::atomic_file`]).
 pub use crate::data::atomic_file::write_atomic;
 
 use crate::data::pair_file::PairFile;
 use crate::data::simulate::{simulate, SimulationOptions};
+use crate::estimation::readout::ReadoutOptions;
 use crate::experiment::evaluate::pose_errors;
 use crate::{estimate_relative_pose, EstimateOptions, Method};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -105,17 +106,46 @@ pub fn level_simulation(level: &Level, seed: u64) -> SimulationOptions {
     }
 }
 
-/// Simulates one scene at `level` from `seed` and runs each of `methods` on it (see
-/// [`run_methods`]); a scene that cannot be simulated counts as a failure of every method.
+/// Simulates one scene at `level` from `seed`, gives the estimator the readout time
+/// `level.readout_factor` times the true one, and runs each of `methods` on it (see
+/// [`run_methods`]), then, if `level.compare_readout_refinement`, `rectified` with the
+/// readout-scale refinement (labelled [`READOUT_REFINED_LABEL`]). A scene that cannot be
+/// simulated counts as a failure of every method.
 pub fn scene_trial(
     level: &Level,
     seed: u64,
     methods: &[Method],
     options_for: impl Fn(Method) -> EstimateOptions,
 ) -> Vec<MethodOutcome> {
+    let refined = |m| EstimateOptions {
+        readout: Some(ReadoutOptions::default()),
+        ..options_for(m)
+    };
+    let label = |mut outcomes: Vec<MethodOutcome>| {
+        for o in &mut outcomes {
+            o.method = READOUT_REFINED_LABEL.to_string();
+        }
+        outcomes
+    };
+    let variant = [Method::Rectified];
+    let variant = if level.compare_readout_refinement {
+        &variant[..]
+    } else {
+        &[]
+    };
     match simulate(&level_simulation(level, seed)) {
-        Ok(pair) => run_methods(&pair, methods, options_for),
-        Err(_) => methods.iter().map(|&m| MethodOutcome::failed(m)).collect(),
+        Ok(mut pair) => {
+            pair.camera.readout *= level.readout_factor;
+            let mut out = run_methods(&pair, methods, &options_for);
+            out.extend(label(run_methods(&pair, variant, refined)));
+            out
+        }
+        Err(_) => {
+            let failed = |ms: &[Method]| ms.iter().map(|&m| MethodOutcome::failed(m)).collect();
+            let mut out: Vec<MethodOutcome> = failed(methods);
+            out.extend(label(failed(variant)));
+            out
+        }
     }
 }
 

@@ -1,5 +1,5 @@
 //! The paper's four synthetic sweeps ("Experiments on Synthetic Data") and their levels, and
-//! this library's gravity-noise sweep.
+//! this library's gravity-noise and readout-error sweeps.
 
 use std::fmt;
 use std::str::FromStr;
@@ -18,6 +18,10 @@ pub enum Sweep {
     /// Gravity noise 0.5..64° per axis (doubling; 64° is no information) at 2.5 rad/s, no linear velocity, 1 px,
     /// 0.1 rad/s, with 50 % outliers (where a 3-point sample pays most).
     GravityNoise,
+    /// The readout time the estimator is given, 0.7..1.3 times the true one in steps of 0.15,
+    /// at 2.5 rad/s, no linear velocity, 1 px, 0.1 rad/s; every method, and `rectified` with
+    /// the readout-scale refinement ([`crate::EstimateOptions::readout`]) as `rectified+k`.
+    ReadoutError,
 }
 
 /// The scene parameters of one level of a sweep.
@@ -37,16 +41,26 @@ pub struct Level {
     pub gravity_noise_deg: f64,
     /// Fraction of the matches that are outliers.
     pub outlier_fraction: f64,
+    /// The readout time the estimator is given over the camera's true one (1: exact).
+    pub readout_factor: f64,
+    /// Also run `rectified` with the readout-scale refinement, labelled
+    /// [`READOUT_REFINED_LABEL`].
+    pub compare_readout_refinement: bool,
 }
 
+/// The label of `rectified` with the readout-scale refinement in a sweep's results.
+pub const READOUT_REFINED_LABEL: &str = "rectified+k";
+
 impl Sweep {
-    /// All sweeps: the paper's, in its order, then the gravity-noise sweep.
-    pub const ALL: [Sweep; 5] = [
+    /// All sweeps: the paper's, in its order, then the gravity-noise and readout-error
+    /// sweeps.
+    pub const ALL: [Sweep; 6] = [
         Sweep::Angular,
         Sweep::AngularLinear,
         Sweep::GyroNoise,
         Sweep::PixelNoise,
         Sweep::GravityNoise,
+        Sweep::ReadoutError,
     ];
 
     /// The name used on the command line and for output files.
@@ -57,6 +71,7 @@ impl Sweep {
             Sweep::GyroNoise => "gyro-noise",
             Sweep::PixelNoise => "pixel-noise",
             Sweep::GravityNoise => "gravity-noise",
+            Sweep::ReadoutError => "readout-error",
         }
     }
 
@@ -68,10 +83,12 @@ impl Sweep {
             Sweep::GyroNoise => "gyro noise (rad/s)",
             Sweep::PixelNoise => "pixel noise (px)",
             Sweep::GravityNoise => "gravity noise per axis (deg), 50 % outliers",
+            Sweep::ReadoutError => "nominal / true readout time, 2.5 rad/s",
         }
     }
 
-    /// The levels of the sweep (five for the paper's, eight for the gravity noise).
+    /// The levels of the sweep (five for the paper's and the readout error, eight for the
+    /// gravity noise).
     pub fn levels(self) -> Vec<Level> {
         let level = |value, angular, linear, pixel_noise, gyro_noise| Level {
             value,
@@ -81,6 +98,8 @@ impl Sweep {
             gyro_noise,
             gravity_noise_deg: 1.0,
             outlier_fraction: 0.0,
+            readout_factor: 1.0,
+            compare_readout_refinement: false,
         };
         let steps = (1..=5u32).map(f64::from);
         match self {
@@ -104,6 +123,16 @@ impl Sweep {
                     }
                 })
                 .collect(),
+            Sweep::ReadoutError => steps
+                .map(|i| {
+                    let factor = (55.0 + 15.0 * i) / 100.0;
+                    Level {
+                        readout_factor: factor,
+                        compare_readout_refinement: true,
+                        ..level(factor, 2.5, 0.0, 1.0, 0.1)
+                    }
+                })
+                .collect(),
         }
     }
 }
@@ -116,7 +145,7 @@ impl fmt::Display for Sweep {
 
 /// An unknown sweep name.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown sweep '{0}' (expected one of: angular, angular-linear, gyro-noise, pixel-noise, gravity-noise)")]
+#[error("unknown sweep '{0}' (expected one of: angular, angular-linear, gyro-noise, pixel-noise, gravity-noise, readout-error)")]
 pub struct UnknownSweep(pub String);
 
 impl FromStr for Sweep {
@@ -165,6 +194,20 @@ mod tests {
         assert!(gr
             .iter()
             .all(|l| l.outlier_fraction == 0.5 && l.angular == 2.5 && l.linear == 0.0));
+        let r = Sweep::ReadoutError.levels();
+        let factors: Vec<f64> = r.iter().map(|l| l.readout_factor).collect();
+        for (f, want) in factors.iter().zip([0.7, 0.85, 1.0, 1.15, 1.3]) {
+            assert!((f - want).abs() < 1e-12, "{factors:?}");
+        }
+        assert!(r.iter().all(|l| l.compare_readout_refinement
+            && l.angular == 2.5
+            && l.linear == 0.0
+            && l.value == l.readout_factor));
+        assert!(Sweep::ALL
+            .iter()
+            .filter(|&&s| s != Sweep::ReadoutError)
+            .flat_map(|s| s.levels())
+            .all(|l| l.readout_factor == 1.0 && !l.compare_readout_refinement));
         for s in Sweep::ALL {
             assert_eq!(s.name().parse::<Sweep>().unwrap(), s);
         }

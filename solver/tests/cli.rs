@@ -439,6 +439,16 @@ fn compare_runs_every_method_the_pairs_support() {
         stderr(&o)
     );
     assert_eq!(names(&o), all[..all.len() - 1]);
+    // The readout-refined `rectified` comes last, and its rotation is a real estimate.
+    let o = rspose(&["compare", p.to_str().unwrap(), "--json", "--refine-readout"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let got = names(&o);
+    assert_eq!(got.last().map(String::as_str), Some("rectified+k"));
+    assert_eq!(got[..got.len() - 1], all[..all.len() - 1]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let last = v["methods"].as_array().unwrap().last().unwrap().clone();
+    assert_eq!(last["failures"], 0, "{last}");
+    assert!(last["rot_median"].as_f64().unwrap() < 1.0, "{last}");
 }
 
 #[test]

@@ -4,7 +4,9 @@
 use super::estimate::{apply_r0, R0Choice, Rows};
 use super::{CliError, Preset, ALL_METHODS};
 use rspose::data::pair_file::PairFile;
+use rspose::estimation::readout::ReadoutOptions;
 use rspose::experiment::real::{reference_rotation, run_real, to_markdown};
+use rspose::experiment::READOUT_REFINED_LABEL;
 use std::path::{Path, PathBuf};
 
 /// Options of `rspose compare`.
@@ -28,6 +30,10 @@ pub struct Args {
     /// Print JSON (one object per method, with per-pair figures) instead of a table.
     #[arg(long)]
     json: bool,
+    /// Add a row `rectified+k`: `rectified` with the readout time's scale refined with
+    /// each pair's pose (for a camera whose readout time is known only roughly).
+    #[arg(long)]
+    refine_readout: bool,
 }
 
 /// Pair files named on the command line: files as given, directories expanded to their
@@ -91,21 +97,29 @@ pub fn run(a: Args) -> Result<(), CliError> {
     if !with_gravity {
         eprintln!("grsrp-gravity left out: not every pair has a `gravity` field");
     }
-    let rows = run_real(
-        &pairs,
-        &methods,
-        |method, pair| {
-            let k = pairs
-                .iter()
-                .position(|p| std::ptr::eq(p, pair))
-                .unwrap_or(0);
-            rspose::EstimateOptions {
-                method,
-                ..options[k].clone()
-            }
-        },
-        a.rows == Rows::Constant,
-    );
+    let options_for = |method, pair: &PairFile| {
+        let k = pairs
+            .iter()
+            .position(|p| std::ptr::eq(p, pair))
+            .unwrap_or(0);
+        rspose::EstimateOptions {
+            method,
+            ..options[k].clone()
+        }
+    };
+    let constant = a.rows == Rows::Constant;
+    let mut rows = run_real(&pairs, &methods, options_for, constant);
+    if a.refine_readout {
+        let refined = |method, pair: &PairFile| rspose::EstimateOptions {
+            readout: Some(ReadoutOptions::default()),
+            ..options_for(method, pair)
+        };
+        let mut extra = run_real(&pairs, &[rspose::Method::Rectified], refined, constant);
+        for r in &mut extra {
+            r.method = READOUT_REFINED_LABEL.to_string();
+        }
+        rows.extend(extra);
+    }
     if a.json {
         let v = serde_json::json!({
             "pairs": paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>(),

@@ -3,9 +3,11 @@
 //!
 //! For a point pair `(m1, m2)` and an essential matrix `E`, `g2 = E m1`, `g1 = Eᵀ m2`,
 //! `r = m2ᵀ g2`, and the squared Sampson error is `r² / (g1x² + g1y² + g2x² + g2y²)` (see
-//! [`super::epipolar`]). The vector path evaluates exactly the scalar path's operations in
-//! the same order, without fused multiply-adds, and adds the per-point terms to the sum one
-//! by one: both paths return bit-identical scores, so results do not depend on the CPU.
+//! [`super::epipolar`]). The sum is kept in four partial sums, point `i` adding to sum
+//! `i mod 4`, and they are added as `(s0 + s1) + (s2 + s3)`: the vector path then needs no
+//! horizontal work per point. The scalar path evaluates exactly the same operations in the
+//! same order (no fused multiply-adds in either), so both return bit-identical scores and
+//! results do not depend on the CPU.
 
 use nalgebra::{Matrix3, Vector3};
 
@@ -50,8 +52,9 @@ impl BearingColumns {
 }
 
 /// `(Σ_i min(r_i², τ²), #{i : r_i² < τ²})` over the squared Sampson errors `r_i²` of
-/// `e` with `τ² = thr_sq`, in point order; stops once the sum exceeds `bound` (then the
-/// sum is above `bound` and the count incomplete). A non-finite error counts as an outlier.
+/// `e` with `τ² = thr_sq` (summed as the module documentation says); may stop once the sum
+/// exceeds `bound` (then the sum is above `bound` and the count incomplete). A non-finite
+/// error counts as an outlier.
 #[must_use]
 pub fn msac_sampson(
     cols: &BearingColumns,
@@ -66,19 +69,27 @@ pub fn msac_sampson(
     }
     let mut acc = Accumulator::default();
     acc.points(cols, e, thr_sq, bound, 0);
-    (acc.sum, acc.inliers)
+    acc.result()
 }
 
-/// The running MSAC sum and inlier count.
+/// The four partial MSAC sums and the inlier count.
 #[derive(Default)]
 struct Accumulator {
-    sum: f64,
+    sums: [f64; 4],
     inliers: usize,
 }
 
 impl Accumulator {
+    /// The MSAC sum, `(s0 + s1) + (s2 + s3)`, and the inlier count.
+    #[inline(always)]
+    fn result(&self) -> (f64, usize) {
+        let [a, b, c, d] = self.sums;
+        ((a + b) + (c + d), self.inliers)
+    }
+
     /// Adds points `from..` one at a time (the scalar path, and the vector path's tail);
-    /// false once the sum exceeds `bound`.
+    /// `from` must be a multiple of 4. Stops after a group of four once the sum exceeds
+    /// `bound`.
     #[inline(always)]
     fn points(
         &mut self,
@@ -87,19 +98,18 @@ impl Accumulator {
         thr_sq: f64,
         bound: f64,
         from: usize,
-    ) -> bool {
+    ) {
         let [x1, y1, z1, x2, y2, z2] = &c.coords;
         for i in from..c.len() {
             let (n, d) = sampson_terms(e, [x1[i], y1[i], z1[i]], [x2[i], y2[i], z2[i]]);
             // Branch-free: whether a point is an inlier is as good as random to a branch
             // predictor; `min` also maps a non-finite ratio (zero denominator) to τ².
-            self.sum += (n / d).min(thr_sq);
+            self.sums[i % 4] += (n / d).min(thr_sq);
             self.inliers += usize::from(n < thr_sq * d);
-            if self.sum > bound {
-                return false;
+            if i % 4 == 3 && self.result().0 > bound {
+                return;
             }
         }
-        true
     }
 }
 
@@ -115,7 +125,7 @@ fn sampson_terms(e: &Matrix3<f64>, m1: [f64; 3], m2: [f64; 3]) -> (f64, f64) {
 }
 
 /// [`msac_sampson`] four points per step with AVX2 (no FMA, so every operation rounds as in
-/// [`sampson_terms`]); the terms are then added one by one as in the scalar path.
+/// [`sampson_terms`]), lane `l` holding partial sum `l`.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 unsafe fn msac_sampson_avx2(
@@ -126,13 +136,15 @@ unsafe fn msac_sampson_avx2(
 ) -> (f64, usize) {
     use std::arch::x86_64::{
         _mm256_add_pd, _mm256_cmp_pd, _mm256_div_pd, _mm256_loadu_pd, _mm256_min_pd,
-        _mm256_movemask_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_storeu_pd, _CMP_LT_OQ,
+        _mm256_movemask_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_setzero_pd, _mm256_storeu_pd,
+        _CMP_LT_OQ,
     };
     let n = c.len();
     let [x1, y1, z1, x2, y2, z2] = &c.coords;
     let ev: [[_; 3]; 3] =
         std::array::from_fn(|i| std::array::from_fn(|j| _mm256_set1_pd(e[(i, j)])));
     let thr = _mm256_set1_pd(thr_sq);
+    let mut sums = _mm256_setzero_pd();
     let mut acc = Accumulator::default();
     let mut i = 0;
     while i + 4 <= n {
@@ -153,21 +165,17 @@ unsafe fn msac_sampson_avx2(
             mul(g2y, g2y),
         );
         // `_mm256_min_pd` returns its second operand when the first is NaN, as `f64::min`.
-        let terms = _mm256_min_pd(_mm256_div_pd(num, den), thr);
+        sums = add(sums, _mm256_min_pd(_mm256_div_pd(num, den), thr));
         let inlier_mask = _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(num, mul(thr, den)));
-        let mut lanes = [0.0f64; 4];
-        _mm256_storeu_pd(lanes.as_mut_ptr(), terms);
-        for t in lanes {
-            acc.sum += t;
-        }
         acc.inliers += inlier_mask.count_ones() as usize;
-        if acc.sum > bound {
-            return (acc.sum, acc.inliers);
-        }
         i += 4;
+        _mm256_storeu_pd(acc.sums.as_mut_ptr(), sums);
+        if acc.result().0 > bound {
+            return acc.result();
+        }
     }
     acc.points(c, e, thr_sq, bound, i);
-    (acc.sum, acc.inliers)
+    acc.result()
 }
 
 #[cfg(test)]
@@ -194,24 +202,23 @@ mod tests {
             for _ in 0..20 {
                 let e = Matrix3::from_fn(|_, _| rng.gen_range(-1.0..1.0));
                 let thr_sq = rng.gen_range(1e-7..1e-3);
-                // Reference: nalgebra's products, one point at a time.
-                let (mut sum, mut inliers) = (0.0, 0);
-                for (a, b) in m1.iter().zip(&m2) {
+                // Reference: nalgebra's products, one point at a time, four partial sums.
+                let (mut sums, mut inliers) = ([0.0; 4], 0);
+                for (i, (a, b)) in m1.iter().zip(&m2).enumerate() {
                     let g2 = e * a;
                     let g1 = e.tr_mul(b);
                     let r = b.dot(&g2);
                     let d = g1.x * g1.x + g1.y * g1.y + g2.x * g2.x + g2.y * g2.y;
-                    sum += (r * r / d).min(thr_sq);
+                    sums[i % 4] += (r * r / d).min(thr_sq);
                     inliers += usize::from(r * r < thr_sq * d);
                 }
+                let sum = (sums[0] + sums[1]) + (sums[2] + sums[3]);
                 let (s, k) = msac_sampson(&cols, &e, thr_sq, f64::INFINITY);
                 assert_eq!((s.to_bits(), k), (sum.to_bits(), inliers), "n = {n}");
                 let mut scalar = Accumulator::default();
                 scalar.points(&cols, &e, thr_sq, f64::INFINITY, 0);
-                assert_eq!(
-                    (scalar.sum.to_bits(), scalar.inliers),
-                    (sum.to_bits(), inliers)
-                );
+                let (ss, sk) = scalar.result();
+                assert_eq!((ss.to_bits(), sk), (sum.to_bits(), inliers));
                 // Bounded: stops above the bound, never below it.
                 if sum > 0.0 {
                     let (sb, _) = msac_sampson(&cols, &e, thr_sq, 0.5 * sum);

@@ -92,4 +92,13 @@ Rq = (1 - nq)*id_(R^3) + 2*qD*transpose(qD) + 2*sk(qD);
 I = ideal(apply(5,k->sc(transpose x2D_k * sk(tD) * Rq * x1D_k))) + ideal(t1^2+t2^2+t3^2-1);
 report("relpose_5pt_cayley", I);
 report("relpose_5pt_cayley_sat (t eliminated, saturated)", saturate(eliminate({t1,t2,t3}, I), ideal(1 + nq)));
+
+-- up2p
+R = QQ[c,s,t1,t2,t3]; pD = apply(2,i->sub(v3(),R)); xD = apply(2,i->sub(pt(),R)); T = matrix{{t1},{t2},{t3}};
+Ry = matrix{{c,0,s},{0,1,0},{-s,0,c}};
+report("up2p", ideal(flatten apply(2, i -> flatten entries (sk(xD_i) * (Ry*pD_i + T)))) + ideal(c^2+s^2-1));
+
+-- relpose_known_rotation_2pt
+R = QQ[t1,t2,t3]; x1D = apply(2,i->sub(pt(),R)); x2D = apply(2,i->sub(pt(),R)); Rm = sub(rot(),R); T = matrix{{t1},{t2},{t3}};
+report("relpose_known_rotation_2pt", ideal(apply(2, i -> sc(transpose x2D_i * sk(T) * Rm * x1D_i))) + ideal(t1^2+t2^2+t3^2-1));
 exit 0

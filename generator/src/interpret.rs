@@ -74,7 +74,8 @@ pub enum InterpretError {
         /// The product.
         product: String,
     },
-    /// The basis lacks `1` or a variable, so solutions cannot be read off.
+    /// The basis lacks `1`, or a variable is neither in it nor a reducible column, so
+    /// solutions cannot be read off.
     #[error("the basis lacks the monomial {0}, needed to read the solutions")]
     MissingReadout(String),
     /// The action matrix is larger than the runtime's dynamic eigen entry point accepts.
@@ -90,7 +91,9 @@ pub enum InterpretError {
 /// The shared predicate [`EliminationTemplate::check_emittable`], in this module's errors.
 fn check_template(t: &EliminationTemplate) -> Result<(), InterpretError> {
     t.check_emittable(&[]).map_err(|e| match e {
-        ShapeError::BasisLacks(m) => InterpretError::MissingReadout(m),
+        ShapeError::BasisLacks(m) | ShapeError::ReadoutNotReducible(m) => {
+            InterpretError::MissingReadout(m)
+        }
         ShapeError::ActionNotCovered { basis, product } => {
             InterpretError::ActionNotCovered { basis, product }
         }
@@ -161,6 +164,16 @@ pub fn action_matrix(
     template: &EliminationTemplate,
     equations: &[Poly<f64>],
 ) -> Result<DMatrix<f64>, InterpretError> {
+    action_matrix_and_readouts(template, equations).map(|(a, _)| a)
+}
+
+/// [`action_matrix`] and the reduced row `T[x_i, :]` of every unknown outside the basis
+/// (the linear read-out, [`mingen_runtime::read_linear`]), in variable order as
+/// [`crate::template::validate::linear_readouts`].
+pub fn action_matrix_and_readouts(
+    template: &EliminationTemplate,
+    equations: &[Poly<f64>],
+) -> Result<(DMatrix<f64>, Vec<Vec<f64>>), InterpretError> {
     let mut m = fill_template(template, equations)?;
     let (rows, cols) = template.eliminated_size();
     let pivots = template.pivot_columns();
@@ -203,13 +216,24 @@ pub fn action_matrix(
             }
         }
     }
-    Ok(a)
+    let readouts = crate::template::validate::linear_readouts(template)
+        .iter()
+        .map(|x| {
+            let c = column
+                .get(x)
+                .and_then(|&c| template.eliminated_column(c))
+                .filter(|&c| c >= first_row && c < pivots)
+                .ok_or_else(|| InterpretError::MissingReadout(format!("{x:?}")))?;
+            Ok(m[c * cols + pivots..c * cols + pivots + n].to_vec())
+        })
+        .collect::<Result<Vec<_>, InterpretError>>()?;
+    Ok((a, readouts))
 }
 
 /// The read-out pairs of every unknown (see [`mingen_runtime::read_unknowns`]): for each
-/// variable `x_i`, all pairs `(j, k)` of basis indices with `basis[k] = x_i * basis[j]`,
-/// the pair `(1, x_i)` first, then by increasing `j`. Errors if the basis lacks `1` or a
-/// variable.
+/// variable `x_i` in the basis, all pairs `(j, k)` of basis indices with `basis[k] = x_i *
+/// basis[j]`, the pair `(1, x_i)` first, then by increasing `j`; none for a variable
+/// outside the basis (read off its reduced row instead). Errors if the basis lacks `1`.
 pub fn readout_pairs(
     template: &EliminationTemplate,
 ) -> Result<Vec<Vec<(usize, usize)>>, InterpretError> {
@@ -225,8 +249,10 @@ pub fn readout_pairs(
     (0..template.visible_vars())
         .map(|i| {
             let x = Monomial::var(n, i);
-            let first = (one, find(&x)?);
-            let mut pairs = vec![first];
+            let Some(xk) = template.basis.iter().position(|b| *b == x) else {
+                return Ok(Vec::new());
+            };
+            let mut pairs = vec![(one, xk)];
             for (j, b) in template.basis.iter().enumerate() {
                 if j == one {
                     continue;
@@ -266,7 +292,8 @@ pub fn solve_template(
         .iter()
         .position(|b| *b == Monomial::one(template.nvars))
         .ok_or_else(|| InterpretError::MissingReadout("1".into()))?;
-    let a = action_matrix(template, equations)?;
+    let (a, readouts) = action_matrix_and_readouts(template, equations)?;
+    let linear: Vec<usize> = (0..pairs.len()).filter(|&i| pairs[i].is_empty()).collect();
     let n = a.nrows();
     let eigenpairs = mingen_runtime::real_eigenpairs_dyn(a.as_slice(), n).ok_or(
         InterpretError::ActionTooLarge {
@@ -277,7 +304,15 @@ pub fn solve_template(
     let mut solutions = Vec::with_capacity(eigenpairs.len());
     for (_, v) in &eigenpairs {
         let mut u = vec![0.0; pairs.len()];
-        if mingen_runtime::read_unknowns(v, one, &pairs, &mut u) {
+        if !mingen_runtime::read_unknowns(v, one, &pairs, &mut u) {
+            continue;
+        }
+        let read = linear.iter().zip(&readouts).all(|(&i, row)| {
+            mingen_runtime::read_linear(v, one, row)
+                .map(|x| u[i] = x)
+                .is_some()
+        });
+        if read {
             solutions.push(u);
         }
     }

@@ -110,6 +110,33 @@ fn relpose_upright_3pt_elim_finds_the_planted_pose() {
 }
 
 #[test]
+fn up2p_finds_the_planted_pose() {
+    check(22, 1e-9, 1e-5, |rng| {
+        let (r, c, s) = rotation_y(rng);
+        let t = Vector3::new(0.0, 0.0, 5.0) + unit(rng);
+        let mut flat = Vec::new();
+        let world: Vec<Vector3<f64>> = (0..2).map(|_| unit(rng) * 2.0).collect();
+        world.iter().for_each(|p| push_vec(&mut flat, p));
+        world
+            .iter()
+            .for_each(|p| push_point(&mut flat, &(r * p + t)));
+        solve_flat::<ex::up2p::Solver>(&flat, &[vec![c, s, t.x, t.y, t.z]])
+    });
+}
+
+#[test]
+fn relpose_known_rotation_2pt_finds_the_planted_translation() {
+    check(23, 1e-9, 1e-5, |rng| {
+        let (r, t, pts) = scene(rng, 2);
+        let mut flat = Vec::new();
+        pts.iter().for_each(|[a, _]| push_point(&mut flat, a));
+        pts.iter().for_each(|[_, b]| push_point(&mut flat, b));
+        push_mat(&mut flat, &r);
+        solve_flat::<ex::relpose_known_rotation_2pt::Solver>(&flat, &with_t_either_sign(&[], &t))
+    });
+}
+
+#[test]
 fn p3p_finds_the_planted_depths() {
     check(33, 1e-9, 1e-5, |rng| {
         let r = rotation(rng);

@@ -63,7 +63,7 @@ pub use elim::{gauss_jordan, lu_solve_template, lu_solve_template_fixed, PIVOT_T
 pub use hqr::real_eigenpairs_hqr;
 pub use newton::{newton_polish, NewtonTerm, MAX_NEWTON_UNKNOWNS};
 pub use null::{null_vector3, null_vector3_rows};
-pub use readout::{read_unknowns, MIN_UNIT_ENTRY};
+pub use readout::{read_linear, read_unknowns, MIN_UNIT_ENTRY};
 pub use solution_set::SolutionSet;
 pub use solver::{FlatValues, MinimalSolver};
 pub use sparse_elim::{lu_solve_template_sparse, lu_solve_template_sparse_fixed, SparseLuPlan};

@@ -9,7 +9,9 @@ pub const MIN_UNIT_ENTRY: f64 = 1e-12;
 /// eigenvector) if `v[one]` (the basis monomial 1) is not finite or at most
 /// [`MIN_UNIT_ENTRY`], or if an unknown is not finite.
 ///
-/// `pairs[i]` lists the read-out pairs `(j, k)` of unknown `x_i`: `b_k = x_i * b_j`. One
+/// `pairs[i]` lists the read-out pairs `(j, k)` of unknown `x_i`: `b_k = x_i * b_j`. An
+/// empty list leaves `out[i]` as it is: that unknown is not in the basis and is read by
+/// [`read_linear`] instead. One
 /// pair gives the plain ratio `v[k] / v[j]`; several give the least-squares combination
 /// `sum_p v[j_p] v[k_p] / sum_p v[j_p]^2`, which weights each ratio by `v[j]^2`. An
 /// eigenvector accurate to `e` gives `x` from one pair to about `e / |v[j]|`, so the plain
@@ -28,6 +30,7 @@ pub fn read_unknowns(v: &[f64], one: usize, pairs: &[&[(usize, usize)]], out: &m
     }
     for (x, p) in out.iter_mut().zip(pairs) {
         let value = match **p {
+            [] => continue,
             [(j, k)] => match (v.get(j), v.get(k)) {
                 (Some(a), Some(b)) => b / a,
                 _ => return false,
@@ -52,6 +55,22 @@ pub fn read_unknowns(v: &[f64], one: usize, pairs: &[&[(usize, usize)]], out: &m
     true
 }
 
+/// Reads an unknown `x` that is not in the basis off the unit eigenvector `v ∝ (b_0(s),
+/// ..., b_{n-1}(s))` through its reduced template row `x + sum_k row[k] b_k` (a linear
+/// equation makes `x` a combination of basis monomials): `x = -sum_k row[k] v[k] / v[one]`.
+/// `None` (skip this eigenvector) if `v[one]` is not finite or at most [`MIN_UNIT_ENTRY`],
+/// if the lengths differ, or if the value is not finite. Never panics.
+#[inline]
+pub fn read_linear(v: &[f64], one: usize, row: &[f64]) -> Option<f64> {
+    let w = *v.get(one)?;
+    if !w.is_finite() || w.abs() <= MIN_UNIT_ENTRY || row.len() != v.len() {
+        return None;
+    }
+    let dot: f64 = row.iter().zip(v).map(|(r, x)| r * x).sum();
+    let x = -dot / w;
+    x.is_finite().then_some(x)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -69,6 +88,25 @@ mod tests {
         assert!(read_unknowns(&v, 2, &[&[(2, 1), (1, 0)]], &mut both));
         assert!((plain[0] - x).abs() > 0.05 * x, "{plain:?}");
         assert!((both[0] - x).abs() < 1e-6 * x, "{both:?}");
+    }
+
+    #[test]
+    fn linear_read_out() {
+        // Basis (t3, 1) with t1 = 2 t3 - 1: the reduced row of t1 is t1 - 2 t3 + 1.
+        let t3 = 0.75;
+        let n = (t3 * t3 + 1.0f64).sqrt();
+        let v = [t3 / n, 1.0 / n];
+        let t1 = read_linear(&v, 1, &[-2.0, 1.0]).unwrap();
+        assert!((t1 - (2.0 * t3 - 1.0)).abs() < 1e-15, "{t1}");
+        // The ratio read-out leaves an unknown with no pairs alone.
+        let mut out = [7.0, 0.0];
+        assert!(read_unknowns(&v, 1, &[&[], &[(1, 0)]], &mut out));
+        assert_eq!(out[0], 7.0);
+        assert!((out[1] - t3).abs() < 1e-15);
+        assert_eq!(read_linear(&[1.0, 1e-13], 1, &[1.0, 1.0]), None);
+        assert_eq!(read_linear(&v, 1, &[1.0]), None);
+        assert_eq!(read_linear(&v, 5, &[1.0, 1.0]), None);
+        assert_eq!(read_linear(&[f64::INFINITY, 1.0], 1, &[1.0, 1.0]), None);
     }
 
     #[test]

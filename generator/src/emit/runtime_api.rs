@@ -50,6 +50,12 @@ pub(crate) fn read_unknowns() -> TokenStream {
     quote!(mingen_runtime::read_unknowns)
 }
 
+/// `read_linear(v: &[f64], one: usize, row: &[f64]) -> Option<f64>`: an unknown outside the
+/// basis from its reduced template row.
+pub(crate) fn read_linear() -> TokenStream {
+    quote!(mingen_runtime::read_linear)
+}
+
 /// `newton_polish(x: &mut [f64], equations: &[&[NewtonTerm]], coefficients: &[f64],
 /// steps: usize) -> usize`: Gauss-Newton polishing of a solution.
 pub(crate) fn newton_polish() -> TokenStream {

@@ -26,7 +26,8 @@ struct Plan<'a> {
     column_of: HashMap<Monomial, usize>,
     basis_one: usize,
     /// Read-out pairs `(j, k)`, `basis[k] = x_i * basis[j]`, of each template variable
-    /// (`interpret::readout_pairs`).
+    /// (`interpret::readout_pairs`); none for a variable outside the basis, which is read
+    /// off its reduced template row (the linear read-out).
     readout: Vec<Vec<(usize, usize)>>,
 }
 
@@ -37,7 +38,9 @@ fn validate_template(
 ) -> Result<HashMap<Monomial, usize>, EmitError> {
     let bad = |s: String| Err(EmitError::Invalid(s));
     t.check_emittable(names).map_err(|e| match e {
-        ShapeError::BasisLacks(_) => EmitError::Unsupported(e.to_string()),
+        ShapeError::BasisLacks(_) | ShapeError::ReadoutNotReducible(_) => {
+            EmitError::Unsupported(e.to_string())
+        }
         e => EmitError::Invalid(e.to_string()),
     })?;
     let column_of: HashMap<Monomial, usize> = t
@@ -166,14 +169,6 @@ impl<'a> Plan<'a> {
         let basis_one = basis_pos(&Monomial::one(t.nvars)).ok_or_else(|| {
             EmitError::Unsupported("the basis does not contain the monomial 1".into())
         })?;
-        if let Some(k) =
-            (0..t.visible_vars()).find(|&k| basis_pos(&Monomial::var(t.nvars, k)).is_none())
-        {
-            return Err(EmitError::Unsupported(format!(
-                "the basis does not contain the unknown {}; it cannot be read off the eigenvectors",
-                var_names[k]
-            )));
-        }
         Ok(Plan {
             spec,
             var_names,
@@ -498,6 +493,27 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let unknown_idents: Vec<Ident> = (0..plan.readout.len())
         .map(|k| format_ident!("u{}", k))
         .collect();
+    // Unknowns outside the basis: `x_i = -T[x_i, :] v / v[1]` from the reduced row of
+    // their (reducible) column, which starts at `c * cols + pivots` as the action rows do.
+    let read_linear = rt::read_linear();
+    let linear_reads: Vec<TokenStream> = plan
+        .readout
+        .iter()
+        .enumerate()
+        .filter(|(_, pairs)| pairs.is_empty())
+        .map(|(i, _)| {
+            let c = t
+                .eliminated_column(plan.column_of[&Monomial::var(t.nvars, i)])
+                .expect("an unknown outside the basis is a reducible column");
+            let (il, start, end) = (lit(i), lit(c * cols + pivots), lit(c * cols + pivots + nb));
+            quote! {
+                match #read_linear(v.as_slice(), #one_l, &m[#start..#end]) {
+                    Some(x) => u[#il] = x,
+                    None => continue,
+                }
+            }
+        })
+        .collect();
     let elim_block = if let Some(el) = &spec.elimination {
         let mut outs = program.outputs[fill_vals.len()..].iter();
         let mut row_tokens = Vec::new();
@@ -711,6 +727,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
                 if !#read(v.as_slice(), #one_l, &READOUT, &mut u) {
                     continue;
                 }
+                #(#linear_reads)*
                 let [#(#unknown_idents),*] = u;
                 #elim_block
                 #polish_block

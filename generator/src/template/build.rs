@@ -58,7 +58,8 @@ pub(crate) fn build_template<const P: u32>(
     opts: &TemplateOptions,
 ) -> Result<BuiltTemplate, TemplateError> {
     let nvars = basis.first().map(|b| b.nvars()).unwrap_or(0);
-    let blocks = Blocks::new(basis, action);
+    let visible = nvars - opts.hidden_vars.min(nvars);
+    let blocks = Blocks::new(basis, action, visible);
     // Candidate families: all multiples up to degree d, optionally with every exponent of
     // the products capped; each family that reduces is shrunk, the smallest result kept.
     let maxdeg = eqs.iter().filter_map(|f| f.degree()).max().unwrap_or(0);
@@ -121,12 +122,21 @@ pub(crate) fn build_template<const P: u32>(
         history,
         label: "standard monomials (grevlex)".to_string(),
     });
-    // Basis selection is unbudgeted work: skipped once the budget has run out.
-    if search.basis_selection && exhausted.is_none() {
+    // Selected bases contain 1 and every variable. A variable outside the standard
+    // (grevlex) basis is a leading term of the ideal, so the ideal holds a linear
+    // polynomial in it: 1 and the variables are dependent, and no selected basis exists.
+    let every_variable = (0..nvars).all(|v| basis.contains(&Monomial::var(nvars, v)));
+    if search.basis_selection && exhausted.is_none() && every_variable {
         let maxeq = eqs.iter().filter_map(|f| f.degree()).max().unwrap_or(0);
-        if let Some(sel) =
-            select::best_selected::<P>(eqs, nvars, action, basis.len(), maxeq, &opts.var_names)
-        {
+        if let Some(sel) = select::best_selected::<P>(
+            eqs,
+            nvars,
+            action,
+            basis.len(),
+            maxeq,
+            &opts.var_names,
+            search.deadline,
+        ) {
             if best.as_ref().map_or(true, |b| sel.score < b.score) {
                 best = Some(sel);
             }

@@ -34,12 +34,29 @@ pub(crate) struct Blocks {
     pub(crate) basis_set: BTreeSet<Monomial>,
 }
 
+/// The unknowns (the first `visible` variables) that are not in `basis`. They are read off
+/// the eigenvectors through their reduced template rows (the linear read-out, see
+/// [`super`]), so they are reducible columns too.
+pub(crate) fn readout_monomials(basis: &[Monomial], visible: usize) -> Vec<Monomial> {
+    let Some(nvars) = basis.first().map(Monomial::nvars) else {
+        return Vec::new();
+    };
+    (0..visible.min(nvars))
+        .map(|v| Monomial::var(nvars, v))
+        .filter(|m| !basis.contains(m))
+        .collect()
+}
+
 impl Blocks {
-    pub(crate) fn new(basis: &[Monomial], action: &Action) -> Blocks {
+    /// The blocks of `basis` under `action`: the reducible monomials are the products
+    /// `action * b` outside the basis and the unknowns among the first `visible` variables
+    /// outside it ([`readout_monomials`]).
+    pub(crate) fn new(basis: &[Monomial], action: &Action, visible: usize) -> Blocks {
         let basis_set: BTreeSet<Monomial> = basis.iter().cloned().collect();
         let red_set: BTreeSet<Monomial> = basis
             .iter()
             .flat_map(|b| action.products(b).map(|(m, _)| m).collect::<Vec<_>>())
+            .chain(readout_monomials(basis, visible))
             .filter(|m| !basis_set.contains(m))
             .collect();
         let mut reducible: Vec<Monomial> = red_set.iter().cloned().collect();
@@ -135,8 +152,9 @@ pub(crate) fn start_degree<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     basis: &[Monomial],
     action: &Action,
+    visible: usize,
 ) -> u32 {
-    let blocks = Blocks::new(basis, action);
+    let blocks = Blocks::new(basis, action, visible);
     eqs.iter()
         .filter_map(|f| f.degree())
         .chain(blocks.reducible.iter().map(|m| m.degree()))

@@ -30,7 +30,8 @@ pub enum TemplateError {
         /// the options did).
         exhausted: Option<Exhausted>,
     },
-    /// The quotient basis lacks 1 or an unknown: solutions cannot be read off eigenvectors.
+    /// The quotient basis lacks 1, or an unknown is neither in it nor a reducible column:
+    /// solutions cannot be read off eigenvectors.
     #[error("the quotient basis does not contain {missing}: solutions cannot be read off the eigenvectors")]
     BasisLacks {
         /// Rendered missing monomials (e.g. `1`, `t3`).
@@ -53,6 +54,14 @@ pub enum TemplateError {
         instance: usize,
         /// Rendered monomial.
         monomial: String,
+    },
+    /// The template's linear read-out of an unknown disagrees with its Gröbner normal form.
+    #[error("validation instance {instance}: the template's read-out of {unknown} differs from its Gröbner normal form")]
+    ReadoutMismatch {
+        /// Instance number.
+        instance: usize,
+        /// The unknown (rendered).
+        unknown: String,
     },
     /// Template and Gröbner action matrices disagree.
     #[error("validation instance {instance}: characteristic polynomials of the template and Gröbner action matrices differ")]

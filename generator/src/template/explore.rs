@@ -32,7 +32,7 @@ pub fn explore<const P: u32>(
                 e.2 += 1;
                 continue;
             }
-            let blocks = Blocks::new(&b, &action);
+            let blocks = Blocks::new(&b, &action, nvars);
             let refs: Vec<&Candidate> = cands.iter().collect();
             if !blocks.reducible_by::<P>(&refs) {
                 seen.insert(b, (0, 0, 1));
@@ -69,7 +69,7 @@ pub fn explore_random_shrink<const P: u32>(
     let action = Action::var(nvars, action_var);
     let cands = candidates(eqs, d);
     let b = select_basis::<P>(&cands, nvars, &action, count, order).expect("basis");
-    let blocks = Blocks::new(&b, &action);
+    let blocks = Blocks::new(&b, &action, nvars);
     let mut sizes = BTreeMap::new();
     for seed in 0..tries {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);

@@ -8,7 +8,7 @@
 //! - `basis` (the last `basis.len()` columns) is the quotient-ring basis B, in the order of
 //!   [`EliminationTemplate::basis`];
 //! - `reducible` (the `n_reducible` columns before) are the monomials `action * b`, b in B,
-//!   that are not in B;
+//!   that are not in B, and the unknowns that are not in B;
 //! - `excess` (the first `n_excess` columns) are all other monomials the rows contain;
 //!   the last `n_dependent` of them are linear combinations of the other excess columns
 //!   (on generic instances: the excess block may be rank-deficient) and are left out of the
@@ -20,10 +20,13 @@
 //! `action * b_j = b_k` in B, row j is the unit vector e_k; otherwise `action * b_j = r`
 //! reducible and row j is `-T[r, :]`. For every solution s, the vector
 //! `v = (b_0(s), ..., b_{n-1}(s))` satisfies `M v = action(s) v`: solutions are the
-//! eigenvectors of M, and each unknown `x_i` is read off as `v[x_i] / v[1]`, or better as the
-//! least-squares combination of the ratios `v[x_i b] / v[b]` over every b in B with
-//! `x_i b` in B (`mingen_runtime::read_unknowns`; B contains 1 and every unknown for all shipped
-//! problems; the builder reports an error otherwise).
+//! eigenvectors of M, and each unknown `x_i` in B is read off as `v[x_i] / v[1]`, or better
+//! as the least-squares combination of the ratios `v[x_i b] / v[b]` over every b in B with
+//! `x_i b` in B (`mingen_runtime::read_unknowns`). An unknown outside B (a linear equation
+//! makes it a combination of basis monomials, e.g. `t1 = c t3` for a direction `t`) is a
+//! reducible column, and its reduced row `x_i + sum_k T[x_i, k] b_k` gives the linear
+//! read-out `x_i = -sum_k T[x_i, k] v[k] / v[1]` (`mingen_runtime::read_linear`). B must
+//! contain 1.
 //!
 //! ## Modules, lowest first
 //! Each uses only those before it (and the types of this file), so dependencies go one way:

@@ -115,7 +115,10 @@ fn search_actions<const P: u32>(
     let skip_selection = opts.require_distinct_eigenvalues && distinct.iter().any(|&d| d);
     let starts: Vec<u32> = monomials
         .iter()
-        .map(|a| start_degree(eqs, basis, a))
+        .map(|a| {
+            let nvars = basis.first().map_or(0, Monomial::nvars);
+            start_degree(eqs, basis, a, nvars - opts.hidden_vars.min(nvars))
+        })
         .collect();
     let mut all: PerAction = monomials
         .iter()

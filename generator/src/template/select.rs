@@ -2,11 +2,12 @@
 //! monomials of the Gröbner basis, choose the quotient basis B among the columns of a
 //! candidate template by Gaussian elimination with a chosen column order.
 
-use super::candidates::{candidates, Blocks, Candidate, ShrinkStep};
+use super::candidates::{candidate_bytes, candidates, Blocks, Candidate, ShrinkStep};
 use super::linalg::gauss_jordan;
 use super::shrink::{shrink, shrink_quick};
 use super::Action;
 use crate::algebra::{Fp, Monomial, MonomialOrder, Poly};
+use crate::budget::Deadline;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// A preference order for basis monomials: monomials with a larger key are eliminated
@@ -178,7 +179,8 @@ pub(crate) struct SelectedTemplate {
 /// (stopping at the first that succeeds), and each of [`basis_orders`], selects a basis
 /// ([`select_basis`]); each distinct basis that the candidates reduce is screened with
 /// [`shrink_quick`], and the best (fewest rows * cols, ties to the earlier order) is
-/// shrunk with every strategy ([`shrink`]). Deterministic.
+/// shrunk with every strategy ([`shrink`]). Deterministic. `None` also once `deadline`
+/// has run out (checked before each degree and each order).
 pub(crate) fn best_selected<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     nvars: usize,
@@ -186,21 +188,30 @@ pub(crate) fn best_selected<const P: u32>(
     count: usize,
     maxeq: u32,
     names: &[String],
+    deadline: Option<&Deadline>,
 ) -> Option<SelectedTemplate> {
     let orders = basis_orders(nvars);
+    let out_of_budget = |bytes| deadline.is_some_and(|dl| dl.check(bytes).is_err());
     for d in maxeq + 1..=maxeq + 3 {
+        if out_of_budget(candidate_bytes(eqs, d)) {
+            return None;
+        }
         let cands = candidates(eqs, d);
         let refs: Vec<&Candidate> = cands.iter().collect();
         let mut seen: BTreeSet<Vec<Monomial>> = BTreeSet::new();
         let mut screened: Option<(usize, Blocks, &BasisOrder)> = None;
         for o in &orders {
+            if out_of_budget(0) {
+                return None;
+            }
             let Some(b) = select_basis::<P>(&cands, nvars, action, count, o) else {
                 continue;
             };
             if !seen.insert(b.clone()) {
                 continue;
             }
-            let blocks = Blocks::new(&b, action);
+            // Selected bases contain every variable (`forced`): no linear read-out.
+            let blocks = Blocks::new(&b, action, nvars);
             if !blocks.reducible_by::<P>(&refs) {
                 continue;
             }

@@ -39,11 +39,15 @@ pub enum ShapeError {
         /// Reducible columns.
         reducible: usize,
     },
-    /// The basis lacks 1 or an unknown, so solutions cannot be read off eigenvectors.
+    /// The basis lacks 1, so solutions cannot be read off eigenvectors.
     #[error(
         "the quotient basis does not contain {0}: solutions cannot be read off the eigenvectors"
     )]
     BasisLacks(String),
+    /// An unknown outside the basis is not a reducible column, so it cannot be read off
+    /// through its reduced row.
+    #[error("the unknown {0} is neither in the quotient basis nor a reducible column: it cannot be read off the eigenvectors")]
+    ReadoutNotReducible(String),
 }
 
 impl EliminationTemplate {
@@ -77,9 +81,9 @@ impl EliminationTemplate {
 
     /// Whether the elimination, the action matrix and the read-out of the solutions are
     /// well defined: the column blocks are consistent, the reducible block is exactly the
-    /// products `action * b` outside the basis, there are at least as many rows as columns
-    /// to eliminate, and the basis contains 1 and every unknown. `names` renders monomials
-    /// in messages (template variables in order).
+    /// products `action * b` outside the basis and the unknowns outside it, there are at
+    /// least as many rows as columns to eliminate, and the basis contains 1. `names`
+    /// renders monomials in messages (template variables in order).
     pub fn check_emittable(&self, names: &[String]) -> Result<(), ShapeError> {
         let bad = |s: String| Err(ShapeError::Malformed(s));
         let show = |m: &Monomial| m.display_with(names);
@@ -130,20 +134,23 @@ impl EliminationTemplate {
                 return bad(format!("column {} appears twice", show(m)));
             }
         }
-        let mut missing = Vec::new();
         if !self.basis.contains(&Monomial::one(self.nvars)) {
-            missing.push("1".to_string());
-        }
-        for v in 0..self.visible_vars() {
-            let m = Monomial::var(self.nvars, v);
-            if !self.basis.contains(&m) {
-                missing.push(show(&m));
-            }
-        }
-        if !missing.is_empty() {
-            return Err(ShapeError::BasisLacks(missing.join(", ")));
+            return Err(ShapeError::BasisLacks("1".into()));
         }
         let mut needed = BTreeSet::new();
+        // Unknowns outside the basis: the linear read-out from their reduced rows.
+        for v in 0..self.visible_vars() {
+            let m = Monomial::var(self.nvars, v);
+            if self.basis.contains(&m) {
+                continue;
+            }
+            match column_of.get(&m) {
+                Some(&c) if c >= self.n_excess && c < npiv => {
+                    needed.insert(c);
+                }
+                _ => return Err(ShapeError::ReadoutNotReducible(show(&m))),
+            }
+        }
         for b in &self.basis {
             for (p, _) in self.action.products(b) {
                 match column_of.get(&p) {
@@ -162,7 +169,7 @@ impl EliminationTemplate {
         }
         if needed.len() != self.n_reducible {
             return bad(format!(
-                "{} reducible columns but {} products action * b fall outside the basis",
+                "{} reducible columns but {} products action * b and unknowns fall outside the basis",
                 self.n_reducible,
                 needed.len()
             ));
@@ -251,7 +258,7 @@ mod tests {
         t.columns[0] = Monomial(vec![0, 3]);
         assert_eq!(
             t.check_emittable(&names()),
-            Err(ShapeError::BasisLacks("y".into()))
+            Err(ShapeError::ReadoutNotReducible("y".into()))
         );
         t.basis[0] = Monomial(vec![0, 1]);
         t.columns[n - 3] = Monomial(vec![0, 1]);

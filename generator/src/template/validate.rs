@@ -6,8 +6,9 @@
 //! - [`gb_action_matrix`]: the action matrix from normal forms (row j: coefficients of
 //!   `NF(action * b_j)` on the basis).
 //! - [`validate`]: on fresh random instances (alternately mod P1 and P2) checks that both
-//!   action matrices have the same characteristic polynomial, after [`check_readoff`]
-//!   (the basis must contain 1 and every unknown).
+//!   action matrices have the same characteristic polynomial and that the linear read-out
+//!   of every unknown outside the basis is its normal form, after [`check_readoff`] (the
+//!   basis must contain 1, every unknown must be in it or a reducible column).
 
 use super::linalg::{addmod, charpoly, gauss_jordan, mulmod, submod};
 use super::{Action, EliminationTemplate, TemplateError};
@@ -26,17 +27,17 @@ pub struct ValidationReport {
     pub instances: usize,
 }
 
-/// Checks that the template's basis contains 1 and every unknown (needed to read the
-/// solutions off the eigenvectors).
-/// `names` renders the unknowns in the message (template variables in order).
+/// Checks that the template's basis contains 1 and that every unknown is in it or a
+/// reducible column (read off its reduced row), as needed to read the solutions off the
+/// eigenvectors. `names` renders the unknowns in the message (template variables in order).
 pub fn check_readoff(t: &EliminationTemplate, names: &[String]) -> Result<(), TemplateError> {
     let mut missing = Vec::new();
     if !t.basis.contains(&Monomial::one(t.nvars)) {
         missing.push("1".to_string());
     }
-    for v in 0..t.visible_vars() {
-        let m = Monomial::var(t.nvars, v);
-        if !t.basis.contains(&m) {
+    let reducible = &t.columns[t.n_excess..t.n_excess + t.n_reducible];
+    for m in linear_readouts(t) {
+        if !reducible.contains(&m) {
             missing.push(m.display_with(names));
         }
     }
@@ -49,6 +50,14 @@ pub fn check_readoff(t: &EliminationTemplate, names: &[String]) -> Result<(), Te
     }
 }
 
+/// The unknowns outside the basis (read off their reduced rows), in variable order.
+pub fn linear_readouts(t: &EliminationTemplate) -> Vec<Monomial> {
+    (0..t.visible_vars())
+        .map(|v| Monomial::var(t.nvars, v))
+        .filter(|m| !t.basis.contains(m))
+        .collect()
+}
+
 /// The action matrix (|B| x |B|, raw residues) of the template on an instance mod P, or
 /// the first column that the elimination does not turn into a pivot. The matrix is
 /// eliminated as the emitted solvers eliminate it: without the dependent excess columns,
@@ -59,6 +68,18 @@ pub fn template_action_matrix<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     names: &[String],
 ) -> Result<Vec<Vec<u32>>, TemplateError> {
+    template_matrices::<P>(t, eqs, names).map(|(a, _)| a)
+}
+
+/// [`template_action_matrix`] and the linear read-out of each unknown outside the basis
+/// ([`linear_readouts`], same order): the coefficients of its normal form on the basis,
+/// `-T[x_i, :]` from its reduced row.
+#[allow(clippy::type_complexity)]
+fn template_matrices<const P: u32>(
+    t: &EliminationTemplate,
+    eqs: &[Poly<Fp<P>>],
+    names: &[String],
+) -> Result<(Vec<Vec<u32>>, Vec<Vec<u32>>), TemplateError> {
     let show = |m: &Monomial| m.display_with(names);
     let filled = t.fill(eqs, names)?;
     let mut m: Vec<Vec<u32>> = filled
@@ -116,7 +137,23 @@ pub fn template_action_matrix<const P: u32>(
             }
         }
     }
-    Ok(out)
+    let mut readouts = Vec::new();
+    for x in linear_readouts(t) {
+        let r =
+            col_of
+                .get(&x)
+                .and_then(|c| red_row.get(c))
+                .ok_or_else(|| TemplateError::Singular {
+                    instance: 0,
+                    monomial: show(&x),
+                })?;
+        readouts.push(
+            (0..nb)
+                .map(|k| submod::<P>(0, m[*r][nc - nb + k]))
+                .collect(),
+        );
+    }
+    Ok((out, readouts))
 }
 
 /// The action matrix of multiplication by `action` on the quotient ring, in the basis
@@ -161,7 +198,8 @@ fn check_one<const P: u32, S: InstanceSource>(
     deadline: Option<&Deadline>,
 ) -> Result<(), TemplateError> {
     let eqs = src.instance::<P>(rng);
-    let tm = template_action_matrix::<P>(t, &eqs, &src.var_names()).map_err(|e| match e {
+    let names = src.var_names();
+    let (tm, readouts) = template_matrices::<P>(t, &eqs, &names).map_err(|e| match e {
         TemplateError::Singular { monomial, .. } => TemplateError::Singular { instance, monomial },
         e => e,
     })?;
@@ -174,6 +212,36 @@ fn check_one<const P: u32, S: InstanceSource>(
     let gm = gb_action_matrix(&gb, &b, &t.action);
     if charpoly::<P>(&tm) != charpoly::<P>(&gm) {
         return Err(TemplateError::CharpolyMismatch { instance });
+    }
+    // The linear read-outs, from the template's basis to the Gröbner basis's: NF(x_i) must
+    // be sum_k r_k NF(basis_k).
+    if !readouts.is_empty() {
+        let gb_idx: BTreeMap<&Monomial, usize> =
+            b.iter().enumerate().map(|(i, m)| (m, i)).collect();
+        let in_gb_basis = |p: &Poly<Fp<P>>| {
+            let mut v = vec![0u32; b.len()];
+            for (m, c) in p.terms() {
+                v[gb_idx[m]] = c.0;
+            }
+            v
+        };
+        let nf =
+            |m: &Monomial| in_gb_basis(&gb.normal_form(&Poly::term(m.clone(), Fp::<P>::one())));
+        let change: Vec<Vec<u32>> = t.basis.iter().map(nf).collect();
+        for (x, r) in linear_readouts(t).iter().zip(&readouts) {
+            let mut via_template = vec![0u32; b.len()];
+            for (rk, row) in r.iter().zip(&change) {
+                for (acc, &c) in via_template.iter_mut().zip(row) {
+                    *acc = addmod::<P>(*acc, mulmod::<P>(*rk, c));
+                }
+            }
+            if via_template != nf(x) {
+                return Err(TemplateError::ReadoutMismatch {
+                    instance,
+                    unknown: x.display_with(&names),
+                });
+            }
+        }
     }
     Ok(())
 }

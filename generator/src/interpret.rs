@@ -279,7 +279,7 @@ pub struct TemplateSolutions {
 }
 
 /// The real solutions of the system by the emitted solvers' numeric path (see the module
-/// documentation). The basis must contain `1` and every variable.
+/// documentation). The basis must contain `1`; a variable outside it is read off its reduced row.
 pub fn solve_template(
     template: &EliminationTemplate,
     equations: &[Poly<f64>],

@@ -135,46 +135,52 @@ impl PoseProblem<'_> {
                 *j = SVector::<f64, 5>::from(jr);
                 continue;
             }
-            // Sampson.
-            let ex = [
-                Vector3::new(0.0, -c1.z, c1.y),
-                Vector3::new(c1.z, 0.0, -c1.x),
-                Vector3::new(-c1.y, c1.x, 0.0),
-            ];
-            let du = [
-                t.cross(&(m * ex[0])),
-                t.cross(&(m * ex[1])),
-                t.cross(&(m * ex[2])),
-                tb1.cross(&y),
-                tb2.cross(&y),
-            ];
-            let dw = [
-                Vector3::new(0.0, w.z, -w.y),
-                Vector3::new(-w.z, 0.0, w.x),
-                Vector3::new(w.y, -w.x, 0.0),
-                m.tr_mul(&c2.cross(&tb1)),
-                m.tr_mul(&c2.cross(&tb2)),
-            ];
-            // The projections of the image gradients, read only by the models using them.
-            let (om1, om2, a1) = match model {
-                PoseModel::GlobalShutter => (None, None, Vector3::zeros()),
-                PoseModel::ExactAngular => {
-                    (Some(&d.omega1[i]), Some(&d.omega2[i]), Vector3::zeros())
+            // Sampson. The image gradients are g1 = P1 w and g2 = P2 u (x and y components).
+            // With h1 = P1ᵀ [g1x, g1y, 0] and h2 = P2ᵀ [g2x, g2y, 0], half of ∂|g|² is
+            // h1 · ∂w + h2 · ∂u, and by triple products h2 · ∂u/∂θ = c1 × (Mᵀ (h2 × t)),
+            // h2 · ∂u/∂t_k = b_k · (y × h2), h1 · ∂w/∂θ = h1 × w and
+            // h1 · ∂w/∂t_k = (M h1) · (c2 × b_k): no derivative vector is formed.
+            let (g1, g2, h1, h2) = match model {
+                PoseModel::GlobalShutter => {
+                    let (g1, g2) = ([w.x, w.y], [u.x, u.y]);
+                    (
+                        g1,
+                        g2,
+                        Vector3::new(w.x, w.y, 0.0),
+                        Vector3::new(u.x, u.y, 0.0),
+                    )
                 }
-                PoseModel::PaperLinear => (None, None, d.w1 * d.v1[i]),
+                PoseModel::ExactAngular => {
+                    let (o1, o2) = (&d.omega1[i], &d.omega2[i]);
+                    let row = |o: &Matrix3<f64>, r: usize, x: &Vector3<f64>| {
+                        o[(r, 0)] * x.x + o[(r, 1)] * x.y + o[(r, 2)] * x.z
+                    };
+                    let g1 = [row(o1, 0, &w), row(o1, 1, &w)];
+                    let g2 = [row(o2, 0, &u), row(o2, 1, &u)];
+                    let back = |o: &Matrix3<f64>, g: [f64; 2]| {
+                        Vector3::new(
+                            o[(0, 0)] * g[0] + o[(1, 0)] * g[1],
+                            o[(0, 1)] * g[0] + o[(1, 1)] * g[1],
+                            o[(0, 2)] * g[0] + o[(1, 2)] * g[1],
+                        )
+                    };
+                    (g1, g2, back(o1, g1), back(o2, g2))
+                }
+                PoseModel::PaperLinear => {
+                    // P1 = I + [a1]×, P1ᵀ = I - [a1]×; P2 = I.
+                    let a1 = d.w1 * d.v1[i];
+                    let p1w = w + a1.cross(&w);
+                    let g1 = [p1w.x, p1w.y];
+                    let gh = Vector3::new(g1[0], g1[1], 0.0);
+                    (
+                        g1,
+                        [u.x, u.y],
+                        gh - a1.cross(&gh),
+                        Vector3::new(u.x, u.y, 0.0),
+                    )
+                }
             };
-            let p1 = |x: &Vector3<f64>| match (model, om1) {
-                (PoseModel::ExactAngular, Some(o)) => o * x,
-                (PoseModel::PaperLinear, _) => x + a1.cross(x),
-                _ => *x,
-            };
-            let p2 = |x: &Vector3<f64>| match om2 {
-                Some(o) => o * x,
-                None => *x,
-            };
-            let g1 = p1(&w);
-            let g2 = p2(&u);
-            let ss = g1.x * g1.x + g1.y * g1.y + g2.x * g2.x + g2.y * g2.y;
+            let ss = g1[0] * g1[0] + g1[1] * g1[1] + g2[0] * g2[0] + g2[1] * g2[1];
             let sn = ss.sqrt();
             let wt = d.weight(model, i);
             *o = if ss > 0.0 {
@@ -183,11 +189,19 @@ impl PoseProblem<'_> {
                 f64::INFINITY
             };
             let k = res / (ss * sn);
+            let rot_u = c1.cross(&m.tr_mul(&h2.cross(&t)));
+            let rot_w = h1.cross(&w);
+            let yh = y.cross(&h2);
+            let mh = m * h1;
+            let dss = [
+                rot_u.x + rot_w.x,
+                rot_u.y + rot_w.y,
+                rot_u.z + rot_w.z,
+                tb1.dot(&yh) + mh.dot(&c2.cross(&tb1)),
+                tb2.dot(&yh) + mh.dot(&c2.cross(&tb2)),
+            ];
             for q in 0..5 {
-                let a = p1(&dw[q]);
-                let b = p2(&du[q]);
-                let dss = g1.x * a.x + g1.y * a.y + g2.x * b.x + g2.y * b.y; // half of ∂|g|²
-                j[q] = wt * (jr[q] / sn - k * dss);
+                j[q] = wt * (jr[q] / sn - k * dss[q]);
             }
         }
     }

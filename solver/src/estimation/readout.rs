@@ -9,7 +9,9 @@
 //! `(R, t)` and a common scale `k` of both views' readout times (the true `T` is `k` times
 //! the nominal), minimising the Sampson error over the inliers with a Cauchy loss at the
 //! pixel noise. `k` is parameterised by its logarithm and kept within
-//! [`ReadoutOptions::scale_range`]; the Jacobian is by central differences.
+//! [`ReadoutOptions::scale_range`]. The Jacobian in `(R, t)` is the pose refinement's
+//! analytic one ([`PoseProblem`]) at the current `k`; only its `ln k` column is by central
+//! differences (the row rotations depend on `k` through the gyro track).
 //!
 //! `k` is observable only through the rolling-shutter rotations: with a still camera every
 //! `k` fits, so the fit reports how far the cost fell and the caller may keep the nominal
@@ -17,7 +19,9 @@
 //! estimates the readout time (and the gyro's time offset) from many pairs at once instead.
 
 use crate::data::pair_file::Match;
-use crate::estimation::refine::{levenberg_marquardt, LmOptions, LmProblem, Loss, Pose};
+use crate::estimation::refine::{
+    levenberg_marquardt, LmOptions, LmProblem, Loss, Pose, PoseProblem,
+};
 use crate::model::camera::View;
 use crate::model::epipolar::{PointData, PoseModel, ResidualKind};
 use crate::model::geometry::skew;
@@ -87,6 +91,9 @@ fn scaled(view: &View, k: f64) -> View {
     v
 }
 
+/// Central-difference step in `ln k` for the Jacobian's last column.
+const LN_K_STEP: f64 = 1e-6;
+
 /// `(pose, ln k)` on the inlier matches.
 struct ReadoutProblem<'a> {
     views: (&'a View, &'a View),
@@ -125,6 +132,38 @@ impl LmProblem<6> for ReadoutProblem<'_> {
                 &e,
             );
         }
+    }
+    fn residuals_and_jacobian(
+        &self,
+        (pose, ln_k): &(Pose, f64),
+        out: &mut [f64],
+        jac: &mut [SVector<f64, 6>],
+    ) -> bool {
+        let n = self.matches.len();
+        if out.len() != n || jac.len() != n {
+            return false;
+        }
+        let d = self.data(*ln_k);
+        let indices: Vec<usize> = (0..n).collect();
+        let pose_problem = PoseProblem {
+            data: &d,
+            indices: &indices,
+            model: PoseModel::ExactAngular,
+            kind: ResidualKind::Sampson,
+            loss: self.loss,
+        };
+        let mut pose_jac = vec![SVector::<f64, 5>::zeros(); n];
+        if !pose_problem.residuals_and_jacobian(pose, out, &mut pose_jac) {
+            return false;
+        }
+        let (mut plus, mut minus) = (vec![0.0; n], vec![0.0; n]);
+        self.residuals(&(*pose, ln_k + LN_K_STEP), &mut plus);
+        self.residuals(&(*pose, ln_k - LN_K_STEP), &mut minus);
+        for (i, row) in jac.iter_mut().enumerate() {
+            row.fixed_rows_mut::<5>(0).copy_from(&pose_jac[i]);
+            row[5] = (plus[i] - minus[i]) / (2.0 * LN_K_STEP);
+        }
+        true
     }
     fn retract(&self, (pose, ln_k): &(Pose, f64), delta: &SVector<f64, 6>) -> (Pose, f64) {
         (

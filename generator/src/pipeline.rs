@@ -154,6 +154,12 @@ pub struct SolverPlan {
     /// Wall-clock seconds of the whole plan (elimination check, Gröbner work, templates,
     /// validation).
     pub seconds: f64,
+    /// The monomials of each template equation on the problem's data family (generic
+    /// instances mod p, rotations exact). A term outside vanishes identically there (e.g.
+    /// a coefficient `(R Rᵀ)_12` of rotation data): [`SolverPlan::equations`] drops it, so
+    /// the emitted solvers, with data as symbols, and the interpreter, with rounded
+    /// rotations, fill exactly the template's columns.
+    pub supports: Vec<Vec<Monomial>>,
 }
 
 /// The template options for `problem`: `options` with the problem file's `option` lines
@@ -250,6 +256,7 @@ pub fn plan(
         file: file.to_string(),
         generated,
         seconds: start.elapsed().as_secs_f64(),
+        supports,
     })
 }
 
@@ -274,8 +281,26 @@ fn equation_supports(problem: &Problem, seed: u64) -> Vec<Vec<Monomial>> {
 impl SolverPlan {
     /// The template's equations (in [`SolverPlan::variable_names`] order) for one data
     /// instance over any ring, plus the elimination data if the problem eliminates unknowns.
+    /// Terms outside the equation's support on the data family are dropped (see
+    /// [`SolverPlan::supports`]).
     pub fn equations<C: Ring>(&self, data: &[C]) -> System<C> {
-        system(&self.problem, data).unwrap_or_default()
+        let (equations, elimination) = system(&self.problem, data).unwrap_or_default();
+        let equations = equations
+            .into_iter()
+            .enumerate()
+            .map(|(k, e)| match self.supports.get(k) {
+                Some(support) if !support.is_empty() => {
+                    let support: HashSet<&Monomial> = support.iter().collect();
+                    let kept = e
+                        .terms()
+                        .filter(|(m, _)| support.contains(m))
+                        .map(|(m, c)| (m.clone(), c.clone()));
+                    Poly::from_terms(e.nvars(), kept)
+                }
+                _ => e,
+            })
+            .collect();
+        (equations, elimination)
     }
 
     /// The problem's original equations for one data instance, in all its unknowns, free

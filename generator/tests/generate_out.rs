@@ -49,3 +49,38 @@ fn out_writes_a_self_contained_module_and_check_compares_it() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn terms_that_vanish_for_every_rotation_are_not_template_columns() {
+    // |Rᵀ p - q|² = d: expanded with R's entries as symbols it has the terms p1 p2 with
+    // coefficient (R Rᵀ)_12 and so on, which vanish for every rotation; the template is
+    // built on rotations and has no such columns. The solver must still be emitted, and
+    // the audit, with rounded rotations, must not trip over them either.
+    let dir = std::env::temp_dir().join(format!("mingen-rotation-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("sphere_lines.mp");
+    std::fs::write(
+        &file,
+        "problem sphere_lines\nunknown p[3]\ndata R: rotation, q: vec3, d: scalar\n\
+         (R' * p - q)' * (R' * p - q) = d\np[0] + p[1] = 1\np[2] - 2 * p[0] = 0.25\n",
+    )
+    .unwrap();
+    let out = dir.join("sphere_lines.rs");
+    let (f, o) = (file.to_str().unwrap(), out.to_str().unwrap());
+    let run = mingen(&["generate", f, "--out", o]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let run = mingen(&["audit", f, "--instances", "100", "--json"]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    assert_eq!(v["solve_errors"], 0, "{v}");
+    assert_eq!(v["failures"], 0, "{v}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

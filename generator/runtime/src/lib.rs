@@ -56,6 +56,7 @@ mod solver;
 mod sparse_elim;
 mod stages;
 mod sturm;
+mod sturm_sequence;
 
 pub use dynamic::{real_eigenpairs_dyn, DynEigenpair, MAX_DYNAMIC_BASIS, STURM_MAX_BASIS};
 pub use eigen::{real_eigenpairs, NEAR_REAL_TOL};

@@ -18,6 +18,7 @@
 //! `BTreeMap` order, DAG nodes in creation order), no hash map order reaches the output, and
 //! the same spec always gives the same bytes.
 
+mod action;
 pub mod coefficients;
 mod files;
 mod polish;

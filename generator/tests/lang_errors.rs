@@ -331,6 +331,30 @@ fn language_features_parse() {
     assert_eq!(e.len(), 11);
 }
 
+#[test]
+fn integer_powers_are_repeated_products() {
+    let with_powers = "problem p; unknown c, s, t[3]\ndata a: scalar, R: rotation\n\
+                       c^2 + s^2 = 1\n-a * c^3 + (t' * t)^2 = s\n(R^2 * t)[0] = a\n";
+    let written_out = "problem p; unknown c, s, t[3]\ndata a: scalar, R: rotation\n\
+                       c*c + s*s = 1\n-(a * (c*c*c)) + (t' * t)*(t' * t) = s\n((R*R) * t)[0] = a\n";
+    let (a, b) = (
+        Problem::parse(with_powers, "a.mp").unwrap_or_else(|e| panic!("{e}")),
+        Problem::parse(written_out, "b.mp").unwrap_or_else(|e| panic!("{e}")),
+    );
+    assert_eq!(a.expand(), b.expand());
+    for (src, fragment) in [
+        ("x^0 = 1", "integer from 1 to 32"),
+        ("x^33 = 1", "integer from 1 to 32"),
+        ("x^2.5 = 1", "integer exponent after '^'"),
+        ("x^y = 1", "integer exponent after '^'"),
+        ("x^ = 1", "integer exponent after '^'"),
+    ] {
+        let e = parse_err(&format!("problem p\nunknown x, y\n{src}\n"));
+        assert!(e.to_string().contains(fragment), "{src}: {e}");
+        assert_eq!(e.line, 3, "{src}: {e}");
+    }
+}
+
 fn bin() -> Command {
     Command::new(env!("CARGO_BIN_EXE_mingen"))
 }

@@ -28,6 +28,8 @@ pub enum Tok {
     Slash,
     /// `'` (transpose)
     Quote,
+    /// `^` (integer power)
+    Caret,
     /// `=`
     Eq,
     /// `,`
@@ -67,6 +69,7 @@ impl Tok {
             Tok::Star => "'*'".into(),
             Tok::Slash => "'/'".into(),
             Tok::Quote => "'''".into(),
+            Tok::Caret => "'^'".into(),
             Tok::Eq => "'='".into(),
             Tok::Comma => "','".into(),
             Tok::Colon => "':'".into(),
@@ -109,6 +112,7 @@ pub fn lex(src: &str) -> Result<Vec<Token>, LangError> {
             '-' => single(Tok::Minus),
             '*' => single(Tok::Star),
             '/' => single(Tok::Slash),
+            '^' => single(Tok::Caret),
             '\'' => single(Tok::Quote),
             '=' => single(Tok::Eq),
             ',' => single(Tok::Comma),

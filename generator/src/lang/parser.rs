@@ -12,6 +12,9 @@ use super::LangError;
 /// Maximum nesting depth of expressions and of `for` blocks.
 pub const MAX_DEPTH: usize = 64;
 
+/// The largest exponent of `^` (the power is expanded into that many products).
+pub const MAX_POWER: u32 = 32;
+
 /// Words that cannot name a symbol.
 pub const KEYWORDS: [&str; 9] = [
     "problem",
@@ -459,12 +462,46 @@ impl<'a> Parser<'a> {
                 _ => break,
             }
         }
-        if ops.is_empty() {
-            return Ok(base);
+        let operand = if ops.is_empty() {
+            base
+        } else {
+            Expr {
+                pos: base.pos,
+                kind: ExprKind::Postfix(Box::new(base), ops),
+            }
+        };
+        self.power(operand)
+    }
+
+    /// `operand ^ n` for an integer literal `1 <= n <= MAX_POWER`, as the product of `n`
+    /// copies of the operand (so that shapes and kinds are checked as for `*`).
+    fn power(&mut self, operand: Expr) -> Result<Expr, LangError> {
+        let caret = self.peek();
+        if caret.tok != Tok::Caret {
+            return Ok(operand);
         }
+        self.bump();
+        let t = self.peek();
+        let n = match &t.tok {
+            Tok::Number(s) if !s.contains('.') => s.parse::<u32>().ok(),
+            _ => return Err(self.error_here("an integer exponent after '^'")),
+        };
+        let Some(n) = n.filter(|n| (1..=MAX_POWER).contains(n)) else {
+            return Err(LangError::new(
+                t.pos,
+                format!("the exponent after '^' must be an integer from 1 to {MAX_POWER}"),
+            ));
+        };
+        self.bump();
+        if n == 1 {
+            return Ok(operand);
+        }
+        let rest = (1..n)
+            .map(|_| (MulOp::Mul, caret.pos, operand.clone()))
+            .collect();
         Ok(Expr {
-            pos: base.pos,
-            kind: ExprKind::Postfix(Box::new(base), ops),
+            pos: operand.pos,
+            kind: ExprKind::Product(Box::new(operand), rest),
         })
     }
 

@@ -176,10 +176,10 @@ const CASES: &[(&str, &str, usize, usize, &str)] = &[
     ),
     (
         "unknown_function",
-        "problem p\nunknown t[3]\ncross(t) = 0\n",
+        "problem p\nunknown t[3]\nnorm(t) = 0\n",
         3,
         1,
-        "unknown function 'cross'",
+        "unknown function 'norm'",
     ),
     (
         "builtin_declared",
@@ -329,6 +329,21 @@ fn language_features_parse() {
     // 0.25 and 1/2 are exact.
     let e = p.expand();
     assert_eq!(e.len(), 11);
+}
+
+#[test]
+fn cross_and_dot_are_skew_and_transpose_products() {
+    let with_calls = "problem p; unknown t[3]\ndata x1: point, x2: point, R: rotation\n\
+                      dot(x2, cross(t, R * x1)) = 0\ndot(t, t) = 1\n";
+    let written_out = "problem p; unknown t[3]\ndata x1: point, x2: point, R: rotation\n\
+                       x2' * (skew(t) * (R * x1)) = 0\nt' * t = 1\n";
+    let (a, b) = (
+        Problem::parse(with_calls, "a.mp").unwrap_or_else(|e| panic!("{e}")),
+        Problem::parse(written_out, "b.mp").unwrap_or_else(|e| panic!("{e}")),
+    );
+    assert_eq!(a.expand(), b.expand());
+    let e = parse_err("problem p\nunknown t[3]\ndata a: vec3\ncross(a) = t\n");
+    assert!(e.to_string().contains("two arguments of cross"), "{e}");
 }
 
 #[test]

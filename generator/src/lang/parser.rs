@@ -521,6 +521,10 @@ impl<'a> Parser<'a> {
             )),
             Tok::Ident(s) => {
                 self.bump();
+                if self.raw().tok == Tok::LParen && (s == "cross" || s == "dot") {
+                    let open = self.bump();
+                    return self.vector_product(s, &t, &open);
+                }
                 if self.raw().tok == Tok::LParen {
                     let open = self.bump();
                     let arg = self.group_expr(&open, Tok::RParen, "')'")?;
@@ -564,6 +568,50 @@ impl<'a> Parser<'a> {
             )),
             _ => Err(self.error_here("an expression")),
         }
+    }
+
+    /// `cross(a, b)` as `skew(a) * b` and `dot(a, b)` as `a' * b` (after the `(`), so that
+    /// shapes are checked as for those forms.
+    fn vector_product(&mut self, name: &str, at: &Token, open: &Token) -> Result<Expr, LangError> {
+        self.group += 1;
+        let args = self.expr().and_then(|a| {
+            self.expect(
+                Tok::Comma,
+                &format!("',' between the two arguments of {name}"),
+            )?;
+            let b = self.expr()?;
+            self.expect(
+                Tok::RParen,
+                &format!("')' to close '(' at {}:{}", open.pos.line, open.pos.column),
+            )?;
+            Ok((a, b))
+        });
+        self.group -= 1;
+        let (a, b) = args?;
+        let left = if name == "cross" {
+            Expr {
+                pos: at.pos,
+                kind: ExprKind::Call(
+                    Name {
+                        name: "skew".to_string(),
+                        pos: at.pos,
+                    },
+                    Box::new(a),
+                ),
+            }
+        } else {
+            Expr {
+                pos: a.pos,
+                kind: ExprKind::Postfix(Box::new(a), vec![Postfix::Transpose(at.pos)]),
+            }
+        };
+        Ok(Expr {
+            pos: at.pos,
+            kind: ExprKind::Paren(Box::new(Expr {
+                pos: at.pos,
+                kind: ExprKind::Product(Box::new(left), vec![(MulOp::Mul, at.pos, b)]),
+            })),
+        })
     }
 
     fn group_expr(&mut self, open: &Token, close: Tok, what: &str) -> Result<Expr, LangError> {

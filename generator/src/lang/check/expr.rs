@@ -383,7 +383,7 @@ impl Checker {
             let msg = if self.lookup(fname).is_some() {
                 format!("'{fname}' is not a function (write '*' for a product)")
             } else {
-                format!("unknown function '{fname}' (the functions are skew, det and trace)")
+                format!("unknown function '{fname}' (the functions are skew, det, trace, and cross and dot of two 3-vectors)")
             };
             return Err(self.err(f.pos, msg));
         }

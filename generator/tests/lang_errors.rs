@@ -347,6 +347,30 @@ fn cross_and_dot_are_skew_and_transpose_products() {
 }
 
 #[test]
+fn an_unknown_with_a_kind_says_how_to_declare_it() {
+    let e = parse_err("problem p\nunknown q: vec3\ndata a: scalar\nq[0] = a\n");
+    assert!(e.to_string().contains("unknowns have no kind"), "{e}");
+    assert_eq!((e.line, e.column), (2, 10), "{e}");
+}
+
+#[test]
+fn decimal_exponents_are_exact() {
+    let a = Problem::parse(
+        "problem p; unknown x, y\nx * 1e-3 + 2.5E2 * y = 0.25e1\nx*y = 1E+1\n",
+        "a.mp",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let b = Problem::parse(
+        "problem p; unknown x, y\nx * 0.001 + 250 * y = 2.5\nx*y = 10\n",
+        "b.mp",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(a.expand(), b.expand());
+    let e = parse_err("problem p\nunknown x\nx = 1e5000\n");
+    assert!(e.to_string().contains("out of range"), "{e}");
+}
+
+#[test]
 fn integer_powers_are_repeated_products() {
     let with_powers = "problem p; unknown c, s, t[3]\ndata a: scalar, R: rotation\n\
                        c^2 + s^2 = 1\n-a * c^3 + (t' * t)^2 = s\n(R^2 * t)[0] = a\n";

@@ -169,6 +169,17 @@ pub fn lex(src: &str) -> Result<Vec<Token>, LangError> {
                     i += 1;
                 }
             }
+            // A decimal exponent: `1e-3`, `2.5E4` (a letter e not followed by digits starts
+            // a name, as in `2e` → `2` `e`).
+            if chars.get(i).is_some_and(|c| *c == 'e' || *c == 'E') {
+                let sign = usize::from(chars.get(i + 1).is_some_and(|c| *c == '+' || *c == '-'));
+                if chars.get(i + 1 + sign).is_some_and(char::is_ascii_digit) {
+                    i += 1 + sign;
+                    while chars.get(i).is_some_and(char::is_ascii_digit) {
+                        i += 1;
+                    }
+                }
+            }
         } else if c == '.' {
             return Err(LangError::new(
                 pos,

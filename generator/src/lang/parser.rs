@@ -281,6 +281,13 @@ impl<'a> Parser<'a> {
                     "':' and a kind (scalar, vec3, point, mat3, rotation)",
                 )?;
                 kind = Some(self.ident("a kind (scalar, vec3, point, mat3, rotation)")?);
+            } else if self.peek().tok == Tok::Colon {
+                return Err(LangError::new(
+                    self.peek().pos,
+                    "unknowns have no kind: declare scalars or arrays of scalars (`unknown t[3]` \
+                     is a 3-vector, `unknown q[4]` a quaternion's entries); kinds such as \
+                     `: vec3` are for `data`",
+                ));
             }
             out.push(Decl { name, len, kind });
             if self.peek().tok == Tok::Comma {

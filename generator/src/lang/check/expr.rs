@@ -17,9 +17,21 @@ pub(super) fn q_int(n: i64) -> Q {
     Q::from_integer(BigInt::from(n))
 }
 
-/// Parses a literal such as `2`, `0.5` or `12.250` exactly.
+/// Parses a literal such as `2`, `0.5`, `12.250` or `1.5e-3` exactly.
 fn parse_number(s: &str, pos: Pos) -> Result<Q, LangError> {
     let bad = || LangError::new(pos, format!("malformed number {s}"));
+    if let Some((mantissa, exponent)) = s.split_once(['e', 'E']) {
+        let e: i32 = exponent.parse().map_err(|_| bad())?;
+        if e.unsigned_abs() > 1000 {
+            return Err(LangError::new(
+                pos,
+                format!("the exponent of {s} is out of range (at most 1000 in magnitude)"),
+            ));
+        }
+        let m = parse_number(mantissa, pos)?;
+        let p = Q::from_integer(num_traits::pow(BigInt::from(10), e.unsigned_abs() as usize));
+        return Ok(if e >= 0 { m * p } else { m / p });
+    }
     let (int, frac) = match s.split_once('.') {
         Some((a, b)) => (a, b),
         None => (s, ""),

@@ -347,6 +347,16 @@ fn cross_and_dot_are_skew_and_transpose_products() {
 }
 
 #[test]
+fn a_byte_order_mark_and_windows_line_ends_are_accepted() {
+    let p = Problem::parse(
+        "\u{feff}problem p\r\nunknown x\r\ndata a: scalar\r\nx^2 = a\r\n",
+        "w.mp",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(p.equation_count(), 1);
+}
+
+#[test]
 fn an_unknown_with_a_kind_says_how_to_declare_it() {
     let e = parse_err("problem p\nunknown q: vec3\ndata a: scalar\nq[0] = a\n");
     assert!(e.to_string().contains("unknowns have no kind"), "{e}");

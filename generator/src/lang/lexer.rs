@@ -97,9 +97,14 @@ pub struct Token {
 }
 
 /// Splits the source into tokens; `#` starts a comment running to the end of the line.
-/// The result always ends with [`Tok::Eof`].
+/// A leading byte-order mark (as some editors write) is skipped. The result always ends
+/// with [`Tok::Eof`].
 pub fn lex(src: &str) -> Result<Vec<Token>, LangError> {
-    let chars: Vec<char> = src.chars().collect();
+    let chars: Vec<char> = src
+        .strip_prefix('\u{feff}')
+        .unwrap_or(src)
+        .chars()
+        .collect();
     let mut out = Vec::new();
     let (mut i, mut line, mut col) = (0usize, 1usize, 1usize);
     while let Some(&c) = chars.get(i) {

@@ -101,4 +101,9 @@ report("up2p", ideal(flatten apply(2, i -> flatten entries (sk(xD_i) * (Ry*pD_i 
 -- relpose_known_rotation_2pt
 R = QQ[t1,t2,t3]; x1D = apply(2,i->sub(pt(),R)); x2D = apply(2,i->sub(pt(),R)); Rm = sub(rot(),R); T = matrix{{t1},{t2},{t3}};
 report("relpose_known_rotation_2pt", ideal(apply(2, i -> sc(transpose x2D_i * sk(T) * Rm * x1D_i))) + ideal(t1^2+t2^2+t3^2-1));
+
+-- relpose_5pt_entries
+R = QQ[e1,e2,e3,e4,e5,e6,e7,e8]; x1D = apply(5,i->sub(pt(),R)); x2D = apply(5,i->sub(pt(),R));
+Em = matrix{{e1,e2,e3},{e4,e5,e6},{e7,e8,1}};
+report("relpose_5pt_entries", ideal(apply(5, i -> sc(transpose x2D_i * Em * x1D_i))) + ideal(det Em) + ideal(flatten entries (2*Em*transpose(Em)*Em - trace(Em*transpose(Em))*Em)));
 exit 0

@@ -65,6 +65,20 @@ fn relpose_5pt_finds_the_planted_essential_matrix() {
 }
 
 #[test]
+fn relpose_5pt_entries_finds_the_planted_essential_matrix() {
+    check(52, 1e-8, 1e-4, |rng| {
+        let (r, t, pts) = scene(rng, 5);
+        let mut flat = Vec::new();
+        pts.iter().for_each(|[a, _]| push_point(&mut flat, a));
+        pts.iter().for_each(|[_, b]| push_point(&mut flat, b));
+        let e = skew(&t) * r;
+        let e = e / e[(2, 2)];
+        let truth: Vec<f64> = (0..8).map(|k| e[(k / 3, k % 3)]).collect();
+        solve_flat::<ex::relpose_5pt_entries::Solver>(&flat, &[truth])
+    });
+}
+
+#[test]
 fn relpose_6pt_onefocal_finds_the_planted_focal_length() {
     check(61, 1e-8, 1e-4, |rng| {
         let (r, t, pts) = scene(rng, 6);

@@ -235,6 +235,14 @@ pub fn plan(
                 .iter()
                 .filter_map(|&i| names.get(i).map(String::as_str))
                 .collect();
+            // The library error numbers the unknowns; here they have their names.
+            let source = match source {
+                EliminateError::NotLinear { equation, .. } => EliminateError::NotLinear {
+                    equation,
+                    names: el.join(", "),
+                },
+                e => e,
+            };
             return Err(PipelineError::Eliminate {
                 file: file.to_string(),
                 names: el.join(" "),

@@ -85,6 +85,18 @@ fn non_linear_elimination_is_a_clear_error() {
         .expect("must fail")
         .to_string();
     assert!(err.contains("eliminate t1 t2 t3"), "{err}");
+    // An affine (inhomogeneous) equation in t is named by the unknowns, not their numbers.
+    let src =
+        "problem affine\nunknown x, t[3]\ndata c: vec3\nx*x = 1\nc'*t = x\nt'*t = 1\neliminate t\n";
+    let err = plan(
+        Problem::parse(src, "a.mp").unwrap(),
+        "a.mp",
+        &TemplateOptions::default(),
+    )
+    .err()
+    .expect("must fail")
+    .to_string();
+    assert!(err.contains("(t1, t2, t3)") && !err.contains('#'), "{err}");
 }
 
 fn inspect_json(file: &Path) -> serde_json::Value {

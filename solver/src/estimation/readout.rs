@@ -24,7 +24,6 @@ use crate::estimation::refine::{
 };
 use crate::model::camera::View;
 use crate::model::epipolar::{PointData, PoseModel, ResidualKind};
-use crate::model::geometry::skew;
 use nalgebra::{Matrix3, SVector, Vector3};
 
 /// Settings of [`refine_readout_scale`].
@@ -98,11 +97,25 @@ const LN_K_STEP: f64 = 1e-6;
 struct ReadoutProblem<'a> {
     views: (&'a View, &'a View),
     matches: Vec<Match>,
+    /// `0..matches.len()`, the indices the pose refinement's problem runs on.
+    indices: Vec<usize>,
     loss: Loss,
     ln_range: (f64, f64),
 }
 
 impl ReadoutProblem<'_> {
+    /// The pose refinement's problem on `d`: every kept match, the exact model's Sampson
+    /// error (the residuals of this problem at fixed `k`).
+    fn pose_problem<'b>(&'b self, d: &'b PointData) -> PoseProblem<'b> {
+        PoseProblem {
+            data: d,
+            indices: &self.indices,
+            model: PoseModel::ExactAngular,
+            kind: ResidualKind::Sampson,
+            loss: self.loss,
+        }
+    }
+
     fn data(&self, ln_k: f64) -> PointData {
         let k = ln_k.exp();
         PointData::new(
@@ -120,18 +133,7 @@ impl LmProblem<6> for ReadoutProblem<'_> {
     }
     fn residuals(&self, (pose, ln_k): &(Pose, f64), out: &mut [f64]) {
         let d = self.data(*ln_k);
-        let (r, t) = (pose.matrix(), pose.translation);
-        let e = skew(&t) * r;
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = d.residual(
-                PoseModel::ExactAngular,
-                ResidualKind::Sampson,
-                i,
-                &r,
-                &t,
-                &e,
-            );
-        }
+        self.pose_problem(&d).residuals(pose, out);
     }
     fn residuals_and_jacobian(
         &self,
@@ -144,16 +146,11 @@ impl LmProblem<6> for ReadoutProblem<'_> {
             return false;
         }
         let d = self.data(*ln_k);
-        let indices: Vec<usize> = (0..n).collect();
-        let pose_problem = PoseProblem {
-            data: &d,
-            indices: &indices,
-            model: PoseModel::ExactAngular,
-            kind: ResidualKind::Sampson,
-            loss: self.loss,
-        };
         let mut pose_jac = vec![SVector::<f64, 5>::zeros(); n];
-        if !pose_problem.residuals_and_jacobian(pose, out, &mut pose_jac) {
+        if !self
+            .pose_problem(&d)
+            .residuals_and_jacobian(pose, out, &mut pose_jac)
+        {
             return false;
         }
         let (mut plus, mut minus) = (vec![0.0; n], vec![0.0; n]);
@@ -205,6 +202,7 @@ pub fn refine_readout_scale(
     let f = 0.5 * (view1.camera.mean_focal() + view2.camera.mean_focal());
     let problem = ReadoutProblem {
         views: (view1, view2),
+        indices: (0..kept.len()).collect(),
         matches: kept,
         loss: Loss::Cauchy(options.loss_px / f),
         ln_range: (lo.ln(), hi.ln()),

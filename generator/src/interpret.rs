@@ -169,7 +169,7 @@ pub fn action_matrix(
 
 /// [`action_matrix`] and the reduced row `T[x_i, :]` of every unknown outside the basis
 /// (the linear read-out, [`mingen_runtime::read_linear`]), in variable order as
-/// [`crate::template::validate::linear_readouts`].
+/// [`EliminationTemplate::linear_readouts`].
 pub fn action_matrix_and_readouts(
     template: &EliminationTemplate,
     equations: &[Poly<f64>],
@@ -216,7 +216,8 @@ pub fn action_matrix_and_readouts(
             }
         }
     }
-    let readouts = crate::template::validate::linear_readouts(template)
+    let readouts = template
+        .linear_readouts()
         .iter()
         .map(|x| {
             let c = column

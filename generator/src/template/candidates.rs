@@ -34,29 +34,16 @@ pub(crate) struct Blocks {
     pub(crate) basis_set: BTreeSet<Monomial>,
 }
 
-/// The unknowns (the first `visible` variables) that are not in `basis`. They are read off
-/// the eigenvectors through their reduced template rows (the linear read-out, see
-/// [`super`]), so they are reducible columns too.
-pub(crate) fn readout_monomials(basis: &[Monomial], visible: usize) -> Vec<Monomial> {
-    let Some(nvars) = basis.first().map(Monomial::nvars) else {
-        return Vec::new();
-    };
-    (0..visible.min(nvars))
-        .map(|v| Monomial::var(nvars, v))
-        .filter(|m| !basis.contains(m))
-        .collect()
-}
-
 impl Blocks {
     /// The blocks of `basis` under `action`: the reducible monomials are the products
     /// `action * b` outside the basis and the unknowns among the first `visible` variables
-    /// outside it ([`readout_monomials`]).
+    /// outside it ([`super::unknowns_outside_basis`]).
     pub(crate) fn new(basis: &[Monomial], action: &Action, visible: usize) -> Blocks {
         let basis_set: BTreeSet<Monomial> = basis.iter().cloned().collect();
         let red_set: BTreeSet<Monomial> = basis
             .iter()
             .flat_map(|b| action.products(b).map(|(m, _)| m).collect::<Vec<_>>())
-            .chain(readout_monomials(basis, visible))
+            .chain(super::unknowns_outside_basis(basis, visible))
             .filter(|m| !basis_set.contains(m))
             .collect();
         let mut reducible: Vec<Monomial> = red_set.iter().cloned().collect();

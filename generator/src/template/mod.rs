@@ -114,7 +114,24 @@ pub struct EliminationTemplate {
     pub sparse: Option<SparseElimination>,
 }
 
+/// The unknowns (the first `visible` variables) that are not in `basis`, in variable
+/// order: read off the eigenvectors through their reduced template rows (the linear
+/// read-out of the module documentation), so they are reducible columns too.
+pub fn unknowns_outside_basis(basis: &[Monomial], visible: usize) -> Vec<Monomial> {
+    let Some(nvars) = basis.first().map(Monomial::nvars) else {
+        return Vec::new();
+    };
+    (0..visible.min(nvars))
+        .map(|v| Monomial::var(nvars, v))
+        .filter(|m| !basis.contains(m))
+        .collect()
+}
+
 impl EliminationTemplate {
+    /// The unknowns read off their reduced rows ([`unknowns_outside_basis`]).
+    pub fn linear_readouts(&self) -> Vec<Monomial> {
+        unknowns_outside_basis(&self.basis, self.visible_vars())
+    }
     /// Number of variables read off the eigenvectors (all but the hidden ones).
     pub fn visible_vars(&self) -> usize {
         self.nvars - self.n_hidden.min(self.nvars)

@@ -139,11 +139,7 @@ impl EliminationTemplate {
         }
         let mut needed = BTreeSet::new();
         // Unknowns outside the basis: the linear read-out from their reduced rows.
-        for v in 0..self.visible_vars() {
-            let m = Monomial::var(self.nvars, v);
-            if self.basis.contains(&m) {
-                continue;
-            }
+        for m in self.linear_readouts() {
             match column_of.get(&m) {
                 Some(&c) if c >= self.n_excess && c < npiv => {
                     needed.insert(c);

@@ -35,8 +35,11 @@ pub fn check_readoff(t: &EliminationTemplate, names: &[String]) -> Result<(), Te
     if !t.basis.contains(&Monomial::one(t.nvars)) {
         missing.push("1".to_string());
     }
-    let reducible = &t.columns[t.n_excess..t.n_excess + t.n_reducible];
-    for m in linear_readouts(t) {
+    let reducible = t
+        .columns
+        .get(t.n_excess..t.n_excess + t.n_reducible)
+        .unwrap_or_default();
+    for m in t.linear_readouts() {
         if !reducible.contains(&m) {
             missing.push(m.display_with(names));
         }
@@ -48,14 +51,6 @@ pub fn check_readoff(t: &EliminationTemplate, names: &[String]) -> Result<(), Te
             missing: missing.join(", "),
         })
     }
-}
-
-/// The unknowns outside the basis (read off their reduced rows), in variable order.
-pub fn linear_readouts(t: &EliminationTemplate) -> Vec<Monomial> {
-    (0..t.visible_vars())
-        .map(|v| Monomial::var(t.nvars, v))
-        .filter(|m| !t.basis.contains(m))
-        .collect()
 }
 
 /// The action matrix (|B| x |B|, raw residues) of the template on an instance mod P, or
@@ -72,7 +67,7 @@ pub fn template_action_matrix<const P: u32>(
 }
 
 /// [`template_action_matrix`] and the linear read-out of each unknown outside the basis
-/// ([`linear_readouts`], same order): the coefficients of its normal form on the basis,
+/// ([`EliminationTemplate::linear_readouts`], same order): the coefficients of its normal form on the basis,
 /// `-T[x_i, :]` from its reduced row.
 #[allow(clippy::type_complexity)]
 fn template_matrices<const P: u32>(
@@ -138,7 +133,7 @@ fn template_matrices<const P: u32>(
         }
     }
     let mut readouts = Vec::new();
-    for x in linear_readouts(t) {
+    for x in t.linear_readouts() {
         let r =
             col_of
                 .get(&x)
@@ -228,7 +223,7 @@ fn check_one<const P: u32, S: InstanceSource>(
         let nf =
             |m: &Monomial| in_gb_basis(&gb.normal_form(&Poly::term(m.clone(), Fp::<P>::one())));
         let change: Vec<Vec<u32>> = t.basis.iter().map(nf).collect();
-        for (x, r) in linear_readouts(t).iter().zip(&readouts) {
+        for (x, r) in t.linear_readouts().iter().zip(&readouts) {
             let mut via_template = vec![0u32; b.len()];
             for (rk, row) in r.iter().zip(&change) {
                 for (acc, &c) in via_template.iter_mut().zip(row) {

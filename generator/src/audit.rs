@@ -65,6 +65,10 @@ pub struct AuditInstance {
     pub eliminated: Option<EliminatedUnknowns>,
     /// Gauss-Newton steps polishing each solution on `original` (`option newton`).
     pub newton_steps: usize,
+    /// A known solution of this instance (all original unknowns, in declaration order),
+    /// e.g. the geometry a simulator planted: the audit then reports how accurately the
+    /// closest returned solution recovers it ([`PlantedStats`]).
+    pub planted: Option<Vec<f64>>,
 }
 
 /// Result of an audit (serialised by [`AuditReport::to_json`]).
@@ -94,6 +98,69 @@ pub struct AuditReport {
     pub no_real_solutions: usize,
     /// Mean number of real solutions per solved instance.
     pub mean_real_solutions: f64,
+    /// Recovery of the planted solutions, if the instances came with them.
+    pub planted: Option<PlantedStats>,
+}
+
+/// Recovery of planted solutions ([`AuditInstance::planted`]). The error of one instance is
+/// the smallest, over the returned real solutions (polished as the solver polishes them),
+/// of the largest per-unknown error `|x_i - p_i| / max(1, |p_i|)`; linearly eliminated
+/// unknowns (a null vector, defined up to scale) are compared as unit vectors up to sign.
+/// An instance with no solution, or not solved, has an infinite error.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlantedStats {
+    /// Instances with a planted solution.
+    pub instances: usize,
+    /// Those whose error is at most [`RECOVERY_TOLERANCE`].
+    pub recovered: usize,
+    /// Median log10 error (clamped to [`LOG10_FLOOR`], [`LOG10_CEIL`]).
+    pub median_log10_error: f64,
+    /// 99th percentile (nearest rank) of the same.
+    pub p99_log10_error: f64,
+}
+
+/// A planted solution counts as recovered if its error ([`PlantedStats`]) is at most this.
+pub const RECOVERY_TOLERANCE: f64 = 1e-6;
+
+/// The recovery error of `planted` among `solutions` (see [`PlantedStats`]); `eliminated`
+/// lists the positions of linearly eliminated unknowns.
+fn recovery_error(solutions: &[Vec<f64>], planted: &[f64], eliminated: &[usize]) -> f64 {
+    let unit = |x: &[f64]| -> Vec<f64> {
+        let v: Vec<f64> = eliminated
+            .iter()
+            .map(|&i| x.get(i).copied().unwrap_or(f64::NAN))
+            .collect();
+        let n = v.iter().map(|a| a * a).sum::<f64>().sqrt();
+        v.iter().map(|a| a / n).collect()
+    };
+    let p_unit = unit(planted);
+    solutions
+        .iter()
+        .filter(|s| s.len() == planted.len())
+        .map(|s| {
+            let free = s
+                .iter()
+                .zip(planted)
+                .enumerate()
+                .filter(|(i, _)| !eliminated.contains(i))
+                .map(|(_, (x, p))| (x - p).abs() / p.abs().max(1.0))
+                .fold(0.0, f64::max);
+            let s_unit = unit(s);
+            let signed = |sign: f64| {
+                s_unit
+                    .iter()
+                    .zip(&p_unit)
+                    .map(|(a, b)| (sign * a - b).abs())
+                    .fold(0.0, f64::max)
+            };
+            let e = free.max(signed(1.0).min(signed(-1.0)));
+            if e.is_nan() {
+                f64::INFINITY
+            } else {
+                e
+            }
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Worst normalised residual of a solution over the equations.
@@ -118,6 +185,8 @@ struct Outcome {
     real: usize,
     /// Real eigenpairs that gave no solution (rejected read-out or no eliminated unknowns).
     missed: usize,
+    /// The planted solution's recovery error, if the instance has one.
+    planted_error: Option<f64>,
 }
 
 /// Solves one instance; `None` if it could not be solved (an emitted solver returns
@@ -126,6 +195,7 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
     let solved = solve_template(template, &inst.equations).ok()?;
     let mut worst: Option<f64> = None;
     let mut real = 0;
+    let mut returned = Vec::new();
     for s in &solved.solutions {
         let mut full = match &inst.eliminated {
             None => s.clone(),
@@ -154,7 +224,12 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
         let r = worst_residual(&inst.original, &full);
         let r = if r.is_nan() { f64::INFINITY } else { r };
         worst = Some(worst.map_or(r, |w| w.max(r)));
+        returned.push(full);
     }
+    let eliminated = inst
+        .eliminated
+        .as_ref()
+        .map_or(&[][..], |e| e.positions.as_slice());
     Some(Outcome {
         log10_residual: worst.map(|w| {
             if w == 0.0 {
@@ -165,6 +240,10 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
         }),
         real,
         missed: solved.eigenpairs - real,
+        planted_error: inst
+            .planted
+            .as_deref()
+            .map(|p| recovery_error(&returned, p, eliminated)),
     })
 }
 
@@ -190,15 +269,30 @@ pub fn audit(
     let mut logs = Vec::with_capacity(opts.instances);
     let (mut failures, mut solve_errors, mut missed, mut no_real) = (0, 0, 0, 0);
     let (mut real_total, mut solved) = (0usize, 0usize);
+    let mut planted_logs = Vec::new();
+    let log10 = |e: f64| {
+        if e == 0.0 {
+            LOG10_FLOOR
+        } else {
+            e.log10().clamp(LOG10_FLOOR, LOG10_CEIL)
+        }
+    };
     for _ in 0..opts.instances {
         let inst = make_instance(&mut rng);
+        let has_planted = inst.planted.is_some();
         match run_instance(template, &inst) {
             None => {
                 solve_errors += 1;
                 failures += 1;
                 logs.push(LOG10_CEIL);
+                if has_planted {
+                    planted_logs.push(LOG10_CEIL);
+                }
             }
             Some(o) => {
+                if let Some(e) = o.planted_error {
+                    planted_logs.push(log10(e));
+                }
                 solved += 1;
                 real_total += o.real;
                 let miss = o.missed > 0;
@@ -219,6 +313,16 @@ pub fn audit(
         }
     }
     logs.sort_by(f64::total_cmp);
+    planted_logs.sort_by(f64::total_cmp);
+    let planted = (!planted_logs.is_empty()).then(|| PlantedStats {
+        instances: planted_logs.len(),
+        recovered: planted_logs
+            .iter()
+            .filter(|&&e| e <= RECOVERY_TOLERANCE.log10())
+            .count(),
+        median_log10_error: median(&planted_logs),
+        p99_log10_error: quantile(&planted_logs, 0.99),
+    });
     AuditReport {
         instances: opts.instances,
         median_log10_residual: median(&logs),
@@ -234,6 +338,7 @@ pub fn audit(
         } else {
             0.0
         },
+        planted,
     }
 }
 
@@ -277,7 +382,8 @@ impl AuditReport {
     /// `p99_log10_residual`, `failures`, `histogram` (a list of
     /// `{"lower_edge": e, "count": n}` for the bins `[e, e + 1)` of log10 residual), plus
     /// `solutions_expected`, `solve_errors`, `missed_solutions`, `no_real_solutions`,
-    /// `mean_real_solutions`.
+    /// `mean_real_solutions`, and `planted` (`null`, or `{"instances", "recovered",
+    /// "median_log10_error", "p99_log10_error"}`, see [`PlantedStats`]).
     pub fn to_json(&self) -> serde_json::Value {
         serde_json::json!({
             "instances": self.instances,
@@ -294,6 +400,12 @@ impl AuditReport {
             "missed_solutions": self.missed_solutions,
             "no_real_solutions": self.no_real_solutions,
             "mean_real_solutions": self.mean_real_solutions,
+            "planted": self.planted.as_ref().map(|p| serde_json::json!({
+                "instances": p.instances,
+                "recovered": p.recovered,
+                "median_log10_error": p.median_log10_error,
+                "p99_log10_error": p.p99_log10_error,
+            })),
         })
     }
 
@@ -333,6 +445,13 @@ impl fmt::Display for AuditReport {
             "failures:               {} ({pct:.2} %; {} unsolved, {} with missed solutions)",
             self.failures, self.solve_errors, self.missed_solutions
         )?;
+        if let Some(p) = &self.planted {
+            writeln!(
+                f,
+                "planted solutions:      {} of {} recovered to {RECOVERY_TOLERANCE:e}; log10 error median {:.2}, p99 {:.2}",
+                p.recovered, p.instances, p.median_log10_error, p.p99_log10_error
+            )?;
+        }
         writeln!(f, "log10 residual histogram:")?;
         write!(f, "{}", self.render_histogram())
     }
@@ -364,11 +483,32 @@ pub fn audit_plan(plan: &SolverPlan, options: &AuditOptions) -> AuditReport {
 /// order, e.g. from [`crate::instances_file::read_instances`]) instead of random ones.
 /// Panics if an instance does not have the problem's number of data slots.
 pub fn audit_plan_on(plan: &SolverPlan, instances: &[Vec<f64>]) -> AuditReport {
+    audit_plan_planted(plan, instances, None)
+}
+
+/// [`audit_plan_on`] with a planted solution per instance (`solutions[i]` solves
+/// `instances[i]`: every visible unknown in declaration order, [`SolverPlan::visible_unknowns`]),
+/// whose recovery the report gives ([`AuditReport::planted`]). Panics if an instance does
+/// not have the problem's number of data slots, or the solutions are not one per instance
+/// with one value per visible unknown.
+pub fn audit_plan_planted(
+    plan: &SolverPlan,
+    instances: &[Vec<f64>],
+    solutions: Option<&[Vec<f64>]>,
+) -> AuditReport {
     let slots = plan.problem.layout.data_slot_count();
     assert!(
         instances.iter().all(|d| d.len() == slots),
         "every instance needs {slots} data values"
     );
+    if let Some(s) = solutions {
+        let n = plan.visible_unknowns();
+        assert!(
+            s.len() == instances.len() && s.iter().all(|x| x.len() == n),
+            "one planted solution of {n} values per instance"
+        );
+    }
+    let mut planted = solutions.map(|s| s.iter());
     let mut next = instances.iter();
     let options = AuditOptions {
         instances: instances.len(),
@@ -378,7 +518,11 @@ pub fn audit_plan_on(plan: &SolverPlan, instances: &[Vec<f64>]) -> AuditReport {
         &plan.generated.built.template,
         plan.generated.count,
         &options,
-        |_| plan_instance(plan, next.next().expect("one instance per draw")),
+        |_| {
+            let mut inst = plan_instance(plan, next.next().expect("one instance per draw"));
+            inst.planted = planted.as_mut().and_then(|p| p.next().cloned());
+            inst
+        },
     )
 }
 
@@ -393,6 +537,7 @@ fn plan_instance(plan: &SolverPlan, data: &[f64]) -> AuditInstance {
             positions: e.eliminated,
         }),
         newton_steps: plan.problem.layout.options.newton.unwrap_or(0) as usize,
+        planted: None,
     }
 }
 

@@ -7,6 +7,10 @@
 //! order, array elements in order, each element's slots in its kind's order (a point
 //! `x y`, a vec3 `x y z`, a matrix row-major). Blank lines and lines starting with `#` are
 //! skipped.
+//!
+//! A solutions file (`--solutions-from`, planted solutions) has the same format with one
+//! number per unknown (declaration order, vectors element by element, eliminated unknowns
+//! included, hidden ones of `nonzero` not) on the line of its instance.
 
 use crate::problem::ProblemLayout;
 use std::path::{Path, PathBuf};
@@ -24,14 +28,16 @@ pub enum InstancesError {
         source: std::io::Error,
     },
     /// A line has the wrong number of columns.
-    #[error("line {line}: {found} numbers, but the problem has {expected} data slots ({names})")]
+    #[error("line {line}: {found} numbers, but the problem has {expected} {what} ({names})")]
     Columns {
         /// 1-based line number.
         line: usize,
         /// Numbers on the line.
         found: usize,
-        /// The problem's data slot count.
+        /// The problem's data slot count (or unknown count, for a solutions file).
         expected: usize,
+        /// `data slots` or `unknowns`.
+        what: &'static str,
         /// The slot names, in order (abbreviated when long).
         names: String,
     },
@@ -50,9 +56,8 @@ pub enum InstancesError {
     Empty,
 }
 
-/// The slot names for an error message, the middle left out when there are many.
-fn slot_names(layout: &ProblemLayout) -> String {
-    let names = layout.data_slot_names();
+/// Names for an error message, the middle left out when there are many.
+fn abbreviated(names: &[String]) -> String {
     if names.len() <= 12 {
         return names.join(" ");
     }
@@ -68,7 +73,22 @@ pub fn parse_instances(
     text: &str,
     layout: &ProblemLayout,
 ) -> Result<Vec<Vec<f64>>, InstancesError> {
-    let expected = layout.data_slot_count();
+    parse_rows(text, &layout.data_slot_names(), "data slots")
+}
+
+/// Parses planted solutions (see the module documentation): one number per name in
+/// `unknowns` on each line.
+pub fn parse_solutions(text: &str, unknowns: &[String]) -> Result<Vec<Vec<f64>>, InstancesError> {
+    parse_rows(text, unknowns, "unknowns")
+}
+
+/// Lines of `names.len()` finite numbers.
+fn parse_rows(
+    text: &str,
+    names: &[String],
+    what: &'static str,
+) -> Result<Vec<Vec<f64>>, InstancesError> {
+    let expected = names.len();
     let mut out = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let body = line.trim();
@@ -81,7 +101,8 @@ pub fn parse_instances(
                 line: i + 1,
                 found: fields.len(),
                 expected,
-                names: slot_names(layout),
+                what,
+                names: abbreviated(names),
             });
         }
         let values = fields
@@ -109,11 +130,19 @@ pub fn read_instances(
     path: &Path,
     layout: &ProblemLayout,
 ) -> Result<Vec<Vec<f64>>, InstancesError> {
-    let text = std::fs::read_to_string(path).map_err(|source| InstancesError::Io {
+    parse_instances(&read_text(path)?, layout)
+}
+
+/// Reads and parses a solutions file (see [`parse_solutions`]).
+pub fn read_solutions(path: &Path, unknowns: &[String]) -> Result<Vec<Vec<f64>>, InstancesError> {
+    parse_solutions(&read_text(path)?, unknowns)
+}
+
+fn read_text(path: &Path) -> Result<String, InstancesError> {
+    std::fs::read_to_string(path).map_err(|source| InstancesError::Io {
         path: path.to_path_buf(),
         source,
-    })?;
-    parse_instances(&text, layout)
+    })
 }
 
 /// Writes instances in the format [`parse_instances`] reads (shortest round-trip

@@ -49,6 +49,11 @@ enum Command {
         /// numbers in the order of the problem's data slots (`mingen inspect` lists them).
         #[arg(long, value_name = "DATA", conflicts_with_all = ["instances", "seed"])]
         instances_from: Option<PathBuf>,
+        /// A known solution per instance of --instances-from (same line order; every
+        /// unknown in declaration order, eliminated ones included): reports how many are
+        /// recovered by the closest returned solution, and how accurately.
+        #[arg(long, value_name = "SOLUTIONS", requires = "instances_from")]
+        solutions_from: Option<PathBuf>,
         #[command(flatten)]
         search: SearchArgs,
     },
@@ -226,10 +231,15 @@ fn main() -> ExitCode {
             seed,
             json,
             instances_from,
+            solutions_from,
             search,
-        } => search
-            .options()
-            .and_then(|o| audit(&file, instances, seed, instances_from.as_deref(), json, &o)),
+        } => search.options().and_then(|o| {
+            let files = AuditFiles {
+                instances: instances_from.as_deref(),
+                solutions: solutions_from.as_deref(),
+            };
+            audit(&file, instances, seed, files, json, &o)
+        }),
         Command::Report {
             paths,
             markdown: _,
@@ -424,11 +434,28 @@ fn print_plan(out: &mut String, plan: &mingen::pipeline::SolverPlan) {
     );
 }
 
+/// `audit --instances-from` and `--solutions-from`.
+struct AuditFiles<'a> {
+    instances: Option<&'a Path>,
+    solutions: Option<&'a Path>,
+}
+
+/// An instances or solutions file's error as a command-line error (exit code 2).
+fn file_error(path: &Path, e: mingen::instances_file::InstancesError) -> CliError {
+    CliError {
+        message: match e {
+            e @ mingen::instances_file::InstancesError::Io { .. } => e.to_string(),
+            e => format!("{}: {e}", path.display()),
+        },
+        code: 2,
+    }
+}
+
 fn audit(
     file: &Path,
     instances: usize,
     seed: u64,
-    instances_from: Option<&Path>,
+    files: AuditFiles<'_>,
     as_json: bool,
     options: &TemplateOptions,
 ) -> Result<(), CliError> {
@@ -439,19 +466,34 @@ fn audit(
         });
     }
     let plan = plan_file(file, options)?;
-    let (report, source) = match instances_from {
+    let (report, source) = match files.instances {
         Some(path) => {
-            let data = mingen::instances_file::read_instances(path, &plan.problem.layout).map_err(
-                |e| CliError {
-                    message: match e {
-                        e @ mingen::instances_file::InstancesError::Io { .. } => e.to_string(),
-                        e => format!("{}: {e}", path.display()),
-                    },
-                    code: 2,
-                },
-            )?;
+            let data = mingen::instances_file::read_instances(path, &plan.problem.layout)
+                .map_err(|e| file_error(path, e))?;
+            let solutions = match files.solutions {
+                Some(spath) => {
+                    let names = plan.problem.unknown_names();
+                    let names = &names[..plan.visible_unknowns()];
+                    let s = mingen::instances_file::read_solutions(spath, names)
+                        .map_err(|e| file_error(spath, e))?;
+                    if s.len() != data.len() {
+                        return Err(CliError {
+                            message: format!(
+                                "{}: {} solutions for the {} instances of {}",
+                                spath.display(),
+                                s.len(),
+                                data.len(),
+                                path.display()
+                            ),
+                            code: 2,
+                        });
+                    }
+                    Some(s)
+                }
+                None => None,
+            };
             (
-                mingen::audit::audit_plan_on(&plan, &data),
+                mingen::audit::audit_plan_planted(&plan, &data, solutions.as_deref()),
                 format!("instances from {}", path.display()),
             )
         }

@@ -127,3 +127,83 @@ fn malformed_lines_are_rejected_with_their_line_and_column_count() {
     ]);
     assert_eq!(run.status.code(), Some(2));
 }
+
+/// `audit --solutions-from`: planted solutions of a problem with a linearly eliminated
+/// unknown (`t`, compared up to sign) are recovered; a wrong one is not; a solutions file
+/// of the wrong shape is bad input.
+#[test]
+fn planted_solutions_are_recovered_and_wrong_ones_are_not() {
+    let problem = scratch(
+        "planted.mp",
+        "problem planted\nunknown a, t[3]\ndata u[3]: vec3, w[3]: vec3\n\
+         for i in 0..3 {\n  t' * (u[i] + a * w[i]) = 0\n}\nt' * t = 1\neliminate t\n",
+    );
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    use rand::Rng;
+    let (mut data, mut truth, mut flipped, mut wrong) = (vec![], vec![], vec![], vec![]);
+    for _ in 0..20 {
+        let a: f64 = rng.gen_range(-1.0..1.0);
+        let t: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+        let n = t.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let t = t.map(|x| x / n);
+        let (mut us, mut ws) = (vec![], vec![]);
+        for _ in 0..3 {
+            let q: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+            let d: f64 = (0..3).map(|k| q[k] * t[k]).sum();
+            let q: [f64; 3] = std::array::from_fn(|k| q[k] - d * t[k]);
+            let w: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+            us.extend((0..3).map(|k| q[k] - a * w[k]));
+            ws.extend(w);
+        }
+        data.push([us, ws].concat());
+        truth.push(vec![a, t[0], t[1], t[2]]);
+        flipped.push(vec![a, -t[0], -t[1], -t[2]]);
+        wrong.push(vec![a + 1e-3, t[0], t[1], t[2]]);
+    }
+    let data_file = scratch(
+        "planted_data.txt",
+        &format_instances(data.iter().map(Vec::as_slice)),
+    );
+    let run_with = |name: &str, solutions: &[Vec<f64>]| {
+        let file = scratch(name, &format_instances(solutions.iter().map(Vec::as_slice)));
+        mingen(&[
+            "audit",
+            problem.to_str().unwrap(),
+            "--instances-from",
+            data_file.to_str().unwrap(),
+            "--solutions-from",
+            file.to_str().unwrap(),
+            "--json",
+        ])
+    };
+    for (name, solutions, recovered) in [
+        ("planted_truth.txt", &truth, 20),
+        ("planted_flipped.txt", &flipped, 20),
+        ("planted_wrong.txt", &wrong, 0),
+    ] {
+        let run = run_with(name, solutions);
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        let json: Value = serde_json::from_slice(&run.stdout).unwrap();
+        assert_eq!(json["planted"]["instances"], 20, "{name}: {json}");
+        assert_eq!(json["planted"]["recovered"], recovered, "{name}: {json}");
+        if recovered == 20 {
+            assert!(json["planted"]["median_log10_error"].as_f64().unwrap() < -10.0);
+        }
+    }
+    let run = run_with("planted_short.txt", &truth[..19]);
+    assert_eq!(run.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(err.contains("19 solutions for the 20 instances"), "{err}");
+    let narrow: Vec<Vec<f64>> = truth.iter().map(|s| s[..3].to_vec()).collect();
+    let run = run_with("planted_narrow.txt", &narrow);
+    assert_eq!(run.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        err.contains("line 1: 3 numbers, but the problem has 4 unknowns (a t1 t2 t3)"),
+        "{err}"
+    );
+}

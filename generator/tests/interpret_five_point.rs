@@ -147,12 +147,13 @@ fn five_point_instance(rng: &mut ChaCha8Rng) -> (Vec<P>, [f64; 3]) {
 }
 
 fn instance(rng: &mut ChaCha8Rng) -> AuditInstance {
-    let (eqs, _) = five_point_instance(rng);
+    let (eqs, truth) = five_point_instance(rng);
     AuditInstance {
         equations: eqs.clone(),
         original: eqs,
         eliminated: None,
         newton_steps: 0,
+        planted: Some(truth.to_vec()),
     }
 }
 
@@ -191,6 +192,11 @@ fn five_point_audit() {
     assert_eq!(report.instances, 1000);
     assert!(report.median_log10_residual < -11.0, "{report}");
     assert!(report.failures <= 5, "{report}");
+    // The geometric instance every audit instance was made from is recovered.
+    let planted = report.planted.as_ref().expect("planted solutions given");
+    assert_eq!(planted.instances, 1000);
+    assert!(planted.recovered >= 995, "{report}");
+    assert!(planted.median_log10_error < -11.0, "{report}");
     let json = report.to_json();
     for key in [
         "instances",
@@ -198,6 +204,7 @@ fn five_point_audit() {
         "p99_log10_residual",
         "failures",
         "histogram",
+        "planted",
     ] {
         assert!(json.get(key).is_some(), "missing {key}");
     }
@@ -307,7 +314,9 @@ fn audit_with_eliminated_unknowns() {
             positions: vec![2, 3, 4],
         }),
         newton_steps: 0,
+        planted: None,
     });
+    assert!(report.planted.is_none());
     assert_eq!(report.failures, 0, "{report}");
     assert!(report.p99_log10_residual < -13.0, "{report}");
     assert_eq!(report.mean_real_solutions, 3.0);

@@ -1,13 +1,15 @@
 //! Reading the unknowns off an eigenvector of the action matrix.
 
-/// Eigenvectors (unit vectors) whose entry at the basis monomial 1 is at most this in
-/// magnitude are solutions at infinity or numerical noise and are skipped.
+/// A ratio of eigenvector entries (unit vectors) is read only if its denominator (for
+/// several pairs, the root of the sum of their squares) exceeds this: a smaller one is
+/// numerical noise or a solution at infinity, and the eigenvector is skipped.
 pub const MIN_UNIT_ENTRY: f64 = 1e-12;
 
 /// Reads every unknown off the unit eigenvector `v ∝ (b_0(s), ..., b_{n-1}(s))` of the
 /// action matrix into `out` (one entry per element of `pairs`); `false` (skip this
-/// eigenvector) if `v[one]` (the basis monomial 1) is not finite or at most
-/// [`MIN_UNIT_ENTRY`], or if an unknown is not finite.
+/// eigenvector) if `v[one]` (the basis monomial 1) is not finite, if an unknown's
+/// denominators are at most [`MIN_UNIT_ENTRY`] (see there), or if an unknown is not
+/// finite.
 ///
 /// `pairs[i]` lists the read-out pairs `(j, k)` of unknown `x_i`: `b_k = x_i * b_j`. An
 /// empty list leaves `out[i]` as it is: that unknown is not in the basis and is read by
@@ -17,6 +19,8 @@ pub const MIN_UNIT_ENTRY: f64 = 1e-12;
 /// eigenvector accurate to `e` gives `x` from one pair to about `e / |v[j]|`, so the plain
 /// `v[x] / v[1]` loses the accuracy of large solutions (where `v[1]` is tiny next to the
 /// higher-degree monomials); the combination is dominated by the largest denominators.
+/// So a solution far from the origin, whose `v[1]` is below [`MIN_UNIT_ENTRY`], is still
+/// read when every unknown has a pair with a large denominator.
 ///
 /// The emitted solvers call it with constant pairs (inlined and unrolled), the interpreter
 /// with the template's. Never panics: out-of-range indices make it return `false`.
@@ -25,14 +29,14 @@ pub fn read_unknowns(v: &[f64], one: usize, pairs: &[&[(usize, usize)]], out: &m
     let Some(&w) = v.get(one) else {
         return false;
     };
-    if !w.is_finite() || w.abs() <= MIN_UNIT_ENTRY || out.len() != pairs.len() {
+    if !w.is_finite() || out.len() != pairs.len() {
         return false;
     }
     for (x, p) in out.iter_mut().zip(pairs) {
         let value = match **p {
             [] => continue,
             [(j, k)] => match (v.get(j), v.get(k)) {
-                (Some(a), Some(b)) => b / a,
+                (Some(a), Some(b)) if a.abs() > MIN_UNIT_ENTRY => b / a,
                 _ => return false,
             },
             _ => {
@@ -43,6 +47,9 @@ pub fn read_unknowns(v: &[f64], one: usize, pairs: &[&[(usize, usize)]], out: &m
                     };
                     num += a * b;
                     den += a * a;
+                }
+                if den.sqrt() <= MIN_UNIT_ENTRY {
+                    return false;
                 }
                 num / den
             }
@@ -88,6 +95,26 @@ mod tests {
         assert!(read_unknowns(&v, 2, &[&[(2, 1), (1, 0)]], &mut both));
         assert!((plain[0] - x).abs() > 0.05 * x, "{plain:?}");
         assert!((both[0] - x).abs() < 1e-6 * x, "{both:?}");
+    }
+
+    #[test]
+    fn reads_solutions_far_from_the_origin() {
+        // Basis (x^4, x^3, x^2, x, 1) at x = 1e4: v[1] is 1e-16, below MIN_UNIT_ENTRY, but the
+        // pairs (x^k, x^{k+1}) with large x^k read x; the single pair (1, x) cannot.
+        let x = 1e4f64;
+        let b = [x.powi(4), x.powi(3), x * x, x, 1.0];
+        let n = b.iter().map(|e| e * e).sum::<f64>().sqrt();
+        let v: Vec<f64> = b.iter().map(|e| e / n).collect();
+        assert!(v[4] < MIN_UNIT_ENTRY);
+        let mut out = [0.0];
+        assert!(read_unknowns(
+            &v,
+            4,
+            &[&[(4, 3), (3, 2), (2, 1), (1, 0)]],
+            &mut out
+        ));
+        assert!((out[0] - x).abs() < 1e-9 * x, "{out:?}");
+        assert!(!read_unknowns(&v, 4, &[&[(4, 3)]], &mut out));
     }
 
     #[test]

@@ -25,8 +25,8 @@
 //! when two roots converge to one eigenvalue.
 
 use super::hessenberg::{
-    eigenvector_by_recurrence, hessenberg_of_columns, hyman_newton_step, inverse_iteration,
-    normalise, subdiagonal_reciprocals, transpose,
+    balance, eigenvector_by_recurrence, hessenberg_of_columns, hyman_newton_step,
+    inverse_iteration, normalise, subdiagonal_reciprocals, transpose,
 };
 use super::sturm_sequence::Sturm;
 use super::{real_eigenpairs_hqr, SolutionSet};
@@ -172,60 +172,6 @@ fn sturm_eigenpairs<const N: usize>(
         }
     }
     Some(())
-}
-
-/// Balances `a` in place by a diagonal similarity `D^-1 a D` with powers of 2 (exact;
-/// EISPACK `balanc` without permutations, at most 8 sweeps); returns `D`. Action matrices
-/// are often badly scaled (norm 1e3-1e4 for eigenvalues of order 1), which would make the
-/// characteristic polynomial's roots inaccurate.
-fn balance<const N: usize>(a: &mut [[f64; N]; N]) -> [f64; N] {
-    let mut d = [1.0f64; N];
-    for _ in 0..8 {
-        let mut done = true;
-        for i in 0..N {
-            let mut c = 0.0;
-            let mut r = 0.0;
-            for (j, row) in a.iter().enumerate() {
-                if j != i {
-                    c += row[i].abs();
-                    r += a[i][j].abs();
-                }
-            }
-            if c == 0.0 || r == 0.0 {
-                continue;
-            }
-            let s = c + r;
-            let (mut cc, mut rr, mut f) = (c, r, 1.0f64);
-            for _ in 0..64 {
-                if cc < 0.5 * rr {
-                    cc *= 2.0;
-                    rr *= 0.5;
-                    f *= 2.0;
-                } else if cc >= 2.0 * rr {
-                    cc *= 0.5;
-                    rr *= 2.0;
-                    f *= 0.5;
-                } else {
-                    break;
-                }
-            }
-            if cc + rr < 0.95 * s {
-                done = false;
-                d[i] *= f;
-                let g = 1.0 / f;
-                for x in a[i].iter_mut() {
-                    *x *= g;
-                }
-                for row in a.iter_mut() {
-                    row[i] *= f;
-                }
-            }
-        }
-        if done {
-            break;
-        }
-    }
-    d
 }
 
 /// Lower coefficients `c[0..N]` of the monic characteristic polynomial

@@ -96,7 +96,9 @@ report("relpose_5pt_cayley_sat (t eliminated, saturated)", saturate(eliminate({t
 -- up2p
 R = QQ[c,s,t1,t2,t3]; pD = apply(2,i->sub(v3(),R)); xD = apply(2,i->sub(pt(),R)); T = matrix{{t1},{t2},{t3}};
 Ry = matrix{{c,0,s},{0,1,0},{-s,0,c}};
-report("up2p", ideal(flatten apply(2, i -> flatten entries (sk(xD_i) * (Ry*pD_i + T)))) + ideal(c^2+s^2-1));
+I = ideal(flatten apply(2, i -> flatten entries (sk(xD_i) * (Ry*pD_i + T)))) + ideal(c^2+s^2-1);
+report("up2p", I);
+report("up2p_elim (t eliminated, in c, s)", sub(eliminate({t1,t2,t3}, I), QQ[c,s]));
 
 -- relpose_known_rotation_2pt
 R = QQ[t1,t2,t3]; x1D = apply(2,i->sub(pt(),R)); x2D = apply(2,i->sub(pt(),R)); Rm = sub(rot(),R); T = matrix{{t1},{t2},{t3}};

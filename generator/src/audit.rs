@@ -51,6 +51,9 @@ pub struct EliminatedUnknowns {
     /// (`ProblemLayout::eliminate`). The remaining unknowns fill the other positions in
     /// order.
     pub positions: Vec<usize>,
+    /// Whether the matrix's last column holds the free terms (the eliminated unknowns are
+    /// then its null vector divided by the last entry, not a unit vector).
+    pub inhomogeneous: bool,
 }
 
 /// One random instance for [`audit`].
@@ -105,7 +108,8 @@ pub struct AuditReport {
 /// Recovery of planted solutions ([`AuditInstance::planted`]). The error of one instance is
 /// the smallest, over the returned real solutions (polished as the solver polishes them),
 /// of the largest per-unknown error `|x_i - p_i| / max(1, |p_i|)`; linearly eliminated
-/// unknowns (a null vector, defined up to scale) are compared as unit vectors up to sign.
+/// unknowns recovered as a unit null vector (homogeneous) are compared as unit vectors up
+/// to sign, inhomogeneous ones as values.
 /// An instance with no solution, or not solved, has an infinite error.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlantedStats {
@@ -123,7 +127,7 @@ pub struct PlantedStats {
 pub const RECOVERY_TOLERANCE: f64 = 1e-6;
 
 /// The recovery error of `planted` among `solutions` (see [`PlantedStats`]); `eliminated`
-/// lists the positions of linearly eliminated unknowns.
+/// lists the positions of unknowns eliminated as a unit null vector (compared up to sign).
 fn recovery_error(solutions: &[Vec<f64>], planted: &[f64], eliminated: &[usize]) -> f64 {
     let unit = |x: &[f64]| -> Vec<f64> {
         let v: Vec<f64> = eliminated
@@ -200,7 +204,7 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
         let mut full = match &inst.eliminated {
             None => s.clone(),
             Some(el) => {
-                let Some(e) = recover_eliminated(&el.matrix, s) else {
+                let Some(e) = recover_eliminated(&el.matrix, s, el.inhomogeneous) else {
                     continue;
                 };
                 let n = s.len() + e.len();
@@ -226,9 +230,11 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
         worst = Some(worst.map_or(r, |w| w.max(r)));
         returned.push(full);
     }
-    let eliminated = inst
+    // Only a homogeneous null vector is defined up to scale (compared up to sign).
+    let projective = inst
         .eliminated
         .as_ref()
+        .filter(|e| !e.inhomogeneous)
         .map_or(&[][..], |e| e.positions.as_slice());
     Some(Outcome {
         log10_residual: worst.map(|w| {
@@ -243,7 +249,7 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
         planted_error: inst
             .planted
             .as_deref()
-            .map(|p| recovery_error(&returned, p, eliminated)),
+            .map(|p| recovery_error(&returned, p, projective)),
     })
 }
 
@@ -535,6 +541,7 @@ fn plan_instance(plan: &SolverPlan, data: &[f64]) -> AuditInstance {
         eliminated: eliminated.map(|e| EliminatedUnknowns {
             matrix: e.coefficient_matrix,
             positions: e.eliminated,
+            inhomogeneous: e.inhomogeneous,
         }),
         newton_steps: plan.problem.layout.options.newton.unwrap_or(0) as usize,
         planted: None,

@@ -7,6 +7,13 @@
 //! eliminated unknowns, such as `t't = 1`) is dropped, and a solver recovers `t` as the unit
 //! null vector of `A(u)` at each solution `u`. For G-RSRP this turns 6 unknowns and 20
 //! solutions (the 10 with both signs of `t`) into 3 unknowns and 10 solutions.
+//!
+//! Equations that are linear but inhomogeneous in `t` (`A(u) t + b(u) = 0`, such as the
+//! translation of an absolute pose) give the augmented matrix `[A b]`: a solution `t`
+//! exists where `[A b]` has a null vector with a non-zero last entry, so the maximal minors
+//! of `[A b]` (one column more) replace the equations, and `t` is that null vector divided
+//! by its last entry ([`mingen_runtime::null_vector`], [`mingen_runtime::dehomogenize`]).
+//! No equation is dropped as a normalisation then: one in `t` alone would constrain it.
 
 use crate::algebra::{Monomial, Poly, Ring};
 use thiserror::Error;
@@ -15,20 +22,32 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq, Eq)]
 pub enum EliminateError {
     /// An equation mixes the eliminated unknowns non-linearly with the others.
-    #[error("equation {equation} is neither linear homogeneous in the eliminated unknowns ({names}) nor free of the other unknowns, so it cannot be eliminated")]
+    #[error("equation {equation} is neither linear in the eliminated unknowns ({names}) nor free of the other unknowns, so it cannot be eliminated")]
     NotLinear {
         /// Index of the offending equation.
         equation: usize,
         /// The eliminated unknowns, comma separated.
         names: String,
     },
-    /// Fewer linear equations than eliminated unknowns: the minors do not constrain anything.
-    #[error("only {rows} equations are linear homogeneous in the {k} eliminated unknowns; at least {k} are needed")]
+    /// Fewer linear equations than the matrix has columns: the minors do not constrain
+    /// anything.
+    #[error("only {rows} equations are linear in the {k} eliminated unknowns; at least {needed} are needed")]
     TooFewRows {
-        /// Number of linear homogeneous equations found.
+        /// Number of linear equations found.
         rows: usize,
         /// Number of eliminated unknowns.
         k: usize,
+        /// Columns of the coefficient matrix (`k`, or `k + 1` if inhomogeneous).
+        needed: usize,
+    },
+    /// The equations are inhomogeneous in the eliminated unknowns and another equation
+    /// involves those unknowns alone: it constrains them and cannot be dropped.
+    #[error("equation {equation} involves only the eliminated unknowns ({names}), whose other equations are inhomogeneous: it is not a normalisation and cannot be eliminated")]
+    ConstraintOnEliminated {
+        /// Index of the equation.
+        equation: usize,
+        /// The eliminated unknowns, comma separated.
+        names: String,
     },
     /// No unknown is left after elimination.
     #[error("eliminating every unknown leaves nothing to solve for")]
@@ -39,17 +58,21 @@ pub enum EliminateError {
 #[derive(Clone, Debug)]
 pub struct Eliminated<C: Ring> {
     /// The new system in the remaining unknowns: equations free of the eliminated unknowns,
-    /// followed by the non-zero maximal minors of [`Eliminated::coefficient_matrix`] (rows
-    /// chosen in lexicographic order of their indices).
+    /// followed by every maximal minor of [`Eliminated::coefficient_matrix`] (rows chosen
+    /// in lexicographic order of their indices; zero ones included, so that the numbering
+    /// is the same for every instance and ring).
     pub equations: Vec<Poly<C>>,
     /// Original flat indices of the remaining unknowns, in their new variable order.
     pub remaining: Vec<usize>,
     /// Original flat indices of the eliminated unknowns (column order of the matrix).
     pub eliminated: Vec<usize>,
-    /// `A(u)`: one row per linear homogeneous equation, one column per eliminated unknown,
-    /// entries polynomials in the remaining unknowns. The eliminated unknowns are its unit
-    /// null vector at a solution.
+    /// `A(u)`: one row per linear equation, one column per eliminated unknown, plus a last
+    /// column `b(u)` (the terms free of them) if [`Eliminated::inhomogeneous`]; entries
+    /// polynomials in the remaining unknowns. At a solution the eliminated unknowns are
+    /// its unit null vector (homogeneous), or its null vector divided by the last entry.
     pub coefficient_matrix: Vec<Vec<Poly<C>>>,
+    /// Whether some equation has terms free of the eliminated unknowns beside linear ones.
+    pub inhomogeneous: bool,
     /// Original indices of the equations that were dropped as normalisations.
     pub dropped: Vec<usize>,
 }
@@ -79,31 +102,30 @@ pub fn eliminate_linear<C: Ring>(
         .join(", ");
 
     let mut kept = Vec::new();
+    // Rows of [A b]: k columns for the eliminated unknowns, then the free terms.
     let mut matrix: Vec<Vec<Poly<C>>> = Vec::new();
-    let mut dropped = Vec::new();
+    let mut only_eliminated = Vec::new();
     for (idx, eq) in equations.iter().enumerate() {
         let elim_degree = |m: &Monomial| elim.iter().map(|&i| m.0[i] as u32).sum::<u32>();
         let degrees: Vec<u32> = eq.terms().map(|(m, _)| elim_degree(m)).collect();
+        let in_eliminated_only = eq
+            .terms()
+            .all(|(m, _)| remaining.iter().all(|&i| m.0[i] == 0));
         if degrees.iter().all(|&d| d == 0) {
             kept.push(Poly::from_terms(
                 nrem,
                 eq.terms().map(|(m, c)| (project(m), c.clone())),
             ));
-        } else if degrees.iter().all(|&d| d == 1) {
-            let mut row = vec![Poly::zero(nrem); k];
+        } else if degrees.iter().all(|&d| d <= 1) {
+            // Linear: a row of [A b] (also `t3 = 1` alone, which fixes the scale).
+            let mut row = vec![Poly::zero(nrem); k + 1];
             for (m, c) in eq.terms() {
-                let j = elim
-                    .iter()
-                    .position(|&i| m.0[i] == 1)
-                    .expect("degree one in eliminated");
+                let j = elim.iter().position(|&i| m.0[i] == 1).unwrap_or(k);
                 row[j].add_term(project(m), c.clone());
             }
             matrix.push(row);
-        } else if eq
-            .terms()
-            .all(|(m, _)| remaining.iter().all(|&i| m.0[i] == 0))
-        {
-            dropped.push(idx);
+        } else if in_eliminated_only {
+            only_eliminated.push(idx);
         } else {
             return Err(EliminateError::NotLinear {
                 equation: idx,
@@ -111,25 +133,40 @@ pub fn eliminate_linear<C: Ring>(
             });
         }
     }
-    if matrix.len() < k {
+    let inhomogeneous = matrix.iter().any(|row| !row[k].is_zero());
+    if inhomogeneous {
+        if let Some(&equation) = only_eliminated.first() {
+            return Err(EliminateError::ConstraintOnEliminated { equation, names });
+        }
+    } else {
+        for row in &mut matrix {
+            row.pop();
+        }
+    }
+    let cols = k + usize::from(inhomogeneous);
+    if matrix.len() < cols {
         return Err(EliminateError::TooFewRows {
             rows: matrix.len(),
             k,
+            needed: cols,
         });
     }
+    let dropped = only_eliminated;
     let mut equations_out = kept;
-    for rows in combinations(matrix.len(), k) {
+    for rows in combinations(matrix.len(), cols) {
         let sub: Vec<Vec<Poly<C>>> = rows.iter().map(|&r| matrix[r].clone()).collect();
-        let minor = determinant(&sub, nrem);
-        if !minor.is_zero() {
-            equations_out.push(minor);
-        }
+        // Every minor is kept, zero or not: equations are referred to by index, and a minor
+        // that vanishes on the whole data family (e.g. three rows of one cross product,
+        // of rank 2) is exactly zero mod p but rounding noise in f64, so dropping the zero
+        // ones would number the equations differently over the two rings.
+        equations_out.push(determinant(&sub, nrem));
     }
     Ok(Eliminated {
         equations: equations_out,
         remaining,
         eliminated: elim,
         coefficient_matrix: matrix,
+        inhomogeneous,
         dropped,
     })
 }
@@ -261,6 +298,68 @@ mod tests {
         assert!(matches!(
             eliminate_linear(&[lin], 2, &[1]).map(|e| e.equations.len()),
             Ok(1)
+        ));
+    }
+
+    #[test]
+    fn inhomogeneous_rows_give_the_minors_of_the_augmented_matrix() {
+        // Rows (u, 1) . t + (u + 2) = 0 style: t (two unknowns) linear with free terms.
+        // Variables: u (0), t1 (1), t2 (2). With rows A(u) t + b(u) = 0, the 3x3 minors
+        // of [A b] vanish exactly where a t exists.
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        let mut eqs = Vec::new();
+        for _ in 0..3 {
+            let mut p = Poly::<F>::zero(3);
+            for j in 0..3 {
+                let mut m = Monomial::one(3);
+                if j > 0 {
+                    m.0[j] = 1;
+                }
+                p.add_term(m.clone(), F::new(rng.gen_range(1..1000)));
+                m.0[0] = 1;
+                p.add_term(m, F::new(rng.gen_range(1..1000)));
+            }
+            eqs.push(p);
+        }
+        let e = eliminate_linear(&eqs, 3, &[1, 2]).unwrap();
+        assert!(e.inhomogeneous);
+        assert_eq!(e.coefficient_matrix[0].len(), 3);
+        assert_eq!(e.equations.len(), 1); // C(3, 3)
+        assert_eq!(e.equations[0].degree(), Some(3));
+        // At a root u of the minor, [A b] has a null vector (t1, t2, 1) solving the rows.
+        // Check the converse numerically mod p on the 3x3 determinant's definition: the
+        // minor equals det([A b]) at any u.
+        let u = F::new(777);
+        let m: Vec<Vec<F>> = e
+            .coefficient_matrix
+            .iter()
+            .map(|r| r.iter().map(|p| p.eval(&[u])).collect())
+            .collect();
+        let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+        assert_eq!(e.equations[0].eval(&[u]), det);
+        // The free terms sit in the last column: row 0's b(u) is eqs[0] at t = 0.
+        assert_eq!(
+            e.coefficient_matrix[0][2].eval(&[u]),
+            eqs[0].eval(&[u, F::zero(), F::zero()])
+        );
+        // Too few rows for [A b], and an equation in t alone that is not linear.
+        assert!(matches!(
+            eliminate_linear(&eqs[..2], 3, &[1, 2]),
+            Err(EliminateError::TooFewRows {
+                rows: 2,
+                k: 2,
+                needed: 3
+            })
+        ));
+        let mut norm = Poly::<F>::constant(3, -F::one());
+        norm = norm.add(&Poly::var(3, 1).mul(&Poly::var(3, 1)));
+        let mut with_norm = eqs.clone();
+        with_norm.push(norm);
+        assert!(matches!(
+            eliminate_linear(&with_norm, 3, &[1, 2]),
+            Err(EliminateError::ConstraintOnEliminated { equation: 3, .. })
         ));
     }
 }

@@ -398,23 +398,38 @@ pub fn normalized_residual(p: &Poly<f64>, x: &[f64]) -> f64 {
 }
 
 /// Recovers linearly eliminated unknowns as an emitted solver does: evaluates the
-/// coefficient matrix (rows x 3, entries polynomials in the remaining unknowns) at
-/// `remaining` and returns its unit null vector by
-/// [`mingen_runtime::null_vector3_rows`] (sign arbitrary). `None` for a matrix that is
-/// not `r x 3` with `r >= 2` (the emitter supports three eliminated unknowns only), a
-/// non-finite value, or rank below 2.
+/// coefficient matrix (entries polynomials in the remaining unknowns, see
+/// [`crate::eliminate::Eliminated::coefficient_matrix`]) at `remaining` and returns its
+/// unit null vector (sign arbitrary), or, if `inhomogeneous` (the last column holds the
+/// free terms), the null vector divided by its last entry. Three homogeneous columns go
+/// through [`mingen_runtime::null_vector3_rows`], other widths through
+/// [`mingen_runtime::null_vector_dyn`] and [`mingen_runtime::dehomogenize`]. `None` for
+/// ragged or too few rows, a non-finite value, a rank below the width minus one, or a
+/// solution at infinity.
 pub fn recover_eliminated(
     coefficient_matrix: &[Vec<Poly<f64>>],
     remaining: &[f64],
+    inhomogeneous: bool,
 ) -> Option<Vec<f64>> {
-    let rows: Vec<[f64; 3]> = coefficient_matrix
+    let width = coefficient_matrix.first()?.len();
+    if coefficient_matrix.iter().any(|r| r.len() != width) || width < 1 + usize::from(inhomogeneous)
+    {
+        return None;
+    }
+    let values: Vec<f64> = coefficient_matrix
         .iter()
-        .map(|row| match row.as_slice() {
-            [a, b, c] => Some([eval(a, remaining), eval(b, remaining), eval(c, remaining)]),
-            _ => None,
-        })
-        .collect::<Option<_>>()?;
-    mingen_runtime::null_vector3_rows(&rows).map(|v| v.to_vec())
+        .flat_map(|row| row.iter().map(|p| eval(p, remaining)))
+        .collect();
+    if width == 3 && !inhomogeneous {
+        let rows: Vec<[f64; 3]> = values.chunks_exact(3).map(|r| [r[0], r[1], r[2]]).collect();
+        return mingen_runtime::null_vector3_rows(&rows).map(|v| v.to_vec());
+    }
+    let v = mingen_runtime::null_vector_dyn(&values, coefficient_matrix.len(), width)?;
+    if !inhomogeneous {
+        return Some(v);
+    }
+    let mut out = vec![0.0; width - 1];
+    mingen_runtime::dehomogenize(&v, &mut out).then_some(out)
 }
 
 #[cfg(test)]
@@ -554,12 +569,23 @@ mod tests {
         let x = |c: f64| Poly::from_terms(1, [(mono(&[1]), c)]);
         let k = |c: f64| Poly::constant(1, c);
         let m = vec![vec![x(1.0), k(-2.0), k(0.0)], vec![k(0.0), x(1.0), x(-2.0)]];
-        let v = recover_eliminated(&m, &[2.0]).unwrap();
+        let v = recover_eliminated(&m, &[2.0], false).unwrap();
         let sign = v[0].signum();
         for (z, w) in v.iter().zip([2.0 / 3.0, 2.0 / 3.0, 1.0 / 3.0]) {
             assert!((z * sign - w).abs() < 1e-14);
         }
-        assert!(recover_eliminated(&[], &[]).is_none());
-        assert!(recover_eliminated(&m[..1], &[2.0]).is_none());
+        assert!(recover_eliminated(&[], &[], false).is_none());
+        assert!(recover_eliminated(&m[..1], &[2.0], false).is_none());
+        // The same rows as [A b] with b the last column: t1 = -s/(-2) ... i.e. the affine
+        // point of (2, s, s/2) is (4/s, 2) at s = 2: (2, 2).
+        let t = recover_eliminated(&m, &[2.0], true).unwrap();
+        assert!(
+            (t[0] - 2.0).abs() < 1e-14 && (t[1] - 2.0).abs() < 1e-14,
+            "{t:?}"
+        );
+        // Two columns (one eliminated unknown, homogeneous): the unit null vector.
+        let two = vec![vec![x(1.0), k(-2.0)]];
+        let v = recover_eliminated(&two, &[2.0], false).unwrap();
+        assert!((v[0].abs() - v[1].abs()).abs() < 1e-15);
     }
 }

@@ -241,6 +241,12 @@ pub fn plan(
                     equation,
                     names: el.join(", "),
                 },
+                EliminateError::ConstraintOnEliminated { equation, .. } => {
+                    EliminateError::ConstraintOnEliminated {
+                        equation,
+                        names: el.join(", "),
+                    }
+                }
                 e => e,
             };
             return Err(PipelineError::Eliminate {
@@ -483,6 +489,7 @@ pub fn emit_plan_from(plan: &SolverPlan, problem_path: &str) -> Result<String, P
             eliminated: e.eliminated,
             remaining: e.remaining,
             coefficient_matrix: e.coefficient_matrix,
+            inhomogeneous: e.inhomogeneous,
         }),
         polish,
     };

@@ -472,6 +472,7 @@ fn elimination_emission_parses() {
             eliminated: vec![1, 2, 3],
             remaining: vec![0],
             coefficient_matrix,
+            inhomogeneous: false,
         }),
         polish: None,
     };

@@ -312,6 +312,7 @@ fn audit_with_eliminated_unknowns() {
         eliminated: Some(EliminatedUnknowns {
             matrix: matrix.clone(),
             positions: vec![2, 3, 4],
+            inhomogeneous: false,
         }),
         newton_steps: 0,
         planted: None,

@@ -46,7 +46,7 @@ fn interpreted(plan: &SolverPlan, data: &[f64]) -> Vec<Vec<f64>> {
     };
     sols.into_iter()
         .filter_map(|s| {
-            let e = recover_eliminated(&el.coefficient_matrix, &s)?;
+            let e = recover_eliminated(&el.coefficient_matrix, &s, el.inhomogeneous)?;
             let mut full = vec![f64::NAN; n];
             for (k, &i) in el.remaining.iter().enumerate() {
                 full[i] = s[k];

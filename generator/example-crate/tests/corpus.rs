@@ -138,6 +138,22 @@ fn up2p_finds_the_planted_pose() {
     });
 }
 
+/// The same with `eliminate t` (inhomogeneous): t comes from the null vector of [A b].
+#[test]
+fn up2p_elim_finds_the_planted_pose() {
+    check(24, 1e-9, 1e-5, |rng| {
+        let (r, c, s) = rotation_y(rng);
+        let t = Vector3::new(0.0, 0.0, 5.0) + unit(rng);
+        let mut flat = Vec::new();
+        let world: Vec<Vector3<f64>> = (0..2).map(|_| unit(rng) * 2.0).collect();
+        world.iter().for_each(|p| push_vec(&mut flat, p));
+        world
+            .iter()
+            .for_each(|p| push_point(&mut flat, &(r * p + t)));
+        solve_flat::<ex::up2p_elim::Solver>(&flat, &[vec![c, s, t.x, t.y, t.z]])
+    });
+}
+
 #[test]
 fn relpose_known_rotation_2pt_finds_the_planted_translation() {
     check(23, 1e-9, 1e-5, |rng| {

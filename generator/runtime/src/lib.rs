@@ -30,6 +30,8 @@
 //!   confirmed (residual or eigenvalue disagreement: spurious real roots of ±λ spectra) or
 //!   the Sturm sequence degenerates. The emitted solvers use it at every shipped size.
 //! - [`Stages`]: observer of an emitted solver's stages (`solve_staged`), for timings.
+//! - [`null_vector`], [`dehomogenize`]: null vectors of n x N matrices and their affine
+//!   points (eliminated unknowns other than three, or inhomogeneous in them).
 //! - [`null_vector3`]: unit null vector of an n x 3 matrix (recovery of eliminated
 //!   unknowns such as a translation direction).
 //! - [`read_unknowns`]: the unknowns read off an eigenvector of the action matrix.
@@ -50,6 +52,7 @@ mod hessenberg;
 mod hqr;
 mod newton;
 mod null;
+mod null_general;
 mod readout;
 mod solution_set;
 mod solver;
@@ -64,6 +67,7 @@ pub use elim::{gauss_jordan, lu_solve_template, lu_solve_template_fixed, PIVOT_T
 pub use hqr::real_eigenpairs_hqr;
 pub use newton::{newton_polish, NewtonTerm, MAX_NEWTON_UNKNOWNS};
 pub use null::{null_vector3, null_vector3_rows};
+pub use null_general::{dehomogenize, null_vector, null_vector_dyn};
 pub use readout::{read_linear, read_unknowns, MIN_UNIT_ENTRY};
 pub use solution_set::SolutionSet;
 pub use solver::{FlatValues, MinimalSolver};

@@ -61,15 +61,18 @@ pub enum EmitError {
 #[derive(Clone, Debug)]
 pub struct EliminationSpec {
     /// Flat indices (original unknown numbering) of the eliminated unknown scalars, in the
-    /// order of the coefficient matrix columns. Exactly 3 are supported (`null_vector3`).
+    /// order of the coefficient matrix columns.
     pub eliminated: Vec<usize>,
     /// Flat indices (original numbering) of the unknowns the template solves for, in
     /// template variable order.
     pub remaining: Vec<usize>,
-    /// `rows x eliminated.len()` matrix whose entries are polynomials in the remaining
-    /// unknowns (template variables) with traced coefficients; the eliminated unknowns are
-    /// its unit null vector at a solution.
+    /// `rows x eliminated.len()` matrix (one column more, the free terms, if
+    /// `inhomogeneous`) whose entries are polynomials in the remaining unknowns (template
+    /// variables) with traced coefficients; the eliminated unknowns are its unit null
+    /// vector at a solution, or its null vector divided by the last entry.
     pub coefficient_matrix: Vec<Vec<Poly<Traced>>>,
+    /// Whether the matrix has the column of free terms (`crate::eliminate::Eliminated`).
+    pub inhomogeneous: bool,
 }
 
 /// Polishing of every solution by Gauss-Newton steps (`option newton = N`).

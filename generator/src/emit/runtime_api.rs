@@ -73,6 +73,16 @@ pub(crate) fn null_vector3() -> TokenStream {
     quote!(mingen_runtime::null_vector3)
 }
 
+/// `null_vector::<R, N>(rows: &[[f64; N]; R]) -> Option<[f64; N]>` (unit null vector).
+pub(crate) fn null_vector() -> TokenStream {
+    quote!(mingen_runtime::null_vector)
+}
+
+/// `dehomogenize(v: &[f64], out: &mut [f64]) -> bool` (`out = v[..k] / v[k]`).
+pub(crate) fn dehomogenize() -> TokenStream {
+    quote!(mingen_runtime::dehomogenize)
+}
+
 /// The fixed-size matrix type of the action matrix.
 pub(crate) fn smatrix() -> TokenStream {
     quote!(mingen_runtime::nalgebra::SMatrix)

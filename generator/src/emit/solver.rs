@@ -110,12 +110,7 @@ impl<'a> Plan<'a> {
                 var_names = names.clone();
             }
             Some(el) => {
-                if el.eliminated.len() != 3 {
-                    return Err(EmitError::Unsupported(format!(
-                        "{} eliminated unknowns; only 3 (a unit null vector of an n x 3 matrix) are supported",
-                        el.eliminated.len()
-                    )));
-                }
+                let width = el.eliminated.len() + usize::from(el.inhomogeneous);
                 if el.remaining.len() != t.nvars {
                     return Err(EmitError::Invalid(format!(
                         "{} remaining unknowns but the template has {} variables",
@@ -144,15 +139,16 @@ impl<'a> Plan<'a> {
                 for (j, &i) in el.eliminated.iter().enumerate() {
                     source[i] = Err(j);
                 }
-                if el.coefficient_matrix.len() < 2 {
-                    return Err(EmitError::Invalid(
-                        "the elimination coefficient matrix needs at least 2 rows".into(),
-                    ));
+                if el.eliminated.is_empty() || el.coefficient_matrix.len() + 1 < width {
+                    return Err(EmitError::Invalid(format!(
+                        "the elimination coefficient matrix needs at least {} rows",
+                        width.max(2) - 1
+                    )));
                 }
                 for (r, row) in el.coefficient_matrix.iter().enumerate() {
-                    if row.len() != 3 {
+                    if row.len() != width {
                         return Err(EmitError::Invalid(format!(
-                            "elimination matrix row {r} has {} entries, expected 3",
+                            "elimination matrix row {r} has {} entries, expected {width}",
                             row.len()
                         )));
                     }
@@ -259,16 +255,25 @@ pub fn emit_solver(spec: &SolverSpec) -> Result<String, EmitError> {
     ];
     if let Some(el) = &spec.elimination {
         let names = layout.unknown_names();
-        module_doc.push(format!(
-            "Eliminated unknowns {} are recovered as the unit null vector of a {} x 3 matrix \
-             (one of the two signs).",
-            el.eliminated
-                .iter()
-                .map(|&i| format!("`{}`", names[i]))
-                .collect::<Vec<_>>()
-                .join(", "),
-            el.coefficient_matrix.len()
-        ));
+        let listed = el
+            .eliminated
+            .iter()
+            .map(|&i| format!("`{}`", names[i]))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let (rows, k) = (el.coefficient_matrix.len(), el.eliminated.len());
+        module_doc.push(if el.inhomogeneous {
+            format!(
+                "Eliminated unknowns {listed} are recovered as the null vector of a {rows} x {} \
+                 matrix divided by its last entry.",
+                k + 1
+            )
+        } else {
+            format!(
+                "Eliminated unknowns {listed} are recovered as the unit null vector of a {rows} x \
+                 {k} matrix (one of the two signs)."
+            )
+        });
     }
     module_doc.push(String::new());
     module_doc.push("Do not edit: regenerate with `mingen generate`.".into());
@@ -530,12 +535,36 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
             row_tokens.push(quote!([#(#entries),*]));
         }
         let nr = lit(el.coefficient_matrix.len());
-        let nv = rt::null_vector3();
-        quote! {
-            let rows: [[f64; 3]; #nr] = [#(#row_tokens),*];
-            let Some(n) = #nv(&rows) else {
-                continue;
-            };
+        let k = el.eliminated.len();
+        if el.inhomogeneous {
+            let (width, kl) = (lit(k + 1), lit(k));
+            let (nv, dh) = (rt::null_vector(), rt::dehomogenize());
+            quote! {
+                let rows: [[f64; #width]; #nr] = [#(#row_tokens),*];
+                let Some(h) = #nv(&rows) else {
+                    continue;
+                };
+                let mut n = [0.0; #kl];
+                if !#dh(&h, &mut n) {
+                    continue;
+                }
+            }
+        } else if k == 3 {
+            let nv = rt::null_vector3();
+            quote! {
+                let rows: [[f64; 3]; #nr] = [#(#row_tokens),*];
+                let Some(n) = #nv(&rows) else {
+                    continue;
+                };
+            }
+        } else {
+            let (width, nv) = (lit(k), rt::null_vector());
+            quote! {
+                let rows: [[f64; #width]; #nr] = [#(#row_tokens),*];
+                let Some(n) = #nv(&rows) else {
+                    continue;
+                };
+            }
         }
     } else {
         quote!()

@@ -123,18 +123,25 @@ fn relpose_upright_3pt_elim_finds_the_planted_pose() {
     });
 }
 
+/// Two world points seen by a camera with a yaw rotation: the data of `up2p` and the
+/// planted solution (c, s, t).
+fn upright_absolute_instance(rng: &mut ChaCha8Rng) -> (Vec<f64>, Vec<f64>) {
+    let (r, c, s) = rotation_y(rng);
+    let t = Vector3::new(0.0, 0.0, 5.0) + unit(rng);
+    let mut flat = Vec::new();
+    let world: Vec<Vector3<f64>> = (0..2).map(|_| unit(rng) * 2.0).collect();
+    world.iter().for_each(|p| push_vec(&mut flat, p));
+    world
+        .iter()
+        .for_each(|p| push_point(&mut flat, &(r * p + t)));
+    (flat, vec![c, s, t.x, t.y, t.z])
+}
+
 #[test]
 fn up2p_finds_the_planted_pose() {
     check(22, 1e-9, 1e-5, |rng| {
-        let (r, c, s) = rotation_y(rng);
-        let t = Vector3::new(0.0, 0.0, 5.0) + unit(rng);
-        let mut flat = Vec::new();
-        let world: Vec<Vector3<f64>> = (0..2).map(|_| unit(rng) * 2.0).collect();
-        world.iter().for_each(|p| push_vec(&mut flat, p));
-        world
-            .iter()
-            .for_each(|p| push_point(&mut flat, &(r * p + t)));
-        solve_flat::<ex::up2p::Solver>(&flat, &[vec![c, s, t.x, t.y, t.z]])
+        let (flat, truth) = upright_absolute_instance(rng);
+        solve_flat::<ex::up2p::Solver>(&flat, &[truth])
     });
 }
 
@@ -142,15 +149,8 @@ fn up2p_finds_the_planted_pose() {
 #[test]
 fn up2p_elim_finds_the_planted_pose() {
     check(24, 1e-9, 1e-5, |rng| {
-        let (r, c, s) = rotation_y(rng);
-        let t = Vector3::new(0.0, 0.0, 5.0) + unit(rng);
-        let mut flat = Vec::new();
-        let world: Vec<Vector3<f64>> = (0..2).map(|_| unit(rng) * 2.0).collect();
-        world.iter().for_each(|p| push_vec(&mut flat, p));
-        world
-            .iter()
-            .for_each(|p| push_point(&mut flat, &(r * p + t)));
-        solve_flat::<ex::up2p_elim::Solver>(&flat, &[vec![c, s, t.x, t.y, t.z]])
+        let (flat, truth) = upright_absolute_instance(rng);
+        solve_flat::<ex::up2p_elim::Solver>(&flat, &[truth])
     });
 }
 

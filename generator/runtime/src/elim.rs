@@ -8,9 +8,31 @@
 //! the rows the action matrix needs; emitted solvers use its fixed-size form
 //! (`benches/runtime.rs` compares them).
 
-/// Relative pivot tolerance: a pivot whose magnitude is at most `PIVOT_TOL * max|m_ij|`
-/// (over the whole input) makes the elimination fail.
+/// Relative pivot tolerance. [`gauss_jordan`]: a pivot whose magnitude is at most
+/// `PIVOT_TOL * max|m_ij|` (over the whole input) makes the elimination fail. The template
+/// eliminations ([`lu_solve_template`], [`crate::lu_solve_template_sparse`]) compare the
+/// pivot of column `j` with `PIVOT_TOL * max_i |m_ij|`, that column's own largest input
+/// entry: a template's columns are monomials whose values, and so whose coefficients,
+/// can differ by orders of magnitude (a small unknown's powers, small data), and a column
+/// of small entries is not singular for that.
 pub const PIVOT_TOL: f64 = 1e-14;
+
+/// `tol[j] = PIVOT_TOL * max_i |m[i][j]|` for the first `tol.len()` columns of the
+/// row-major `rows x cols` matrix `m`; `false` if an entry is not finite (or their sum
+/// overflows). Branch-free, so that it vectorises.
+pub(crate) fn column_tolerances(m: &[f64], cols: usize, tol: &mut [f64]) -> bool {
+    tol.iter_mut().for_each(|t| *t = 0.0);
+    let mut sum = 0.0;
+    for row in m.chunks_exact(cols) {
+        for (t, &x) in tol.iter_mut().zip(row) {
+            let a = x.abs();
+            *t = if a > *t { a } else { *t };
+        }
+        sum += row.iter().map(|x| x.abs()).sum::<f64>();
+    }
+    tol.iter_mut().for_each(|t| *t *= PIVOT_TOL);
+    sum.is_finite()
+}
 
 /// Largest magnitude of the entries, or `None` if one is not finite. Branch-free over
 /// four lanes so that it vectorises (non-finite entries make the lane sums non-finite; a
@@ -144,8 +166,10 @@ pub fn gauss_jordan(m: &mut [f64], rows: usize, cols: usize, pivot_cols: usize) 
 /// Cost for the 5-point 10x20 template with `first_row = 4`: about 0.65x the flops of
 /// `gauss_jordan`; measured 0.75-0.8x its time at 10x20 and ~0.5x at 100x120.
 ///
-/// Returns `false` on the same conditions as [`gauss_jordan`], or if
-/// `first_row > pivot_cols`. Never panics, never allocates.
+/// Returns `false` on the same conditions as [`gauss_jordan`] except that the pivot of
+/// column `j` is compared with that column's tolerance ([`PIVOT_TOL`]), or if
+/// `first_row > pivot_cols`. Never panics; allocates the `pivot_cols` tolerances
+/// ([`lu_solve_template_fixed`], the emitted solvers' form, keeps them on the stack).
 pub fn lu_solve_template(
     m: &mut [f64],
     rows: usize,
@@ -156,9 +180,11 @@ pub fn lu_solve_template(
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU supports AVX2, checked just above.
-        return unsafe { lu_core_avx2(m, rows, cols, pivot_cols, first_row) };
+        let mut tol = vec![0.0; pivot_cols.min(cols)];
+        return unsafe { lu_core_avx2(m, rows, cols, pivot_cols, first_row, &mut tol) };
     }
-    lu_core(m, rows, cols, pivot_cols, first_row)
+    let mut tol = vec![0.0; pivot_cols.min(cols)];
+    lu_core(m, rows, cols, pivot_cols, first_row, &mut tol)
 }
 
 /// [`lu_core`] compiled with AVX2 enabled: wider row operations. Without FMA every entry
@@ -172,8 +198,9 @@ unsafe fn lu_core_avx2(
     cols: usize,
     pivot_cols: usize,
     first_row: usize,
+    tol: &mut [f64],
 ) -> bool {
-    lu_core(m, rows, cols, pivot_cols, first_row)
+    lu_core(m, rows, cols, pivot_cols, first_row, tol)
 }
 
 /// [`lu_solve_template_fixed`]'s AVX2 build (see [`lu_core_avx2`]).
@@ -187,7 +214,8 @@ unsafe fn lu_fixed_avx2<
 >(
     m: &mut [f64],
 ) -> bool {
-    lu_core(m, ROWS, COLS, PIVOTS, FIRST)
+    let mut tol = [0.0; PIVOTS];
+    lu_core(m, ROWS, COLS, PIVOTS, FIRST, &mut tol)
 }
 
 /// [`lu_solve_template`] with the shape as constants (`ROWS x COLS`, `PIVOTS` pivot
@@ -207,25 +235,33 @@ pub fn lu_solve_template_fixed<
         // SAFETY: the CPU supports AVX2, checked just above.
         return unsafe { lu_fixed_avx2::<ROWS, COLS, PIVOTS, FIRST>(m) };
     }
-    lu_core(m, ROWS, COLS, PIVOTS, FIRST)
+    let mut tol = [0.0; PIVOTS];
+    lu_core(m, ROWS, COLS, PIVOTS, FIRST, &mut tol)
 }
 
+/// `tol`: work space of `pivot_cols` entries (the per-column tolerances, [`PIVOT_TOL`]).
 #[inline(always)]
-fn lu_core(m: &mut [f64], rows: usize, cols: usize, pivot_cols: usize, first_row: usize) -> bool {
-    if first_row > pivot_cols {
+fn lu_core(
+    m: &mut [f64],
+    rows: usize,
+    cols: usize,
+    pivot_cols: usize,
+    first_row: usize,
+    tol: &mut [f64],
+) -> bool {
+    if first_row > pivot_cols || tol.len() != pivot_cols {
         return false;
     }
     let Some(m) = checked(m, rows, cols, pivot_cols) else {
         return false;
     };
-    let Some(scale) = scale_of(m) else {
+    if !column_tolerances(m, cols, tol) {
         return false;
-    };
-    let tol = scale * PIVOT_TOL;
+    }
     // Forward elimination (rows below the pivot only), pivot rows scaled to unit pivots.
     for j in 0..pivot_cols {
         let (p, best) = find_pivot(m, rows, cols, j);
-        if !(best > tol && best <= f64::MAX) {
+        if !(best > tol[j] && best <= f64::MAX) {
             return false;
         }
         swap_rows_from(m, cols, j, p);
@@ -335,6 +371,40 @@ mod tests {
                 assert_eq!(m[i * cols + j], if i == j { 1.0 } else { 0.0 });
             }
         }
+    }
+
+    #[test]
+    fn columns_of_small_entries_are_not_singular() {
+        // Scaling column 3 by 1e-20 (a monomial whose values, and coefficients, are tiny)
+        // scales row 3 of the reduced right-hand side by 1e20 and nothing else: the pivot
+        // is compared with its own column, not with the largest entry of the template.
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let (rows, cols) = (10, 20);
+        let orig = random(&mut rng, rows, cols, 1.0);
+        let mut small = orig.clone();
+        for i in 0..rows {
+            small[i * cols + 3] *= 1e-20;
+        }
+        let (mut a, mut b) = (orig.clone(), small.clone());
+        assert!(lu_solve_template(&mut a, rows, cols, rows, 0));
+        assert!(lu_solve_template(&mut b, rows, cols, rows, 0));
+        for i in 0..rows {
+            let f = if i == 3 { 1e20 } else { 1.0 };
+            for j in rows..cols {
+                let (x, y) = (a[i * cols + j], b[i * cols + j] / f);
+                assert!((x - y).abs() <= 1e-9 * x.abs().max(1.0), "{i} {j}: {x} {y}");
+            }
+        }
+        // A column that is tiny because the template is singular still fails: column 3
+        // made a combination of columns 0 and 1 up to 1e-17 of its size.
+        let mut dep = orig.clone();
+        for i in 0..rows {
+            dep[i * cols + 3] =
+                orig[i * cols] - 2.0 * orig[i * cols + 1] + 1e-17 * orig[i * cols + 3];
+        }
+        assert!(!lu_solve_template(&mut dep, rows, cols, rows, 0));
+        let mut dep_fixed = dep.clone();
+        assert!(!lu_solve_template_fixed::<10, 20, 10, 0>(&mut dep_fixed));
     }
 
     #[test]

@@ -14,7 +14,7 @@
 //! The result has [`crate::lu_solve_template`]'s layout: rows `first_row..pivot_cols` read
 //! `col_k + sum_j m[k][pivot_cols + j] * rhs_j`, zero on the other pivot columns.
 
-use crate::elim::{scale_of, PIVOT_TOL};
+use crate::elim::column_tolerances;
 
 /// The structure of a template's elimination (see the module documentation). Step `k`
 /// eliminates column `k`, its pivot ending in row `k`, for `k < pivot_cols`.
@@ -63,8 +63,10 @@ impl SparseLuPlan<'_> {
 
 /// Reduces the row-major template `m` along the plan (see the module documentation), with
 /// the contract of [`crate::lu_solve_template`]: `false` (leaving garbage) if some column
-/// gets no pivot larger than `PIVOT_TOL * max|m_ij|`, if an entry is not finite, or if
-/// the plan does not fit `m` or indexes outside it. Never panics, never allocates.
+/// gets no pivot larger than its tolerance ([`crate::PIVOT_TOL`], relative to the
+/// column's largest input entry), if an entry is not finite, or if the plan does not fit
+/// `m` or indexes outside it. Never panics; allocates the tolerances
+/// ([`lu_solve_template_sparse_fixed`] keeps them on the stack).
 pub fn lu_solve_template_sparse(m: &mut [f64], plan: &SparseLuPlan) -> bool {
     if !plan.fits(m.len()) {
         return false;
@@ -72,9 +74,11 @@ pub fn lu_solve_template_sparse(m: &mut [f64], plan: &SparseLuPlan) -> bool {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU supports AVX2, checked just above.
-        return unsafe { sparse_core_avx2(m, plan, plan.cols, plan.pivot_cols) };
+        let mut tol = vec![0.0; plan.pivot_cols];
+        return unsafe { sparse_core_avx2(m, plan, plan.cols, &mut tol) };
     }
-    sparse_core(m, plan, plan.cols, plan.pivot_cols)
+    let mut tol = vec![0.0; plan.pivot_cols];
+    sparse_core(m, plan, plan.cols, &mut tol)
 }
 
 /// [`lu_solve_template_sparse`] with the template width and the number of pivot columns
@@ -93,7 +97,8 @@ pub fn lu_solve_template_sparse_fixed<const COLS: usize, const PIVOTS: usize>(
         // SAFETY: the CPU supports AVX2, checked just above.
         return unsafe { sparse_fixed_avx2::<COLS, PIVOTS>(m, plan) };
     }
-    sparse_core(m, plan, COLS, PIVOTS)
+    let mut tol = [0.0; PIVOTS];
+    sparse_core(m, plan, COLS, &mut tol)
 }
 
 /// [`sparse_core`] compiled with AVX2 enabled: wider row operations. Without FMA every
@@ -101,8 +106,13 @@ pub fn lu_solve_template_sparse_fixed<const COLS: usize, const PIVOTS: usize>(
 /// to the baseline build's.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn sparse_core_avx2(m: &mut [f64], plan: &SparseLuPlan, cols: usize, pivots: usize) -> bool {
-    sparse_core(m, plan, cols, pivots)
+unsafe fn sparse_core_avx2(
+    m: &mut [f64],
+    plan: &SparseLuPlan,
+    cols: usize,
+    tol: &mut [f64],
+) -> bool {
+    sparse_core(m, plan, cols, tol)
 }
 
 /// [`lu_solve_template_sparse_fixed`]'s AVX2 build (see [`sparse_core_avx2`]).
@@ -112,7 +122,8 @@ unsafe fn sparse_fixed_avx2<const COLS: usize, const PIVOTS: usize>(
     m: &mut [f64],
     plan: &SparseLuPlan,
 ) -> bool {
-    sparse_core(m, plan, COLS, PIVOTS)
+    let mut tol = [0.0; PIVOTS];
+    sparse_core(m, plan, COLS, &mut tol)
 }
 
 /// `dst[j] -= f * src[j]` over equal-length slices.
@@ -135,14 +146,14 @@ fn step_in_range(pattern: &[u16], targets: &[u16], k: usize, pivots: usize, rows
             .all(|&i| (i as usize) > k && (i as usize) < rows)
 }
 
+/// `tol`: work space of one entry per pivot column (the per-column tolerances).
 #[inline(always)]
-fn sparse_core(m: &mut [f64], plan: &SparseLuPlan, cols: usize, pivots: usize) -> bool {
-    let rows = plan.rows;
+fn sparse_core(m: &mut [f64], plan: &SparseLuPlan, cols: usize, tol: &mut [f64]) -> bool {
+    let (rows, pivots) = (plan.rows, tol.len());
     let m = &mut m[..rows * cols];
-    let Some(scale) = scale_of(m) else {
+    if !column_tolerances(m, cols, tol) {
         return false;
-    };
-    let tol = scale * PIVOT_TOL;
+    }
     let span = |start: &[u32], k: usize| start[k] as usize..start[k + 1] as usize;
     for k in 0..pivots {
         let (Some(pattern), Some(targets)) = (
@@ -165,7 +176,7 @@ fn sparse_core(m: &mut [f64], plan: &SparseLuPlan, cols: usize, pivots: usize) -
                 p = i as usize;
             }
         }
-        if !(best > tol && best <= f64::MAX) {
+        if !(best > tol[k] && best <= f64::MAX) {
             return false;
         }
         // Where the pattern fills at least half of the remaining pivot columns, contiguous

@@ -167,6 +167,15 @@ fn recovery_error(solutions: &[Vec<f64>], planted: &[f64], eliminated: &[usize])
         .fold(f64::INFINITY, f64::min)
 }
 
+/// `log10(x)` clamped to `[LOG10_FLOOR, LOG10_CEIL]`; an exact zero gives `LOG10_FLOOR`.
+fn clamped_log10(x: f64) -> f64 {
+    if x == 0.0 {
+        LOG10_FLOOR
+    } else {
+        x.log10().clamp(LOG10_FLOOR, LOG10_CEIL)
+    }
+}
+
 /// Worst normalised residual of a solution over the equations.
 fn worst_residual(equations: &[Poly<f64>], s: &[f64]) -> f64 {
     equations
@@ -237,13 +246,7 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
         .filter(|e| !e.inhomogeneous)
         .map_or(&[][..], |e| e.positions.as_slice());
     Some(Outcome {
-        log10_residual: worst.map(|w| {
-            if w == 0.0 {
-                LOG10_FLOOR
-            } else {
-                w.log10().clamp(LOG10_FLOOR, LOG10_CEIL)
-            }
-        }),
+        log10_residual: worst.map(clamped_log10),
         real,
         missed: solved.eigenpairs - real,
         planted_error: inst
@@ -276,13 +279,6 @@ pub fn audit(
     let (mut failures, mut solve_errors, mut missed, mut no_real) = (0, 0, 0, 0);
     let (mut real_total, mut solved) = (0usize, 0usize);
     let mut planted_logs = Vec::new();
-    let log10 = |e: f64| {
-        if e == 0.0 {
-            LOG10_FLOOR
-        } else {
-            e.log10().clamp(LOG10_FLOOR, LOG10_CEIL)
-        }
-    };
     for _ in 0..opts.instances {
         let inst = make_instance(&mut rng);
         let has_planted = inst.planted.is_some();
@@ -297,7 +293,7 @@ pub fn audit(
             }
             Some(o) => {
                 if let Some(e) = o.planted_error {
-                    planted_logs.push(log10(e));
+                    planted_logs.push(clamped_log10(e));
                 }
                 solved += 1;
                 real_total += o.real;

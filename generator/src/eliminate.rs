@@ -256,6 +256,21 @@ mod tests {
         eqs
     }
 
+    /// The coefficient matrix evaluated at `u`.
+    fn evaluated(e: &Eliminated<F>, u: F) -> Vec<Vec<F>> {
+        e.coefficient_matrix
+            .iter()
+            .map(|r| r.iter().map(|p| p.eval(&[u])).collect())
+            .collect()
+    }
+    /// The determinant of the rows `r` of a three-column matrix.
+    fn det3(a: &[Vec<F>], r: [usize; 3]) -> F {
+        let m = |i: usize, j: usize| a[r[i]][j];
+        m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1))
+            - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0))
+            + m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0))
+    }
+
     #[test]
     fn minors_vanish_at_the_solutions_and_null_vector_solves() {
         let mut rng = ChaCha8Rng::seed_from_u64(2);
@@ -268,19 +283,9 @@ mod tests {
         assert!(e.equations.iter().all(|p| p.degree() == Some(3)));
         // Each minor evaluated at u equals the determinant of the numeric 3x3 block.
         let u = F::new(12345);
-        let a: Vec<Vec<F>> = e
-            .coefficient_matrix
-            .iter()
-            .map(|r| r.iter().map(|p| p.eval(&[u])).collect())
-            .collect();
-        let det3 = |r: [usize; 3]| {
-            let m = |i: usize, j: usize| a[r[i]][j];
-            m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1))
-                - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0))
-                + m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0))
-        };
-        assert_eq!(e.equations[0].eval(&[u]), det3([0, 1, 2]));
-        assert_eq!(e.equations[3].eval(&[u]), det3([1, 2, 3]));
+        let a = evaluated(&e, u);
+        assert_eq!(e.equations[0].eval(&[u]), det3(&a, [0, 1, 2]));
+        assert_eq!(e.equations[3].eval(&[u]), det3(&a, [1, 2, 3]));
     }
 
     #[test]
@@ -326,19 +331,12 @@ mod tests {
         assert_eq!(e.coefficient_matrix[0].len(), 3);
         assert_eq!(e.equations.len(), 1); // C(3, 3)
         assert_eq!(e.equations[0].degree(), Some(3));
-        // At a root u of the minor, [A b] has a null vector (t1, t2, 1) solving the rows.
-        // Check the converse numerically mod p on the 3x3 determinant's definition: the
-        // minor equals det([A b]) at any u.
+        // The minor equals det([A b]) at any u (it vanishes where (t1, t2, 1) solves the rows).
         let u = F::new(777);
-        let m: Vec<Vec<F>> = e
-            .coefficient_matrix
-            .iter()
-            .map(|r| r.iter().map(|p| p.eval(&[u])).collect())
-            .collect();
-        let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-        assert_eq!(e.equations[0].eval(&[u]), det);
+        assert_eq!(
+            e.equations[0].eval(&[u]),
+            det3(&evaluated(&e, u), [0, 1, 2])
+        );
         // The free terms sit in the last column: row 0's b(u) is eqs[0] at t = 0.
         assert_eq!(
             e.coefficient_matrix[0][2].eval(&[u]),

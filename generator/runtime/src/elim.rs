@@ -177,13 +177,12 @@ pub fn lu_solve_template(
     pivot_cols: usize,
     first_row: usize,
 ) -> bool {
+    let mut tol = vec![0.0; pivot_cols.min(cols)];
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU supports AVX2, checked just above.
-        let mut tol = vec![0.0; pivot_cols.min(cols)];
         return unsafe { lu_core_avx2(m, rows, cols, pivot_cols, first_row, &mut tol) };
     }
-    let mut tol = vec![0.0; pivot_cols.min(cols)];
     lu_core(m, rows, cols, pivot_cols, first_row, &mut tol)
 }
 

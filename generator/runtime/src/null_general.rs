@@ -161,17 +161,13 @@ mod tests {
     }
 
     fn up_to_sign(a: &[f64], b: &[f64]) -> f64 {
-        let plus = a
-            .iter()
-            .zip(b)
-            .map(|(x, y)| (x - y).abs())
-            .fold(0.0, f64::max);
-        let minus = a
-            .iter()
-            .zip(b)
-            .map(|(x, y)| (x + y).abs())
-            .fold(0.0, f64::max);
-        plus.min(minus)
+        let dist = |sign: f64| {
+            a.iter()
+                .zip(b)
+                .map(|(x, y)| (sign * x - y).abs())
+                .fold(0.0, f64::max)
+        };
+        dist(1.0).min(dist(-1.0))
     }
 
     #[test]

@@ -48,7 +48,7 @@ pub fn read_unknowns(v: &[f64], one: usize, pairs: &[&[(usize, usize)]], out: &m
                     num += a * b;
                     den += a * a;
                 }
-                if den.sqrt() <= MIN_UNIT_ENTRY {
+                if den <= MIN_UNIT_ENTRY * MIN_UNIT_ENTRY {
                     return false;
                 }
                 num / den

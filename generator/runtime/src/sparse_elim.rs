@@ -71,13 +71,12 @@ pub fn lu_solve_template_sparse(m: &mut [f64], plan: &SparseLuPlan) -> bool {
     if !plan.fits(m.len()) {
         return false;
     }
+    let mut tol = vec![0.0; plan.pivot_cols];
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU supports AVX2, checked just above.
-        let mut tol = vec![0.0; plan.pivot_cols];
         return unsafe { sparse_core_avx2(m, plan, plan.cols, &mut tol) };
     }
-    let mut tol = vec![0.0; plan.pivot_cols];
     sparse_core(m, plan, plan.cols, &mut tol)
 }
 

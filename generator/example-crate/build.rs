@@ -5,6 +5,11 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
+/// Corpus problems also emitted in each form of the coefficient code (`src/lib.rs`'s
+/// `inline` and `table` modules): one with elimination and Newton polishing, one with a
+/// large template.
+const BOTH_FORMS: [&str; 2] = ["p35pf", "relpose_5pt_entries"];
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     mingen::build::Config::new()
         .problems(&["../../templates/gs5pt.mp"])
@@ -27,7 +32,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             name = c.name
         )?;
     }
-    let out = PathBuf::from(std::env::var("OUT_DIR")?).join("corpus.rs");
-    std::fs::write(out, modules)?;
+    let out_dir = PathBuf::from(std::env::var("OUT_DIR")?);
+    std::fs::write(out_dir.join("corpus.rs"), modules)?;
+    // Two corpus solvers again in both forms of the coefficient code (the table form is the
+    // one `mingen` picks for large templates), so that the tests can check that both
+    // compute the same bits.
+    for (dir, form) in [
+        ("inline", mingen::emit::CodeForm::Inline),
+        ("table", mingen::emit::CodeForm::Table),
+    ] {
+        mingen::build::Config::new()
+            .problems(&BOTH_FORMS.map(|n| format!("../../templates/classic/{n}.mp")))
+            .out_dir(out_dir.join(dir))
+            .code_form(form)
+            .compile()?;
+    }
     Ok(())
 }

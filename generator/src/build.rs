@@ -26,9 +26,10 @@
 //! changes), and `cargo:rerun-if-changed=<file>` is printed for it, so the build script
 //! reruns when a problem file changes and not otherwise.
 
+use crate::emit::CodeForm;
 use crate::emit::{is_fresh, write_atomic};
 use crate::generate::GenerateError;
-use crate::pipeline::{emit_plan_from, plan_file};
+use crate::pipeline::{emit_plan_in, plan_file};
 use crate::template::TemplateOptions;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -92,6 +93,7 @@ pub struct Config {
     out_dir: Option<PathBuf>,
     cargo_metadata: bool,
     options: TemplateOptions,
+    code_form: CodeForm,
 }
 
 impl Default for Config {
@@ -108,6 +110,7 @@ impl Config {
             out_dir: None,
             cargo_metadata: true,
             options: TemplateOptions::default(),
+            code_form: CodeForm::Auto,
         }
     }
 
@@ -135,6 +138,13 @@ impl Config {
     /// Template construction options (the defaults are those of `mingen generate`).
     pub fn template_options(&mut self, options: TemplateOptions) -> &mut Self {
         self.options = options;
+        self
+    }
+
+    /// The form of the emitted coefficient code ([`CodeForm::Auto`] by default: the table
+    /// form for large templates only).
+    pub fn code_form(&mut self, form: CodeForm) -> &mut Self {
+        self.code_form = form;
         self
     }
 
@@ -172,7 +182,7 @@ impl Config {
                     second: file.clone(),
                 });
             }
-            let source = emit_plan_from(&plan, &file.display().to_string())
+            let source = emit_plan_in(&plan, &file.display().to_string(), self.code_form)
                 .map_err(|e| generate(e.into()))?;
             let path = out_dir.join(format!("{name}.rs"));
             let io = |source| BuildError::Io {

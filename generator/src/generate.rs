@@ -5,8 +5,9 @@
 //! problem files (fixed seeds, ordered maps), so regenerating and comparing byte for byte
 //! tells whether the checked-in solvers are stale.
 
+use crate::emit::CodeForm;
 use crate::emit::{generated_path, is_fresh, write_atomic};
-use crate::pipeline::{emit_plan, emit_plan_from, plan_file, PipelineError};
+use crate::pipeline::{emit_plan, emit_plan_in, plan_file, PipelineError};
 use crate::template::TemplateOptions;
 use crate::{Problem, ProblemError};
 use std::path::{Path, PathBuf};
@@ -76,18 +77,25 @@ pub fn generate_to(
     out: &Path,
     check: bool,
 ) -> Result<GeneratedFile, GenerateError> {
-    generate_to_with(problem, out, check, &TemplateOptions::default())
+    generate_to_with(
+        problem,
+        out,
+        check,
+        &TemplateOptions::default(),
+        CodeForm::Auto,
+    )
 }
 
-/// [`generate_to`] with explicit template options.
+/// [`generate_to`] with explicit template options and form of the coefficient code.
 pub fn generate_to_with(
     problem: &Path,
     out: &Path,
     check: bool,
     options: &TemplateOptions,
+    code_form: CodeForm,
 ) -> Result<GeneratedFile, GenerateError> {
     let plan = plan_file(problem, options)?;
-    let source = emit_plan_from(&plan, &problem.display().to_string())?;
+    let source = emit_plan_in(&plan, &problem.display().to_string(), code_form)?;
     let io = |source| GenerateError::Io {
         path: out.display().to_string(),
         source,

@@ -3,6 +3,7 @@
 
 use clap::{Parser, Subcommand};
 use mingen::algebra::MonomialOrder;
+use mingen::emit::CodeForm;
 use mingen::generate::{problem_files, workspace_root, GenerateError};
 use mingen::pipeline::{plan_file, PipelineError};
 use mingen::template::TemplateOptions;
@@ -94,6 +95,12 @@ enum Command {
         /// module: it refers to mingen_runtime only).
         #[arg(long, value_name = "PATH.rs")]
         out: Option<PathBuf>,
+        /// Form of the coefficient code with --out: `inline` (straight-line code in
+        /// `solve`), `table` (coefficient functions of bounded size and a fill table:
+        /// compile time linear in the template's size) or `auto` (table above 8192
+        /// template entries plus coefficient statements).
+        #[arg(long, value_name = "auto|inline|table", value_parser = ["auto", "inline", "table"], requires = "out")]
+        code_form: Option<String>,
         #[command(flatten)]
         search: SearchArgs,
     },
@@ -220,9 +227,17 @@ fn main() -> ExitCode {
             all,
             check,
             out,
+            code_form,
             search,
         } => search.options().and_then(|o| match out {
-            Some(out) => generate_out(&files, all, &out, check, &o),
+            Some(out) => {
+                let form = match code_form.as_deref() {
+                    Some("inline") => CodeForm::Inline,
+                    Some("table") => CodeForm::Table,
+                    _ => CodeForm::Auto,
+                };
+                generate_out(&files, all, &out, check, &o, form)
+            }
             None => generate(files, all, check, &o),
         }),
         Command::Audit {
@@ -544,6 +559,7 @@ fn generate_out(
     out: &Path,
     check: bool,
     options: &TemplateOptions,
+    code_form: CodeForm,
 ) -> Result<(), CliError> {
     let [file] = files else {
         return Err(CliError {
@@ -557,7 +573,7 @@ fn generate_out(
             code: 2,
         });
     }
-    let f = mingen::generate::generate_to_with(file, out, check, options)?;
+    let f = mingen::generate::generate_to_with(file, out, check, options, code_form)?;
     match (check, f.fresh) {
         (_, true) => eprintln!("fresh   {}", out.display()),
         (true, false) => {

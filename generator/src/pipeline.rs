@@ -16,7 +16,9 @@
 
 use crate::algebra::{Fp, Monomial, Poly, Ring};
 use crate::eliminate::{eliminate_linear, EliminateError, Eliminated};
-use crate::emit::{emit_solver, EliminationSpec, EmitError, PolishSpec, SolverSpec, Tracer};
+use crate::emit::{
+    emit_solver, CodeForm, EliminationSpec, EmitError, PolishSpec, SolverSpec, Tracer,
+};
 use crate::instance::random_data_fp;
 use crate::quotient::{analyse_within, InstanceRng, InstanceSource};
 use crate::template::search::best_template_within;
@@ -468,6 +470,15 @@ pub fn emit_plan(plan: &SolverPlan) -> Result<String, PipelineError> {
 /// on `mingen-runtime`: it names no `crate::` path and has no inner attributes, so it can
 /// be a module file (`mod name;`) or `include!`d into `mod name { ... }`.
 pub fn emit_plan_from(plan: &SolverPlan, problem_path: &str) -> Result<String, PipelineError> {
+    emit_plan_in(plan, problem_path, CodeForm::Auto)
+}
+
+/// [`emit_plan_from`] with the coefficient code in the given form.
+pub fn emit_plan_in(
+    plan: &SolverPlan,
+    problem_path: &str,
+    code_form: CodeForm,
+) -> Result<String, PipelineError> {
     let layout = &plan.problem.layout;
     let tracer = Tracer::new();
     let data = tracer.inputs(layout.data_slot_count());
@@ -492,6 +503,7 @@ pub fn emit_plan_from(plan: &SolverPlan, problem_path: &str) -> Result<String, P
             inhomogeneous: e.inhomogeneous,
         }),
         polish,
+        code_form,
     };
     emit_solver(&spec).map_err(|source| PipelineError::Emit {
         file: plan.file.clone(),

@@ -152,6 +152,7 @@ fn five_point_spec() -> (SolverSpec, Tracer) {
         problem_path: "templates/fivept.mp".into(),
         elimination: None,
         polish: None,
+        code_form: mingen::emit::CodeForm::Auto,
     };
     (spec, tracer)
 }
@@ -475,6 +476,7 @@ fn elimination_emission_parses() {
             inhomogeneous: false,
         }),
         polish: None,
+        code_form: mingen::emit::CodeForm::Auto,
     };
     let a = emit_solver(&spec).unwrap();
     assert_eq!(a, emit_solver(&spec).unwrap());

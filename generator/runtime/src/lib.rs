@@ -29,6 +29,8 @@
 //!   then inverse iteration, when its residual is not at rounding level); hands the matrix to [`real_eigenpairs_hqr`] when a root is not
 //!   confirmed (residual or eigenvalue disagreement: spurious real roots of ±λ spectra) or
 //!   the Sturm sequence degenerates. The emitted solvers use it at every shipped size.
+//! - [`fill_template`], [`zeroed_coefficients`]: the table form of large solvers (the
+//!   template filled from a coefficient array through a constant table).
 //! - [`Stages`]: observer of an emitted solver's stages (`solve_staged`), for timings.
 //! - [`null_vector`], [`dehomogenize`]: null vectors of n x N matrices and their affine
 //!   points (eliminated unknowns other than three, or inhomogeneous in them).
@@ -45,6 +47,7 @@
 
 pub use nalgebra;
 
+mod coefficient_table;
 mod dynamic;
 mod eigen;
 mod elim;
@@ -61,6 +64,7 @@ mod stages;
 mod sturm;
 mod sturm_sequence;
 
+pub use coefficient_table::{fill_template, zeroed_coefficients};
 pub use dynamic::{real_eigenpairs_dyn, DynEigenpair, MAX_DYNAMIC_BASIS, STURM_MAX_BASIS};
 pub use eigen::{real_eigenpairs, NEAR_REAL_TOL};
 pub use elim::{gauss_jordan, lu_solve_template, lu_solve_template_fixed, PIVOT_TOL};

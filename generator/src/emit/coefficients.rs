@@ -69,8 +69,12 @@ impl Expr {
     }
     /// Rust tokens (statement `k` is the identifier `cK`, data slot `i` is `d[i]`).
     pub fn to_tokens(&self) -> TokenStream {
+        self.tokens(VarStyle::Locals)
+    }
+    /// Rust tokens with statement values spelled as `style` says (data slot `i` is `d[i]`).
+    pub fn tokens(&self, style: VarStyle) -> TokenStream {
         let paren = |e: &Expr, needed: bool| {
-            let t = e.to_tokens();
+            let t = e.tokens(style);
             if needed {
                 quote!((#t))
             } else {
@@ -90,10 +94,7 @@ impl Expr {
                     quote!(#l)
                 }
             }
-            Expr::Var(k) => {
-                let id = format_ident!("c{}", k);
-                quote!(#id)
-            }
+            Expr::Var(k) => style.var(*k),
             // Left operands of + and - never need parentheses (left associativity); right
             // operands that are sums do, to keep the evaluation order.
             Expr::Add(a, b) => {
@@ -111,6 +112,33 @@ impl Expr {
             Expr::Neg(a) => {
                 let a = paren(a, !a.is_atom());
                 quote!(-#a)
+            }
+        }
+    }
+}
+
+/// How emitted code names the value of statement `k`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VarStyle {
+    /// A local `let cK` (straight-line code inside `solve`).
+    Locals,
+    /// The array entry `c[K]` (the table form of large solvers: statements are spread over
+    /// several functions that write one coefficient array, so no function grows without
+    /// bound and compile time stays linear).
+    Array,
+}
+
+impl VarStyle {
+    /// The tokens naming statement `k`'s value.
+    pub fn var(self, k: usize) -> TokenStream {
+        match self {
+            VarStyle::Locals => {
+                let id = format_ident!("c{}", k);
+                quote!(#id)
+            }
+            VarStyle::Array => {
+                let k = Literal::usize_unsuffixed(k);
+                quote!(c[#k])
             }
         }
     }
@@ -293,6 +321,47 @@ impl Program {
             .sum()
     }
 
+    /// Makes every output in `range` a statement's value (or its negation): an output that
+    /// is not already `Var(k)` or `-Var(k)` gets a statement of its own. Returns each
+    /// output's `(statement, negated)`. The values [`Program::eval`] computes are unchanged.
+    pub fn bind_outputs(&mut self, range: std::ops::Range<usize>) -> Vec<(usize, bool)> {
+        let mut out = Vec::with_capacity(range.len());
+        for i in range {
+            let (inner, neg) = match &self.outputs[i] {
+                Expr::Neg(inner) => ((**inner).clone(), true),
+                other => (other.clone(), false),
+            };
+            let k = match inner {
+                Expr::Var(k) => k,
+                other => {
+                    self.stmts.push(other);
+                    let k = self.stmts.len() - 1;
+                    self.outputs[i] = if neg {
+                        Expr::Neg(Box::new(Expr::Var(k)))
+                    } else {
+                        Expr::Var(k)
+                    };
+                    k
+                }
+            };
+            out.push((k, neg));
+        }
+        out
+    }
+
+    /// The statements as assignments `c[K] = ...;` (table form, [`VarStyle::Array`]).
+    pub fn stmt_tokens_array(&self) -> Vec<TokenStream> {
+        self.stmts
+            .iter()
+            .enumerate()
+            .map(|(k, e)| {
+                let k = Literal::usize_unsuffixed(k);
+                let e = e.tokens(VarStyle::Array);
+                quote!(c[#k] = #e;)
+            })
+            .collect()
+    }
+
     /// The statements as Rust tokens, `let cK = ...;` each.
     pub fn stmt_tokens(&self) -> Vec<TokenStream> {
         self.stmts
@@ -335,6 +404,48 @@ mod tests {
         assert_eq!(code[1], "let c1 = c0 - d [2] * d [3] ;");
         assert_eq!(p.outputs[1].to_tokens().to_string(), "d [2] + c0");
         assert_eq!(p.outputs[2].to_tokens().to_string(), "- c1");
+    }
+
+    #[test]
+    fn bound_outputs_keep_their_values_and_array_style_names_entries() {
+        let t = Tracer::new();
+        let d = t.inputs(3);
+        let ab = d[0].mul(&d[1]);
+        let outs = [
+            ab.sub(&d[2]),
+            ab.neg(),
+            ab.add(&d[2]).neg(),
+            Traced::from_i64(-3),
+            d[2].clone(),
+        ];
+        let mut p = Program::build(&outs, &[], 3).unwrap();
+        let data = [1.5, -2.0, 0.25];
+        let before = p.eval(&data);
+        let refs = p.bind_outputs(0..outs.len());
+        assert_eq!(p.eval(&data), before, "same values after binding");
+        let vars = {
+            let mut v = Vec::new();
+            for s in &p.stmts {
+                let x = s.eval(&data, &v);
+                v.push(x);
+            }
+            v
+        };
+        for (&(k, neg), want) in refs.iter().zip(&before) {
+            let got = if neg { -vars[k] } else { vars[k] };
+            assert_eq!(got.to_bits(), want.to_bits());
+        }
+        assert_eq!(refs[1], (0, true), "-ab is the negation of ab's statement");
+        let code: Vec<String> = p
+            .stmt_tokens_array()
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        assert_eq!(code[0], "c [0] = d [0] * d [1] ;");
+        for (k, line) in code.iter().enumerate() {
+            assert!(line.starts_with(&format!("c [{k}] = ")), "{line}");
+        }
+        assert!(code[1..].iter().any(|l| l.contains("c [0]")), "{code:?}");
     }
 
     #[test]

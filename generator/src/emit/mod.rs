@@ -33,7 +33,7 @@ pub use files::{
     generated_header, generated_header_for_path, generated_path, generated_relative_path, is_fresh,
     write_atomic,
 };
-pub use solver::{emit_solver, SMALL_TEMPLATE_ROWS};
+pub use solver::{emit_solver, SMALL_TEMPLATE_ROWS, TABLE_FORM_MIN_SIZE};
 pub use traced::{Traced, Tracer};
 
 use crate::algebra::Poly;
@@ -104,4 +104,22 @@ pub struct SolverSpec {
     pub elimination: Option<EliminationSpec>,
     /// Newton polishing of the solutions, if the problem asks for it.
     pub polish: Option<PolishSpec>,
+    /// The form of the coefficient code.
+    pub code_form: CodeForm,
+}
+
+/// The form of an emitted solver's coefficient code. Both compute the same bits.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CodeForm {
+    /// [`CodeForm::Table`] when the template entries plus coefficient statements exceed
+    /// [`TABLE_FORM_MIN_SIZE`], else [`CodeForm::Inline`] (the default).
+    #[default]
+    Auto,
+    /// Straight-line code inside `solve`: shared coefficients as locals, one assignment per
+    /// template entry. Fastest for small and medium templates.
+    Inline,
+    /// Coefficients written to one array by functions of bounded size, the template filled
+    /// through a constant table (`mingen_runtime::fill_template`): compile time linear in
+    /// the problem's size, for templates of hundreds of rows.
+    Table,
 }

@@ -2,7 +2,7 @@
 //! template's, from the same shared intermediates), their terms as a constant table, and
 //! the call of `mingen_runtime::newton_polish` on each solution.
 
-use super::coefficients::Expr;
+use super::coefficients::{Expr, VarStyle};
 use super::runtime_api as rt;
 use super::tokens::lit;
 use super::{EmitError, PolishSpec, Traced};
@@ -56,8 +56,9 @@ pub(super) fn tokens(
     terms: &[EquationTerms],
     outputs: &[Expr],
     values: Vec<TokenStream>,
+    style: VarStyle,
 ) -> (TokenStream, TokenStream) {
-    let coeffs: Vec<TokenStream> = outputs.iter().map(Expr::to_tokens).collect();
+    let coeffs: Vec<TokenStream> = outputs.iter().map(|e| e.tokens(style)).collect();
     let nc = lit(coeffs.len());
     let neq = lit(terms.len());
     let eqs: Vec<TokenStream> = terms

@@ -98,3 +98,14 @@ pub(crate) fn minimal_solver() -> TokenStream {
 pub(crate) fn flat_values() -> TokenStream {
     quote!(mingen_runtime::FlatValues)
 }
+
+/// `fill_template(m: &mut [f64], c: &[f64], table: &[[u32; 2]])`: `m[e] = ±c[k]` for each
+/// `[e, 2 k + negated]` (table form).
+pub(crate) fn fill_template() -> TokenStream {
+    quote!(mingen_runtime::fill_template)
+}
+
+/// `zeroed_coefficients::<N>() -> Box<[f64; N]>` (table form's coefficient array).
+pub(crate) fn zeroed_coefficients() -> TokenStream {
+    quote!(mingen_runtime::zeroed_coefficients)
+}

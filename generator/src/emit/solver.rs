@@ -1,13 +1,13 @@
 //! The solver emitter: one Rust source file per problem.
 
 use super::action::action_matrix_tokens;
-use super::coefficients::{Expr, Program};
+use super::coefficients::{Expr, Program, VarStyle};
 use super::files::generated_header_for_path;
 use super::runtime_api as rt;
 use super::structs::{emit_data, emit_solution, field_ident, slot_access};
 use super::tokens::{doc, lit};
 use super::traced::Traced;
-use super::{EmitError, SolverSpec};
+use super::{CodeForm, EmitError, SolverSpec};
 use crate::algebra::{Monomial, MonomialOrder, Poly};
 use crate::template::{EliminationTemplate, ShapeError};
 use proc_macro2::{Ident, Literal, TokenStream};
@@ -16,6 +16,14 @@ use std::collections::HashMap;
 
 /// Templates with at most this many rows are kept on the stack; larger ones use a `Vec`.
 pub const SMALL_TEMPLATE_ROWS: usize = 40;
+
+/// Solvers whose template entries plus coefficient statements exceed this are emitted in
+/// table form (see [`VarStyle::Array`]): straight-line code of that length inside one
+/// function makes the compiler's time grow faster than linearly.
+pub const TABLE_FORM_MIN_SIZE: usize = 8192;
+
+/// Coefficient statements per function in table form.
+const STATEMENTS_PER_FUNCTION: usize = 512;
 
 /// Everything `solve` needs, validated and indexed.
 struct Plan<'a> {
@@ -343,7 +351,7 @@ struct Stats {
 }
 
 /// `coeff * u_a * u_b * ...` terms summed, for an entry of the elimination matrix.
-fn entry_tokens(terms: &[(Monomial, Expr)]) -> TokenStream {
+fn entry_tokens(terms: &[(Monomial, Expr)], style: VarStyle) -> TokenStream {
     if terms.is_empty() {
         return quote!(0.0);
     }
@@ -357,7 +365,7 @@ fn entry_tokens(terms: &[(Monomial, Expr)]) -> TokenStream {
         let mut factors: Vec<TokenStream> = Vec::new();
         let is_one = matches!(c, Expr::Const(v) if v == 1.0);
         if !is_one || m.is_one() {
-            factors.push(c.to_tokens());
+            factors.push(c.tokens(style));
         }
         for (k, &e) in m.0.iter().enumerate() {
             let u = format_ident!("u{}", k);
@@ -376,6 +384,77 @@ fn entry_tokens(terms: &[(Monomial, Expr)]) -> TokenStream {
         };
     }
     out
+}
+
+/// The table form's items (the coefficient functions and the fill table) and the code in
+/// `solve` that computes the coefficients and fills the template `m`.
+fn table_form_tokens(
+    program: &mut Program,
+    fill_pos: &[usize],
+    n_slots: usize,
+    template_len: usize,
+) -> Result<(TokenStream, TokenStream), EmitError> {
+    let too_large = |coefficients: usize| {
+        EmitError::Unsupported(format!(
+            "a template of {template_len} entries or {coefficients} coefficients does not fit \
+             the fill table's 32-bit indices"
+        ))
+    };
+    if u32::try_from(template_len).is_err() {
+        return Err(too_large(program.stmts.len()));
+    }
+    let refs = program.bind_outputs(0..fill_pos.len());
+    let mut table = Vec::with_capacity(fill_pos.len());
+    for (&p, &(k, neg)) in fill_pos.iter().zip(&refs) {
+        let code = u32::try_from(2 * k + usize::from(neg)).map_err(|_| too_large(k))?;
+        table.push((p as u32, code));
+    }
+    table.sort_unstable();
+    let entries = table.iter().map(|&(p, code)| {
+        let (p, code) = (Literal::u32_unsuffixed(p), Literal::u32_unsuffixed(code));
+        quote!([#p, #code])
+    });
+    let n_fill = lit(table.len());
+    let nc = lit(program.stmts.len());
+    let n_slots_l = lit(n_slots);
+    let stmts = program.stmt_tokens_array();
+    let mut fns = Vec::new();
+    let mut calls = Vec::new();
+    for (i, chunk) in stmts.chunks(STATEMENTS_PER_FUNCTION).enumerate() {
+        let name = format_ident!("coefficients_{}", i);
+        let doc = doc(format!(
+            "Coefficient statements {} to {} (table form).",
+            i * STATEMENTS_PER_FUNCTION,
+            i * STATEMENTS_PER_FUNCTION + chunk.len() - 1
+        ));
+        fns.push(quote! {
+            #doc
+            #[inline(never)]
+            #[rustfmt::skip]
+            #[allow(unused_variables, clippy::too_many_lines)]
+            fn #name(d: &[f64; #n_slots_l], c: &mut [f64; #nc]) {
+                #(#chunk)*
+            }
+        });
+        calls.push(quote!(#name(&d, &mut c);));
+    }
+    let (zeroed, fill) = (rt::zeroed_coefficients(), rt::fill_template());
+    let size_l = lit(template_len);
+    Ok((
+        quote! {
+            #(#fns)*
+            /// The template's nonzero entries: `[entry, 2 k + negated]`, the entry (row-major)
+            /// and the coefficient `c[k]` it holds (negated if the low bit is set).
+            #[rustfmt::skip]
+            static TEMPLATE_FILL: [[u32; 2]; #n_fill] = [#(#entries),*];
+        },
+        quote! {
+            let mut c = #zeroed::<#nc>();
+            #(#calls)*
+            let mut m = vec![0.0f64; #size_l];
+            #fill(&mut m, &c[..], &TEMPLATE_FILL);
+        },
+    ))
 }
 
 fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
@@ -450,27 +529,11 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         Some(p) => super::polish::coefficients(p, &mut elim_vals)?,
         None => Vec::new(),
     };
-    let program = Program::build(&fill_vals, &elim_vals, n_slots)?;
+    let mut program = Program::build(&fill_vals, &elim_vals, n_slots)?;
     let stats = Stats {
         ops: program.op_count(),
         stmts: program.stmts.len(),
     };
-    let coeff_stmts = program.stmt_tokens();
-    let mut fill_order: Vec<(usize, &Expr)> = fill_pos
-        .iter()
-        .copied()
-        .zip(&program.outputs[..fill_vals.len()])
-        .collect();
-    fill_order.sort_by_key(|(p, _)| *p);
-    let fills: Vec<TokenStream> = fill_order
-        .into_iter()
-        .map(|(p, e)| {
-            let p = lit(p);
-            let e = e.to_tokens();
-            quote!(m[#p] = #e;)
-        })
-        .collect();
-
     let n_slots_l = lit(n_slots);
     let (rows_l, cols_l, pivots_l, nb_l) = (lit(rows), lit(cols), lit(pivots), lit(nb));
     let size_l = lit(rows * cols);
@@ -478,6 +541,43 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         quote!(let mut m = [0.0f64; #size_l];)
     } else {
         quote!(let mut m = vec![0.0f64; #size_l];)
+    };
+    let table_form = match spec.code_form {
+        CodeForm::Auto => fill_vals.len() + program.stmts.len() > TABLE_FORM_MIN_SIZE,
+        CodeForm::Inline => false,
+        CodeForm::Table => true,
+    };
+    let style = if table_form {
+        VarStyle::Array
+    } else {
+        VarStyle::Locals
+    };
+    let (coefficient_fns, coefficients_and_fill) = if table_form {
+        table_form_tokens(&mut program, &fill_pos, n_slots, rows * cols)?
+    } else {
+        let coeff_stmts = program.stmt_tokens();
+        let mut fill_order: Vec<(usize, &Expr)> = fill_pos
+            .iter()
+            .copied()
+            .zip(&program.outputs[..fill_vals.len()])
+            .collect();
+        fill_order.sort_by_key(|(p, _)| *p);
+        let fills: Vec<TokenStream> = fill_order
+            .into_iter()
+            .map(|(p, e)| {
+                let p = lit(p);
+                let e = e.to_tokens();
+                quote!(m[#p] = #e;)
+            })
+            .collect();
+        (
+            quote!(),
+            quote! {
+                #(#coeff_stmts)*
+                #alloc
+                #(#fills)*
+            },
+        )
     };
 
     let (units, from_template_loop) = action_matrix_tokens(t, &plan.column_of, cols, pivots, nb);
@@ -530,7 +630,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
                     .iter()
                     .map(|m| (m.clone(), outs.next().expect("one output per term").clone()))
                     .collect();
-                entries.push(entry_tokens(&terms));
+                entries.push(entry_tokens(&terms, style));
             }
             row_tokens.push(quote!([#(#entries),*]));
         }
@@ -585,6 +685,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
             &polish_terms,
             &program.outputs[fill_vals.len() + n_elim_vals..],
             (0..p.unknowns).map(source_value).collect(),
+            style,
         ),
         None => (quote!(), quote!()),
     };
@@ -708,6 +809,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         /// The elimination template's `[rows, cols, pivot columns, first reduced row]`.
         pub const TEMPLATE_SHAPE: [usize; 4] = [#rows_l, #cols_l, #pivots_l, #first_row];
         #sparse_plan
+        #coefficient_fns
 
         #(#docs)*
         #[must_use]
@@ -731,9 +833,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
             if d.iter().any(|x| !x.is_finite()) {
                 return out;
             }
-            #(#coeff_stmts)*
-            #alloc
-            #(#fills)*
+            #coefficients_and_fill
             if !stages.filled(&m) {
                 return out;
             }

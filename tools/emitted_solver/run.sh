@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Emits one problem's solver with `mingen generate --out`, compiles it in a crate of its own
+# that depends on mingen-runtime alone (as a user's crate would), and runs it on instances
+# from a file: compile time, per-call time, solutions per instance and, given planted
+# solutions, their recovery.
+#
+#   tools/emitted_solver/run.sh PROBLEM.mp INSTANCES [SOLUTIONS [SIGN_FREE]] [-- GENERATE_ARGS...]
+#
+# INSTANCES / SOLUTIONS: one instance (data slots) / planted solution (every unknown) per
+# line, as `mingen audit --instances-from/--solutions-from` read them. SIGN_FREE: comma-
+# separated unknown indices whose joint sign is free (an eliminated unit translation).
+# Arguments after `--` go to `mingen generate` (e.g. --code-form inline).
+# Example (G-RSRP with unknown readout, 100 solutions):
+#   python3 tools/grsrp_readout_instances.py 200 2 --solutions /tmp/s.txt > /tmp/i.txt
+#   tools/emitted_solver/run.sh templates/large/grsrp_readout.mp /tmp/i.txt /tmp/s.txt 3,4,5
+set -euo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+args=()
+while [[ $# -gt 0 && $1 != -- ]]; do args+=("$1"); shift; done
+[[ ${1:-} == -- ]] && shift
+if [[ ${#args[@]} -lt 2 ]]; then
+    sed -n 2,16p "$0" >&2
+    exit 2
+fi
+problem=${args[0]}
+name=$(basename "$problem" .mp)
+work="$root/target/emitted-solver/$name"
+mkdir -p "$work/src"
+cargo build --release -q -p mingen --manifest-path "$root/Cargo.toml"
+"$root/target/release/mingen" generate "$problem" --out "$work/src/solver.rs" "$@"
+cp "$root/tools/emitted_solver/main.rs" "$work/src/main.rs"
+cat > "$work/Cargo.toml" <<TOML
+[package]
+name = "emitted-solver-$name"
+version = "0.0.0"
+edition = "2021"
+publish = false
+
+[dependencies]
+mingen-runtime = { path = "$root/generator/runtime" }
+
+[workspace]
+TOML
+# Dependencies first, so that the figure below is the solver's own compile time.
+cargo build --release -q --manifest-path "$work/Cargo.toml" -p mingen-runtime
+touch "$work/src/main.rs"
+start=$(date +%s%N)
+if ! log=$(cargo build --release -q --manifest-path "$work/Cargo.toml" 2>&1); then
+    echo "$log" >&2
+    exit 1
+fi
+end=$(date +%s%N)
+lines=$(wc -l < "$work/src/solver.rs")
+ms=$(( (end - start) / 1000000 ))
+printf '%s: %d lines emitted, compiled in %d.%d s (release)\n' "$name" "$lines" $((ms / 1000)) $((ms % 1000 / 100))
+"$work/target/release/emitted-solver-$name" "${args[@]:1}"

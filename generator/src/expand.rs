@@ -19,8 +19,13 @@ pub struct Problem {
     /// Its symbols (unknowns, typed data, eliminated unknowns).
     pub layout: ProblemLayout,
     checked: Checked,
-    /// Whether each tape node is needed by some equation.
+    /// Whether each tape node is needed by some equation or `nonzero` expression.
     needed: Vec<bool>,
+    /// The expression of each `nonzero` statement (its tape node), in source order.
+    nonzero: Vec<NodeId>,
+    /// `divisions[i][k]`: how many times equation `i` of the system (after elimination) is
+    /// divided by the k-th `nonzero` expression (see [`Problem::with_divisions`]).
+    divisions: Vec<Vec<u32>>,
 }
 
 /// Failure to load a problem file.
@@ -397,8 +402,21 @@ impl Problem {
     }
 
     fn from_checked(checked: Checked) -> Problem {
+        // `nonzero EXPR` is the equation `u * EXPR - 1` of a hidden unknown u, one per
+        // statement, after all others (see `lang::check`).
+        let hidden = checked.layout.hidden_count();
+        let first = checked.equations.len().saturating_sub(hidden);
+        let nonzero = checked.equations[first..]
+            .iter()
+            .filter_map(|eq| saturated_expression(&checked.nodes, eq.node))
+            .collect();
+        Problem::with_needed(checked, nonzero, Vec::new())
+    }
+
+    fn with_needed(checked: Checked, nonzero: Vec<NodeId>, divisions: Vec<Vec<u32>>) -> Problem {
         let mut needed = vec![false; checked.nodes.len()];
         let mut stack: Vec<NodeId> = checked.equations.iter().map(|e| e.node).collect();
+        stack.extend(&nonzero);
         while let Some(n) = stack.pop() {
             if needed[n] {
                 continue;
@@ -420,7 +438,80 @@ impl Problem {
             layout: checked.layout.clone(),
             checked,
             needed,
+            nonzero,
+            divisions,
         }
+    }
+
+    /// The number of `nonzero` statements.
+    pub fn nonzero_count(&self) -> usize {
+        self.nonzero.len()
+    }
+
+    /// Whether `nonzero` is imposed by saturation (a hidden unknown per statement); false
+    /// after [`Problem::without_saturation`].
+    pub fn is_saturated(&self) -> bool {
+        self.layout.hidden_count() > 0
+    }
+
+    /// The same problem without the saturating equations and their hidden unknowns: the
+    /// `nonzero` expressions are kept only as divisors ([`Problem::with_divisions`]). Its
+    /// solutions include those where an expression vanishes, unless dividing removed them.
+    pub fn without_saturation(&self) -> Problem {
+        let hidden = self.layout.hidden_count();
+        let mut checked = self.checked.clone();
+        let keep = checked.equations.len().saturating_sub(hidden);
+        checked.equations.truncate(keep);
+        checked.layout.unknowns.retain(|u| !u.hidden);
+        let mut p = Problem::with_needed(checked, self.nonzero.clone(), self.divisions.clone());
+        p.layout = self.layout.clone();
+        p.layout.unknowns.retain(|u| !u.hidden);
+        p
+    }
+
+    /// The same problem with equation `i` of its system (after elimination) divided
+    /// `divisions[i][k]` times by the k-th `nonzero` expression. Planning chooses the counts
+    /// where the division is exact on the whole data family (`pipeline::nonzero_divisions`):
+    /// the expression does not vanish at a solution, so the divided system has the same
+    /// solutions with smaller degrees.
+    pub fn with_divisions(&self, divisions: Vec<Vec<u32>>) -> Problem {
+        let mut p = self.clone();
+        p.divisions = divisions;
+        p
+    }
+
+    /// See [`Problem::with_divisions`] (empty when nothing is divided).
+    pub fn divisions(&self) -> &[Vec<u32>] {
+        &self.divisions
+    }
+
+    /// Each `nonzero` expression as a polynomial in the declared (not hidden) unknowns,
+    /// the data slots replaced by `data`.
+    pub fn nonzero_expressions<C: Ring>(&self, data: &[C]) -> Result<Vec<Poly<C>>, EvalError> {
+        let expected = self.layout.data_slot_count();
+        if data.len() != expected {
+            return Err(EvalError::DataLength {
+                expected,
+                found: data.len(),
+            });
+        }
+        let n = self.layout.unknown_count();
+        let visible = n - self.layout.hidden_count();
+        let vals = run_mixed(&self.checked.nodes, &self.needed, n, data)?;
+        Ok(self
+            .nonzero
+            .iter()
+            .map(|&node| {
+                let p = match vals[node].as_ref() {
+                    Some(Mixed::K(m)) => Poly::constant(n, m.at(0, 0).clone()),
+                    Some(Mixed::P(m)) => m.at(0, 0).clone(),
+                    None => Poly::zero(n),
+                };
+                let p = if p.nvars() < n { p.widen(n) } else { p };
+                // `nonzero` expressions are checked to be in the declared unknowns.
+                p.narrow(visible).unwrap_or_else(|| Poly::zero(visible))
+            })
+            .collect())
     }
 
     /// The problem's name.
@@ -635,6 +726,18 @@ impl Problem {
                     .map_or_else(C::zero, |m| m.at(eq.row, eq.col).clone())
             })
             .collect())
+    }
+}
+
+/// The expression `e` of a saturating equation `u * e - 1` (see `lang::check::saturate`).
+fn saturated_expression(nodes: &[Node], eq: NodeId) -> Option<NodeId> {
+    let Op::Sub(prod, _) = nodes.get(eq)?.op else {
+        return None;
+    };
+    match nodes.get(prod)?.op {
+        Op::Mul(a, b) if matches!(nodes.get(a)?.op, Op::Unknown(_)) => Some(b),
+        Op::Mul(a, b) if matches!(nodes.get(b)?.op, Op::Unknown(_)) => Some(a),
+        _ => None,
     }
 }
 

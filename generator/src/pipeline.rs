@@ -134,15 +134,162 @@ pub type System<C> = (Vec<Poly<C>>, Option<Eliminated<C>>);
 /// The template's equations for data `data` over any ring (see [`System`]).
 fn system<C: Ring>(problem: &Problem, data: &[C]) -> Result<System<C>, EliminateError> {
     let equations = problem.evaluate(data);
-    if problem.layout.eliminate.is_empty() {
-        return Ok((equations, None));
+    let (mut equations, mut elimination) = if problem.layout.eliminate.is_empty() {
+        (equations, None)
+    } else {
+        let e = eliminate_linear(
+            &equations,
+            problem.layout.unknown_count(),
+            &problem.layout.eliminate,
+        )?;
+        (e.equations.clone(), Some(e))
+    };
+    if problem.divisions().iter().flatten().any(|&d| d > 0) {
+        let factors = nonzero_factors(problem, data);
+        for (eq, counts) in equations.iter_mut().zip(problem.divisions()) {
+            for (factor, &count) in factors.iter().zip(counts) {
+                let Some(factor) = factor else { continue };
+                for _ in 0..count {
+                    if let Some((q, _)) = eq.divide(factor) {
+                        *eq = q;
+                    }
+                }
+            }
+        }
+        if let Some(e) = &mut elimination {
+            e.equations.clone_from(&equations);
+        }
     }
-    let e = eliminate_linear(
-        &equations,
-        problem.layout.unknown_count(),
-        &problem.layout.eliminate,
-    )?;
-    Ok((e.equations.clone(), Some(e)))
+    Ok((equations, elimination))
+}
+
+/// The `nonzero` expressions as polynomials in the system's variables (the unknowns left
+/// after elimination, hidden ones included); `None` for one that involves an eliminated
+/// unknown (it cannot divide the system's equations).
+fn nonzero_factors<C: Ring>(problem: &Problem, data: &[C]) -> Vec<Option<Poly<C>>> {
+    let layout = &problem.layout;
+    let kept: Vec<usize> = (0..layout.unknown_count())
+        .filter(|i| !layout.eliminate.contains(i))
+        .collect();
+    let n = kept.len();
+    let Ok(expressions) = problem.nonzero_expressions(data) else {
+        return vec![None; problem.nonzero_count()];
+    };
+    expressions
+        .iter()
+        .map(|e| {
+            let mut out = Poly::zero(n);
+            for (m, c) in e.terms() {
+                let mut exps = vec![0; n];
+                for (i, &x) in m.0.iter().enumerate() {
+                    if x == 0 {
+                        continue;
+                    }
+                    exps[kept.iter().position(|&k| k == i)?] = x;
+                }
+                out.add_term(Monomial(exps), c.clone());
+            }
+            Some(out)
+        })
+        .collect()
+}
+
+/// `problem` with its `nonzero` expressions divided out of the equations they divide
+/// exactly (typically maximal minors after `eliminate`, which vanish wherever a rotation's
+/// Cayley denominator does): lower degrees, the same solutions. If the divided system
+/// without saturation has as many solutions as with it, saturation is dropped too (its
+/// solutions include the saturated system's, so equal counts mean no others), which
+/// removes the hidden unknowns from the template. Unchanged when nothing divides.
+fn divide_out_nonzero(problem: Problem, options: &TemplateOptions) -> Problem {
+    if problem.nonzero_count() == 0 {
+        return problem;
+    }
+    let divisions = nonzero_divisions(&problem, options.seed);
+    if divisions.is_empty() {
+        return problem;
+    }
+    let saturated = problem.with_divisions(divisions);
+    let plain = problem.without_saturation();
+    let unsaturated = plain.with_divisions(nonzero_divisions(&plain, options.seed));
+    let deadline = options.budget.start();
+    let count = |p: &Problem| {
+        crate::quotient::analyse_within(&ProblemSource::new(p), options.seed, Some(deadline))
+            .ok()
+            .map(|a| a.count)
+    };
+    match (count(&unsaturated), count(&saturated)) {
+        (Some(a), Some(b)) if a == b => unsaturated,
+        _ => saturated,
+    }
+}
+
+/// How many times each `nonzero` expression divides each equation of `problem`'s system
+/// exactly, on the whole data family: the smaller count of two random instances mod p
+/// (exact arithmetic; a division that is exact on random instances is exact as a
+/// polynomial identity in the data but with probability about degree / p). An expression
+/// must be the same on both instances (no data in it) and have leading coefficient ±1.
+/// Empty when nothing divides.
+fn nonzero_divisions(problem: &Problem, seed: u64) -> Vec<Vec<u32>> {
+    type F = crate::algebra::Fp<{ crate::algebra::P1 }>;
+    let plain = problem.with_divisions(Vec::new());
+    let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(seed ^ 0xd1f1);
+    let mut counts: Option<Vec<Vec<u32>>> = None;
+    let mut first_factors: Option<Vec<Option<Poly<F>>>> = None;
+    for _ in 0..2 {
+        let data = random_data_fp::<{ crate::algebra::P1 }>(&plain.layout, &mut rng);
+        let Ok((equations, _)) = system(&plain, &data) else {
+            return Vec::new();
+        };
+        let factors = nonzero_factors(&plain, &data);
+        let constant = match &first_factors {
+            None => factors.clone(),
+            Some(first) => first
+                .iter()
+                .zip(&factors)
+                .map(|(a, b)| if a == b { a.clone() } else { None })
+                .collect(),
+        };
+        let these: Vec<Vec<u32>> = equations
+            .iter()
+            .map(|eq| {
+                factors
+                    .iter()
+                    .zip(&constant)
+                    .map(|(f, c)| match (f, c) {
+                        (Some(f), Some(_)) if f.degree().unwrap_or(0) > 0 => {
+                            let mut p = eq.clone();
+                            let mut k = 0;
+                            while !p.is_zero() {
+                                match p.divide(f) {
+                                    Some((q, r)) if r.is_zero() => {
+                                        p = q;
+                                        k += 1;
+                                    }
+                                    _ => break,
+                                }
+                            }
+                            k
+                        }
+                        _ => 0,
+                    })
+                    .collect()
+            })
+            .collect();
+        counts = Some(match counts {
+            None => these,
+            Some(c) => c
+                .iter()
+                .zip(&these)
+                .map(|(a, b)| a.iter().zip(b).map(|(x, y)| (*x).min(*y)).collect())
+                .collect(),
+        });
+        first_factors.get_or_insert(factors);
+    }
+    let counts = counts.unwrap_or_default();
+    if counts.iter().flatten().all(|&k| k == 0) {
+        return Vec::new();
+    }
+    counts
 }
 
 /// Everything needed to solve, audit or emit a problem.
@@ -258,6 +405,7 @@ pub fn plan(
             });
         }
     }
+    let problem = divide_out_nonzero(problem, options);
     let mut generated =
         find_template(&ProblemSource::new(&problem), options).map_err(|source| {
             PipelineError::Template {

@@ -27,8 +27,13 @@ fn nonzero_removes_the_component_and_is_never_returned() {
     assert!(err.contains("positive-dimensional"), "{err}");
     let p = planned(&src, &opts).unwrap();
     assert_eq!(p.generated.count, 20);
-    assert_eq!(p.problem.layout.hidden_count(), 1);
-    assert_eq!(p.generated.built.template.n_hidden, 1);
+    // 1 + q'q divides every 3x3 minor of the eliminated system: divided out, the system
+    // has the 20 solutions without saturation, so the hidden unknown is gone.
+    assert!(p.problem.divisions().iter().flatten().any(|&k| k > 0));
+    assert_eq!(p.problem.layout.hidden_count(), 0);
+    assert_eq!(p.generated.built.template.n_hidden, 0);
+    let (rows, cols) = p.generated.built.template.eliminated_size();
+    assert!(rows <= 40 && cols <= 60, "{rows} x {cols}");
     // The audit measures the declared equations at the real solutions.
     let a = mingen::audit::audit_plan(
         &p,
@@ -44,6 +49,39 @@ fn nonzero_removes_the_component_and_is_never_returned() {
         out.contains("pub const UNKNOWNS: usize = 6;"),
         "hidden unknown leaked into the solution type"
     );
+}
+
+#[test]
+fn nonzero_expressions_are_divided_out_and_saturation_kept_only_where_needed() {
+    let opts = TemplateOptions::default();
+    // (x - 1) divides the first equation: divided, the system x + y = b, x y = a has the
+    // two solutions the saturated one has (the third, x = 1, is gone), so no hidden
+    // unknown remains.
+    let head = "problem d\nunknown x, y\ndata a: scalar, b: scalar\n(x - 1)*(x + y - b) = 0\n";
+    let without = planned(&format!("{head}x*y = a\n"), &opts).unwrap();
+    assert_eq!(without.generated.count, 3);
+    let p = planned(&format!("{head}x*y = a\nnonzero x - 1\n"), &opts).unwrap();
+    assert_eq!(p.generated.count, 2);
+    assert_eq!(p.problem.divisions(), &[vec![1], vec![0]]);
+    assert_eq!(p.problem.layout.hidden_count(), 0);
+    // Here the divided system still has a solution with x = 1 ((1, b - 1), the second
+    // equation not being a multiple of x - 1): saturation stays and removes it.
+    let p = planned(
+        &format!("{head}(x - 1)*y + y - b + 1 = 0\nnonzero x - 1\n"),
+        &opts,
+    )
+    .unwrap();
+    assert_eq!(p.generated.count, 1);
+    assert_eq!(p.problem.layout.hidden_count(), 1);
+    assert!(p.problem.divisions().iter().flatten().any(|&k| k > 0));
+    let a = mingen::audit::audit_plan(
+        &p,
+        &mingen::audit::AuditOptions {
+            instances: 30,
+            seed: 4,
+        },
+    );
+    assert!(a.median_log10_residual < -12.0, "{a}");
 }
 
 #[test]

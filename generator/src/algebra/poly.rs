@@ -271,6 +271,55 @@ impl<C: Ring> Poly<C> {
         let n = a.nvars.max(b.nvars);
         (a.widen(n), b.widen(n))
     }
+    /// The same polynomial in its first `n <= nvars` variables; `None` if a later variable
+    /// occurs.
+    pub fn narrow(&self, n: usize) -> Option<Self> {
+        let mut r = Poly::zero(n);
+        for (m, c) in &self.terms {
+            if m.0.len() < n || m.0[n..].iter().any(|&e| e != 0) {
+                return None;
+            }
+            r.add_term(Monomial(m.0[..n].to_vec()), c.clone());
+        }
+        Some(r)
+    }
+    /// Division by `d` in grevlex: `(q, r)` with `self = q d + r` and no term of `r`
+    /// divisible by `d`'s leading monomial (the remainder is unique, so `r` is zero exactly
+    /// when `d` divides `self`). `None` unless `d`'s leading coefficient is 1 or -1, so that
+    /// the division needs no inverse and runs alike in every ring. The leading term of the
+    /// running dividend is removed, not cancelled, so a ring without exact zero tests
+    /// (traced coefficients) computes the same quotient.
+    pub fn divide(&self, d: &Self) -> Option<(Self, Self)> {
+        let (lm, lc) = d.leading(MonomialOrder::Grevlex)?;
+        let sign = if lc.is_one() {
+            C::one()
+        } else if lc.neg().is_one() {
+            C::one().neg()
+        } else {
+            return None;
+        };
+        let tail: Vec<(Monomial, C)> = d
+            .terms
+            .iter()
+            .filter(|(m, _)| *m != lm)
+            .map(|(m, c)| (m.clone(), c.clone()))
+            .collect();
+        let (mut p, mut q, mut r) = (self.clone(), Poly::zero(self.nvars), Poly::zero(self.nvars));
+        while let Some(m) = p.leading(MonomialOrder::Grevlex).map(|(m, _)| m.clone()) {
+            let c = p.terms.remove(&m).expect("the leading term is a term");
+            match lm.divide_into(&m) {
+                Some(s) => {
+                    let f = c.mul(&sign);
+                    for (tm, tc) in &tail {
+                        p.add_term(tm.mul(&s), tc.mul(&f).neg());
+                    }
+                    q.add_term(s, f);
+                }
+                None => r.add_term(m, c),
+            }
+        }
+        Some((q, r))
+    }
     /// The same polynomial in `n >= nvars` variables (extra variables appended).
     pub fn widen(&self, n: usize) -> Self {
         assert!(n >= self.nvars, "cannot narrow a polynomial");
@@ -320,6 +369,40 @@ mod tests {
     use rand_chacha::ChaCha8Rng;
 
     type F = Fp<P1>;
+
+    #[test]
+    fn division_by_a_unit_leading_coefficient_is_exact_on_multiples() {
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        let n = 3;
+        let x = |i| Poly::<Q>::var(n, i);
+        let one = Poly::constant(n, Q::from_integer(1.into()));
+        // d = 1 + x0^2 + x1^2 + x2^2 (leading coefficient 1) and its negation.
+        let d = (0..n).fold(one.clone(), |acc, i| acc.add(&x(i).mul(&x(i))));
+        for d in [d.clone(), d.neg()] {
+            for _ in 0..50 {
+                let f = random_poly_q(&mut rng, n);
+                let (q, r) = f.mul(&d).divide(&d).unwrap();
+                assert!(r.is_zero());
+                assert_eq!(q, f);
+                // Plus a term no multiple of d has: a non-zero remainder.
+                let g = f.mul(&d).add(&x(1));
+                let (q, r) = g.divide(&d).unwrap();
+                assert_eq!(q.mul(&d).add(&r), g);
+                assert!(!r.is_zero());
+            }
+        }
+        let two = Poly::constant(n, Q::from_integer(2.into()));
+        assert!(x(0)
+            .divide(&x(0).scale(&Q::from_integer(2.into())))
+            .is_none());
+        assert!(x(0).divide(&two).is_none(), "leading coefficient 2");
+        assert!(x(0).divide(&Poly::zero(n)).is_none());
+        assert_eq!(
+            x(0).mul(&x(1)).narrow(2),
+            Some(Poly::var(2, 0).mul(&Poly::var(2, 1)))
+        );
+        assert_eq!(x(2).narrow(2), None);
+    }
 
     fn random_poly_q(rng: &mut ChaCha8Rng, nvars: usize) -> Poly<Q> {
         let nterms = rng.gen_range(0..6);

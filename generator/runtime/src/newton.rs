@@ -16,36 +16,95 @@ pub type NewtonTerm<'a> = (usize, &'a [u8]);
 /// Most unknowns [`newton_polish`] accepts.
 pub const MAX_NEWTON_UNKNOWNS: usize = 24;
 
-/// Value and gradient of `Σ_terms c x^e` at `x` (gradient into `grad[..x.len()]`).
+/// Highest power of an unknown taken from the table of [`Powers`]; higher exponents use
+/// `powi`.
+const MAX_TABULATED_POWER: usize = 15;
+
+/// The powers `x_j^0 ..= x_j^MAX_TABULATED_POWER` of every unknown, so that a term costs a
+/// few multiplications instead of a `powi` per factor.
+struct Powers<'x> {
+    x: &'x [f64],
+    table: [[f64; MAX_TABULATED_POWER + 1]; MAX_NEWTON_UNKNOWNS],
+}
+
+impl<'x> Powers<'x> {
+    fn new(x: &'x [f64]) -> Self {
+        let mut table = [[1.0; MAX_TABULATED_POWER + 1]; MAX_NEWTON_UNKNOWNS];
+        for (row, &xi) in table.iter_mut().zip(x) {
+            for p in 1..=MAX_TABULATED_POWER {
+                row[p] = row[p - 1] * xi;
+            }
+        }
+        Powers { x, table }
+    }
+    /// `x_j^e`.
+    fn pow(&self, j: usize, e: u8) -> f64 {
+        match self.table[j].get(usize::from(e)) {
+            Some(&v) => v,
+            None => self.x[j].powi(i32::from(e)),
+        }
+    }
+}
+
+/// The coefficient of a term and its factors `x_j^e_j` (into `factors[..n]`), or `None` if
+/// the term is malformed.
+fn term_factors(
+    (c, e): NewtonTerm<'_>,
+    coefficients: &[f64],
+    powers: &Powers<'_>,
+    factors: &mut [f64; MAX_NEWTON_UNKNOWNS],
+) -> Option<f64> {
+    let n = powers.x.len();
+    if e.len() != n {
+        return None;
+    }
+    for (j, (f, &ej)) in factors.iter_mut().zip(e).enumerate() {
+        *f = powers.pow(j, ej);
+    }
+    coefficients.get(c).copied()
+}
+
+/// Value of `Σ_terms c x^e`.
+fn value(terms: &[NewtonTerm<'_>], coefficients: &[f64], powers: &Powers<'_>) -> Option<f64> {
+    let n = powers.x.len();
+    let mut factors = [0.0; MAX_NEWTON_UNKNOWNS];
+    let mut value = 0.0;
+    for &term in terms {
+        let c = term_factors(term, coefficients, powers, &mut factors)?;
+        value += c * factors[..n].iter().product::<f64>();
+    }
+    Some(value)
+}
+
+/// Value and gradient of `Σ_terms c x^e` (gradient into `grad[..n]`): per term, the
+/// products of the factors before and after each unknown (prefix and suffix products), so
+/// the gradient costs O(n) per term.
 fn value_and_gradient(
     terms: &[NewtonTerm<'_>],
     coefficients: &[f64],
-    x: &[f64],
+    powers: &Powers<'_>,
     grad: &mut [f64],
 ) -> Option<f64> {
-    let n = x.len();
+    let n = powers.x.len();
     grad[..n].iter_mut().for_each(|g| *g = 0.0);
+    let mut factors = [0.0; MAX_NEWTON_UNKNOWNS];
+    let mut suffix = [1.0; MAX_NEWTON_UNKNOWNS + 1];
     let mut value = 0.0;
-    for &(c, e) in terms {
-        let c = *coefficients.get(c)?;
-        if e.len() != n {
-            return None;
+    for &term in terms {
+        let c = term_factors(term, coefficients, powers, &mut factors)?;
+        let e = term.1;
+        suffix[n] = 1.0;
+        for j in (0..n).rev() {
+            suffix[j] = factors[j] * suffix[j + 1];
         }
-        let mut mono = 1.0;
-        for (&xi, &ei) in x.iter().zip(e) {
-            mono *= xi.powi(i32::from(ei));
-        }
-        value += c * mono;
+        value += c * suffix[0];
+        let mut prefix = c;
         for k in 0..n {
-            if e[k] == 0 {
-                continue;
+            if e[k] != 0 {
+                // ∂/∂x_k of x^e: e_k x_k^(e_k - 1) times the other factors.
+                grad[k] += prefix * f64::from(e[k]) * powers.pow(k, e[k] - 1) * suffix[k + 1];
             }
-            // ∂/∂x_k of x^e: e_k x_k^(e_k - 1) times the other factors.
-            let mut d = c * f64::from(e[k]) * x[k].powi(i32::from(e[k]) - 1);
-            for j in (0..n).filter(|&j| j != k) {
-                d *= x[j].powi(i32::from(e[j]));
-            }
-            grad[k] += d;
+            prefix *= factors[k];
         }
     }
     Some(value)
@@ -57,10 +116,10 @@ fn squared_residual(
     coefficients: &[f64],
     x: &[f64],
 ) -> Option<f64> {
-    let mut grad = [0.0; MAX_NEWTON_UNKNOWNS];
+    let powers = Powers::new(x);
     let mut sum = 0.0;
     for eq in equations {
-        let f = value_and_gradient(eq, coefficients, x, &mut grad)?;
+        let f = value(eq, coefficients, &powers)?;
         sum += f * f;
     }
     sum.is_finite().then_some(sum)
@@ -143,8 +202,9 @@ pub fn newton_polish(
         }
         let mut h = [[0.0; MAX_NEWTON_UNKNOWNS]; MAX_NEWTON_UNKNOWNS];
         let mut b = [0.0; MAX_NEWTON_UNKNOWNS];
+        let powers = Powers::new(x);
         for eq in equations {
-            let Some(f) = value_and_gradient(eq, coefficients, x, &mut grad) else {
+            let Some(f) = value_and_gradient(eq, coefficients, &powers, &mut grad) else {
                 return taken;
             };
             for i in 0..n {
@@ -191,6 +251,33 @@ mod tests {
             vec![(1, &XY[..]), (3, &ONE[..])],
         ];
         (eqs, vec![1.0, 1.0, -2.0, -1.0])
+    }
+
+    #[test]
+    fn value_and_gradient_match_the_direct_formula() {
+        // 0.5 x^3 y^17 z - 2 y^2 z^4 + 3, exponents past the power table included.
+        const A: [u8; 3] = [3, 17, 1];
+        const B: [u8; 3] = [0, 2, 4];
+        const ONE: [u8; 3] = [0, 0, 0];
+        let terms = [(0, &A[..]), (1, &B[..]), (2, &ONE[..])];
+        let c = [0.5, -2.0, 3.0];
+        let x: [f64; 3] = [1.1, -0.9, 0.7];
+        let (a, b, z) = (x[0], x[1], x[2]);
+        let f = 0.5 * a.powi(3) * b.powi(17) * z - 2.0 * b * b * z.powi(4) + 3.0;
+        let g = [
+            1.5 * a * a * b.powi(17) * z,
+            8.5 * a.powi(3) * b.powi(16) * z - 4.0 * b * z.powi(4),
+            0.5 * a.powi(3) * b.powi(17) - 8.0 * b * b * z.powi(3),
+        ];
+        let powers = Powers::new(&x);
+        let mut grad = [0.0; MAX_NEWTON_UNKNOWNS];
+        let v = value_and_gradient(&terms, &c, &powers, &mut grad).unwrap();
+        let close = |p: f64, q: f64| (p - q).abs() <= 1e-14 * q.abs().max(1.0);
+        assert!(close(v, f), "{v} {f}");
+        assert!(close(value(&terms, &c, &powers).unwrap(), f));
+        for k in 0..3 {
+            assert!(close(grad[k], g[k]), "{k}: {} {}", grad[k], g[k]);
+        }
     }
 
     #[test]

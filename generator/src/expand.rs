@@ -488,6 +488,23 @@ impl Problem {
     /// Each `nonzero` expression as a polynomial in the declared (not hidden) unknowns,
     /// the data slots replaced by `data`.
     pub fn nonzero_expressions<C: Ring>(&self, data: &[C]) -> Result<Vec<Poly<C>>, EvalError> {
+        let (n, vals) = self.tape_values(data)?;
+        let visible = n - self.layout.hidden_count();
+        Ok(self
+            .nonzero
+            .iter()
+            .map(|&node| {
+                // `nonzero` expressions are checked to be in the declared unknowns.
+                entry_poly(&vals, node, 0, 0, n)
+                    .narrow(visible)
+                    .unwrap_or_else(|| Poly::zero(visible))
+            })
+            .collect())
+    }
+
+    /// The values of the needed tape nodes at `data`, with the unknowns as the variables of
+    /// polynomials in `layout.unknown_count()` variables (returned first).
+    fn tape_values<C: Ring>(&self, data: &[C]) -> Result<(usize, TapeValues<C>), EvalError> {
         let expected = self.layout.data_slot_count();
         if data.len() != expected {
             return Err(EvalError::DataLength {
@@ -496,22 +513,7 @@ impl Problem {
             });
         }
         let n = self.layout.unknown_count();
-        let visible = n - self.layout.hidden_count();
-        let vals = run_mixed(&self.checked.nodes, &self.needed, n, data)?;
-        Ok(self
-            .nonzero
-            .iter()
-            .map(|&node| {
-                let p = match vals[node].as_ref() {
-                    Some(Mixed::K(m)) => Poly::constant(n, m.at(0, 0).clone()),
-                    Some(Mixed::P(m)) => m.at(0, 0).clone(),
-                    None => Poly::zero(n),
-                };
-                let p = if p.nvars() < n { p.widen(n) } else { p };
-                // `nonzero` expressions are checked to be in the declared unknowns.
-                p.narrow(visible).unwrap_or_else(|| Poly::zero(visible))
-            })
-            .collect())
+        Ok((n, run_mixed(&self.checked.nodes, &self.needed, n, data)?))
     }
 
     /// The problem's name.
@@ -549,31 +551,12 @@ impl Problem {
     /// (`layout.unknown_count()` variables), the data slots replaced by `data` (one value
     /// per slot in layout order; a point's third entry is the constant 1).
     pub fn try_evaluate<C: Ring>(&self, data: &[C]) -> Result<Vec<Poly<C>>, EvalError> {
-        let expected = self.layout.data_slot_count();
-        if data.len() != expected {
-            return Err(EvalError::DataLength {
-                expected,
-                found: data.len(),
-            });
-        }
-        let n = self.layout.unknown_count();
-        let vals = run_mixed(&self.checked.nodes, &self.needed, n, data)?;
+        let (n, vals) = self.tape_values(data)?;
         Ok(self
             .checked
             .equations
             .iter()
-            .map(|eq| {
-                let p = match vals[eq.node].as_ref() {
-                    Some(Mixed::K(m)) => Poly::constant(n, m.at(eq.row, eq.col).clone()),
-                    Some(Mixed::P(m)) => m.at(eq.row, eq.col).clone(),
-                    None => Poly::zero(n),
-                };
-                if p.nvars() < n {
-                    p.widen(n)
-                } else {
-                    p
-                }
-            })
+            .map(|eq| entry_poly(&vals, eq.node, eq.row, eq.col, n))
             .collect())
     }
 
@@ -726,6 +709,30 @@ impl Problem {
                     .map_or_else(C::zero, |m| m.at(eq.row, eq.col).clone())
             })
             .collect())
+    }
+}
+
+/// The value of each tape node (`None` where not needed).
+type TapeValues<C> = Vec<Option<Mixed<C>>>;
+
+/// Entry `(row, col)` of node `node`'s value as a polynomial in `n` variables (zero if the
+/// node was not evaluated).
+fn entry_poly<C: Ring>(
+    vals: &TapeValues<C>,
+    node: NodeId,
+    row: usize,
+    col: usize,
+    n: usize,
+) -> Poly<C> {
+    let p = match vals[node].as_ref() {
+        Some(Mixed::K(m)) => Poly::constant(n, m.at(row, col).clone()),
+        Some(Mixed::P(m)) => m.at(row, col).clone(),
+        None => Poly::zero(n),
+    };
+    if p.nvars() < n {
+        p.widen(n)
+    } else {
+        p
     }
 }
 

@@ -187,3 +187,37 @@ fn newton_polishes_solutions_in_the_audit_and_the_emitted_solver() {
     let p = planned(&format!("{src}option newton = 2\n"), &opts).unwrap();
     assert_eq!(p.problem.layout.options.newton, Some(0));
 }
+
+#[test]
+fn generalised_relative_pose_divides_out_its_cayley_denominator() {
+    // 6 Plücker-line correspondences, t eliminated: the 4x4 minors (degree 8) are
+    // multiples of 1 + q'q; divided, the 64 solutions need no saturation and the
+    // template is PoseLib's size (99 x 163) instead of 1102 x 1166 saturated.
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../templates/large/gen_relpose_6pt.mp");
+    let src = std::fs::read_to_string(file).unwrap();
+    let p = planned(&src, &TemplateOptions::default()).unwrap();
+    assert_eq!(p.generated.count, 64);
+    assert_eq!(p.problem.layout.hidden_count(), 0);
+    assert!(p.problem.divisions().iter().flatten().all(|&k| k <= 1));
+    assert_eq!(
+        p.problem
+            .divisions()
+            .iter()
+            .flatten()
+            .filter(|&&k| k == 1)
+            .count(),
+        15,
+        "every 4x4 minor of the 6 x 4 matrix [A b] is divided once"
+    );
+    let (rows, cols) = p.generated.built.template.eliminated_size();
+    assert!(rows <= 99 && cols <= 163, "{rows} x {cols}");
+    let a = mingen::audit::audit_plan(
+        &p,
+        &mingen::audit::AuditOptions {
+            instances: 40,
+            seed: 6,
+        },
+    );
+    assert!(a.median_log10_residual < -12.0, "{a}");
+}

@@ -26,11 +26,8 @@ repo="$(cd "$here/../../.." && pwd)"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-cmake -S "$poselib" -B "$poselib/_build" -DCMAKE_BUILD_TYPE=Release -DWITH_BENCHMARK=OFF \
-  -DPYTHON_PACKAGE=OFF >/dev/null
-cmake --build "$poselib/_build" -j "$(nproc)" >/dev/null
-g++ -O3 -std=c++17 -I"$poselib" -I"$poselib/_build/generated_headers" -I/usr/include/eigen3 \
-  "$here/gen_relpose_6pt.cc" -L"$poselib/_build/PoseLib" -lPoseLib -o "$work/poselib"
+. "$here/build.sh"
+build_against_poselib "$poselib" "$here/gen_relpose_6pt.cc" "$work/poselib"
 python3 "$repo/tools/gen_relpose_6pt_instances.py" "$count" 3 --solutions "$work/solutions" \
   >"$work/instances"
 "$repo/tools/emitted_solver/run.sh" "$repo/templates/large/gen_relpose_6pt.mp" \

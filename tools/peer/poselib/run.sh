@@ -19,11 +19,8 @@ repo="$(cd "$here/../../.." && pwd)"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-cmake -S "$poselib" -B "$poselib/_build" -DCMAKE_BUILD_TYPE=Release -DWITH_BENCHMARK=OFF \
-  -DPYTHON_PACKAGE=OFF >/dev/null
-cmake --build "$poselib/_build" -j "$(nproc)" >/dev/null
-g++ -O3 -std=c++17 -I"$poselib" -I"$poselib/_build/generated_headers" -I/usr/include/eigen3 \
-  "$here/driver.cc" -L"$poselib/_build/PoseLib" -lPoseLib -o "$work/driver"
+. "$here/build.sh"
+build_against_poselib "$poselib" "$here/driver.cc" "$work/driver"
 cargo build --release -q -p rspose --example peer_bench --manifest-path "$repo/Cargo.toml"
 ours="$repo/target/release/examples/peer_bench"
 "$ours" write "$work/data" "$pairs"

@@ -3,7 +3,8 @@
 //! given planted solutions, how many it recovers.
 //!
 //! Usage: `driver INSTANCES [SOLUTIONS] [SIGN_FREE]`. INSTANCES has one instance per line
-//! (the problem's data slots, whitespace-separated), SOLUTIONS one planted solution per
+//! (the problem's data slots, whitespace-separated), or is `random:N` for N instances with
+//! every slot uniform in [-1, 1] (seeded); SOLUTIONS one planted solution per
 //! line (every unknown in declaration order). SIGN_FREE lists comma-separated unknown
 //! indices whose joint sign is free (an eliminated homogeneous unknown such as a unit
 //! translation): the planted solution counts as recovered with those entries negated too.
@@ -43,11 +44,29 @@ fn read_rows(path: &str, width: usize) -> Result<Vec<Vec<f64>>, String> {
     Ok(rows)
 }
 
+/// `count` instances of `width` slots uniform in [-1, 1] (xorshift64*, fixed seed).
+fn random_rows(count: usize, width: usize) -> Vec<Vec<f64>> {
+    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut next = move || {
+        state ^= state >> 12;
+        state ^= state << 25;
+        state ^= state >> 27;
+        let bits = state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
+        bits as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    (0..count).map(|_| (0..width).map(|_| next()).collect()).collect()
+}
+
 fn run() -> Result<(), String> {
     type S = solver::Solver;
     let args: Vec<String> = std::env::args().collect();
     let instances = args.get(1).ok_or("usage: driver INSTANCES [SOLUTIONS] [SIGN_FREE]")?;
-    let data: Vec<<S as MinimalSolver>::Data> = read_rows(instances, <S as MinimalSolver>::Data::LEN)?
+    let width = <S as MinimalSolver>::Data::LEN;
+    let rows = match instances.strip_prefix("random:") {
+        Some(n) => random_rows(n.parse().map_err(|e| format!("{instances}: {e}"))?, width),
+        None => read_rows(instances, width)?,
+    };
+    let data: Vec<<S as MinimalSolver>::Data> = rows
         .iter()
         .filter_map(|r| <S as MinimalSolver>::Data::from_flat(r))
         .collect();

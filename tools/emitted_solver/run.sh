@@ -7,7 +7,8 @@
 #   tools/emitted_solver/run.sh PROBLEM.mp INSTANCES [SOLUTIONS [SIGN_FREE]] [-- GENERATE_ARGS...]
 #
 # INSTANCES / SOLUTIONS: one instance (data slots) / planted solution (every unknown) per
-# line, as `mingen audit --instances-from/--solutions-from` read them. SIGN_FREE: comma-
+# line, as `mingen audit --instances-from/--solutions-from` read them; INSTANCES may be
+# `random:N` (N instances with every slot uniform in [-1, 1]). SIGN_FREE: comma-
 # separated unknown indices whose joint sign is free (an eliminated unit translation).
 # Arguments after `--` go to `mingen generate` (e.g. --code-form inline).
 # Example (G-RSRP with unknown readout, 100 solutions):
@@ -53,4 +54,4 @@ end=$(date +%s%N)
 lines=$(wc -l < "$work/src/solver.rs")
 ms=$(( (end - start) / 1000000 ))
 printf '%s: %d lines emitted, compiled in %d.%d s (release)\n' "$name" "$lines" $((ms / 1000)) $((ms % 1000 / 100))
-"$work/target/release/emitted-solver-$name" "${args[@]:1}"
+"${CARGO_TARGET_DIR:-$work/target}/release/emitted-solver-$name" "${args[@]:1}"

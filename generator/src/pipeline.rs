@@ -14,7 +14,7 @@
 //! through [`SolverPlan::equations`], so every consumer sees the same elimination. Writing
 //! files is `crate::generate`'s and `crate::build`'s.
 
-use crate::algebra::{Fp, Monomial, Poly, Ring};
+use crate::algebra::{Fp, Monomial, MonomialOrder, Poly, Ring};
 use crate::eliminate::{eliminate_linear, EliminateError, Eliminated};
 use crate::emit::{
     emit_solver, CodeForm, EliminationSpec, EmitError, PolishSpec, SolverSpec, Tracer,
@@ -227,7 +227,8 @@ fn divide_out_nonzero(problem: Problem, options: &TemplateOptions) -> Problem {
 /// exactly, on the whole data family: the smaller count of two random instances mod p
 /// (exact arithmetic; a division that is exact on random instances is exact as a
 /// polynomial identity in the data but with probability about degree / p). An expression
-/// must be the same on both instances (no data in it) and have leading coefficient ±1.
+/// must have the same leading term on both instances, with coefficient ±1 (its other
+/// coefficients may depend on the data).
 /// Empty when nothing divides.
 fn nonzero_divisions(problem: &Problem, seed: u64) -> Vec<Vec<u32>> {
     type F = crate::algebra::Fp<{ crate::algebra::P1 }>;
@@ -241,12 +242,19 @@ fn nonzero_divisions(problem: &Problem, seed: u64) -> Vec<Vec<u32>> {
             return Vec::new();
         };
         let factors = nonzero_factors(&plain, &data);
-        let constant = match &first_factors {
-            None => factors.clone(),
+        // The leading term must be the same on both instances (±1 times one monomial);
+        // the other coefficients may depend on the data.
+        let leading = |f: &Option<Poly<F>>| {
+            f.as_ref()
+                .and_then(|f| f.leading(MonomialOrder::Grevlex))
+                .map(|(m, c)| (m.clone(), c.clone()))
+        };
+        let constant: Vec<Option<()>> = match &first_factors {
+            None => factors.iter().map(|f| leading(f).map(|_| ())).collect(),
             Some(first) => first
                 .iter()
                 .zip(&factors)
-                .map(|(a, b)| if a == b { a.clone() } else { None })
+                .map(|(a, b)| (leading(a).is_some() && leading(a) == leading(b)).then_some(()))
                 .collect(),
         };
         let these: Vec<Vec<u32>> = equations

@@ -64,6 +64,25 @@ fn nonzero_expressions_are_divided_out_and_saturation_kept_only_where_needed() {
     assert_eq!(p.generated.count, 2);
     assert_eq!(p.problem.divisions(), &[vec![1], vec![0]]);
     assert_eq!(p.problem.layout.hidden_count(), 0);
+    // A divisor with data in it (leading coefficient 1): divided the same way.
+    let p = planned(
+        "problem e\nunknown x, y\ndata a: scalar, b: scalar, c: scalar\n\
+         (x - a)*(x + y - b) = 0\nx*y = c\nnonzero x - a\n",
+        &opts,
+    )
+    .unwrap();
+    assert_eq!(p.generated.count, 2);
+    assert_eq!(p.problem.divisions(), &[vec![1], vec![0]]);
+    assert_eq!(p.problem.layout.hidden_count(), 0);
+    let a = mingen::audit::audit_plan(
+        &p,
+        &mingen::audit::AuditOptions {
+            instances: 30,
+            seed: 5,
+        },
+    );
+    assert!(a.median_log10_residual < -12.0, "{a}");
+    assert!(mingen::pipeline::emit_plan_from(&p, "e.mp").is_ok());
     // Here the divided system still has a solution with x = 1 ((1, b - 1), the second
     // equation not being a multiple of x - 1): saturation stays and removes it.
     let p = planned(

@@ -247,7 +247,7 @@ fn nonzero_divisions(problem: &Problem, seed: u64) -> Vec<Vec<u32>> {
         let leading = |f: &Option<Poly<F>>| {
             f.as_ref()
                 .and_then(|f| f.leading(MonomialOrder::Grevlex))
-                .map(|(m, c)| (m.clone(), c.clone()))
+                .map(|(m, c)| (m.clone(), *c))
         };
         let constant: Vec<Option<()>> = match &first_factors {
             None => factors.iter().map(|f| leading(f).map(|_| ())).collect(),

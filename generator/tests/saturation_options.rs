@@ -13,6 +13,12 @@ fn planned(src: &str, opts: &TemplateOptions) -> Result<mingen::pipeline::Solver
     plan(problem, "t.mp", opts).map_err(|e| e.to_string())
 }
 
+/// Audits `p` on `instances` uniform instances and checks the median log10 residual.
+fn assert_audit_below(p: &mingen::pipeline::SolverPlan, instances: usize, seed: u64, median: f64) {
+    let a = mingen::audit::audit_plan(p, &mingen::audit::AuditOptions { instances, seed });
+    assert!(a.median_log10_residual < median, "{a}");
+}
+
 #[test]
 fn nonzero_removes_the_component_and_is_never_returned() {
     let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -35,14 +41,7 @@ fn nonzero_removes_the_component_and_is_never_returned() {
     let (rows, cols) = p.generated.built.template.eliminated_size();
     assert!(rows <= 40 && cols <= 60, "{rows} x {cols}");
     // The audit measures the declared equations at the real solutions.
-    let a = mingen::audit::audit_plan(
-        &p,
-        &mingen::audit::AuditOptions {
-            instances: 50,
-            seed: 3,
-        },
-    );
-    assert!(a.median_log10_residual < -9.0, "{a}");
+    assert_audit_below(&p, 50, 3, -9.0);
     // The emitted solution type has the declared unknowns only (q and t).
     let out = mingen::pipeline::emit_plan_from(&p, "t.mp").unwrap();
     assert!(
@@ -74,14 +73,7 @@ fn nonzero_expressions_are_divided_out_and_saturation_kept_only_where_needed() {
     assert_eq!(p.generated.count, 2);
     assert_eq!(p.problem.divisions(), &[vec![1], vec![0]]);
     assert_eq!(p.problem.layout.hidden_count(), 0);
-    let a = mingen::audit::audit_plan(
-        &p,
-        &mingen::audit::AuditOptions {
-            instances: 30,
-            seed: 5,
-        },
-    );
-    assert!(a.median_log10_residual < -12.0, "{a}");
+    assert_audit_below(&p, 30, 5, -12.0);
     assert!(mingen::pipeline::emit_plan_from(&p, "e.mp").is_ok());
     // Here the divided system still has a solution with x = 1 ((1, b - 1), the second
     // equation not being a multiple of x - 1): saturation stays and removes it.
@@ -93,14 +85,7 @@ fn nonzero_expressions_are_divided_out_and_saturation_kept_only_where_needed() {
     assert_eq!(p.generated.count, 1);
     assert_eq!(p.problem.layout.hidden_count(), 1);
     assert!(p.problem.divisions().iter().flatten().any(|&k| k > 0));
-    let a = mingen::audit::audit_plan(
-        &p,
-        &mingen::audit::AuditOptions {
-            instances: 30,
-            seed: 4,
-        },
-    );
-    assert!(a.median_log10_residual < -12.0, "{a}");
+    assert_audit_below(&p, 30, 4, -12.0);
 }
 
 #[test]
@@ -231,12 +216,5 @@ fn generalised_relative_pose_divides_out_its_cayley_denominator() {
     );
     let (rows, cols) = p.generated.built.template.eliminated_size();
     assert!(rows <= 99 && cols <= 163, "{rows} x {cols}");
-    let a = mingen::audit::audit_plan(
-        &p,
-        &mingen::audit::AuditOptions {
-            instances: 40,
-            seed: 6,
-        },
-    );
-    assert!(a.median_log10_residual < -12.0, "{a}");
+    assert_audit_below(&p, 40, 6, -12.0);
 }

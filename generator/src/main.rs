@@ -398,6 +398,30 @@ fn print_plan(out: &mut String, plan: &mingen::pipeline::SolverPlan) {
     let g = &plan.generated;
     let t = &g.built.template;
     outln!(out, "solutions: {}", g.count);
+    if plan.problem.nonzero_count() > 0 {
+        let divisions = plan.problem.divisions();
+        let divided = divisions
+            .iter()
+            .filter(|d| d.iter().any(|&k| k > 0))
+            .count();
+        let saturation = if plan.problem.is_saturated() {
+            "kept (a hidden unknown per nonzero)"
+        } else {
+            "dropped (the divided system has the same solutions without it)"
+        };
+        if divided == 0 {
+            outln!(
+                out,
+                "nonzero: divides no equation exactly; saturation {saturation}"
+            );
+        } else {
+            outln!(
+                out,
+                "nonzero: divided out of {divided} of {} equations; saturation {saturation}",
+                divisions.len()
+            );
+        }
+    }
     outln!(
         out,
         "basis ({}): {}",

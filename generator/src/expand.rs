@@ -489,17 +489,38 @@ impl Problem {
     /// the data slots replaced by `data`.
     pub fn nonzero_expressions<C: Ring>(&self, data: &[C]) -> Result<Vec<Poly<C>>, EvalError> {
         let (n, vals) = self.tape_values(data)?;
+        Ok(self.nonzero_from(&vals, n))
+    }
+
+    /// [`Problem::try_evaluate`] and [`Problem::nonzero_expressions`] from one evaluation
+    /// of the tape.
+    pub fn try_evaluate_with_nonzero<C: Ring>(
+        &self,
+        data: &[C],
+    ) -> Result<EquationsAndNonzero<C>, EvalError> {
+        let (n, vals) = self.tape_values(data)?;
+        Ok((self.equations_from(&vals, n), self.nonzero_from(&vals, n)))
+    }
+
+    fn equations_from<C: Ring>(&self, vals: &TapeValues<C>, n: usize) -> Vec<Poly<C>> {
+        self.checked
+            .equations
+            .iter()
+            .map(|eq| entry_poly(vals, eq.node, eq.row, eq.col, n))
+            .collect()
+    }
+
+    fn nonzero_from<C: Ring>(&self, vals: &TapeValues<C>, n: usize) -> Vec<Poly<C>> {
         let visible = n - self.layout.hidden_count();
-        Ok(self
-            .nonzero
+        self.nonzero
             .iter()
             .map(|&node| {
                 // `nonzero` expressions are checked to be in the declared unknowns.
-                entry_poly(&vals, node, 0, 0, n)
+                entry_poly(vals, node, 0, 0, n)
                     .narrow(visible)
                     .unwrap_or_else(|| Poly::zero(visible))
             })
-            .collect())
+            .collect()
     }
 
     /// The values of the needed tape nodes at `data`, with the unknowns as the variables of
@@ -552,12 +573,7 @@ impl Problem {
     /// per slot in layout order; a point's third entry is the constant 1).
     pub fn try_evaluate<C: Ring>(&self, data: &[C]) -> Result<Vec<Poly<C>>, EvalError> {
         let (n, vals) = self.tape_values(data)?;
-        Ok(self
-            .checked
-            .equations
-            .iter()
-            .map(|eq| entry_poly(&vals, eq.node, eq.row, eq.col, n))
-            .collect())
+        Ok(self.equations_from(&vals, n))
     }
 
     /// [`Problem::try_evaluate`], panicking on a data vector of the wrong length or a
@@ -711,6 +727,10 @@ impl Problem {
             .collect())
     }
 }
+
+/// The equations and the `nonzero` expressions of one evaluation
+/// ([`Problem::try_evaluate_with_nonzero`]).
+pub type EquationsAndNonzero<C> = (Vec<Poly<C>>, Vec<Poly<C>>);
 
 /// The value of each tape node (`None` where not needed).
 type TapeValues<C> = Vec<Option<Mixed<C>>>;

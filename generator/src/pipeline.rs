@@ -133,7 +133,24 @@ pub type System<C> = (Vec<Poly<C>>, Option<Eliminated<C>>);
 
 /// The template's equations for data `data` over any ring (see [`System`]).
 fn system<C: Ring>(problem: &Problem, data: &[C]) -> Result<System<C>, EliminateError> {
-    let equations = problem.evaluate(data);
+    system_and_factors(problem, data).map(|(system, _)| system)
+}
+
+/// [`system`] and the `nonzero` expressions as polynomials in the system's variables (the
+/// unknowns left after elimination, hidden ones included; `None` for one that involves an
+/// eliminated unknown, which cannot divide the system's equations), from one evaluation of
+/// the problem.
+fn system_and_factors<C: Ring>(
+    problem: &Problem,
+    data: &[C],
+) -> Result<(System<C>, Factors<C>), EliminateError> {
+    let (equations, expressions) = if problem.nonzero_count() == 0 {
+        (problem.evaluate(data), Vec::new())
+    } else {
+        problem
+            .try_evaluate_with_nonzero(data)
+            .unwrap_or_else(|e| panic!("evaluating problem {}: {e}", problem.layout.name))
+    };
     let (mut equations, mut elimination) = if problem.layout.eliminate.is_empty() {
         (equations, None)
     } else {
@@ -144,8 +161,8 @@ fn system<C: Ring>(problem: &Problem, data: &[C]) -> Result<System<C>, Eliminate
         )?;
         (e.equations.clone(), Some(e))
     };
+    let factors = system_variables(problem, &expressions);
     if problem.divisions().iter().flatten().any(|&d| d > 0) {
-        let factors = nonzero_factors(problem, data);
         for (eq, counts) in equations.iter_mut().zip(problem.divisions()) {
             for (factor, &count) in factors.iter().zip(counts) {
                 let Some(factor) = factor else { continue };
@@ -160,22 +177,21 @@ fn system<C: Ring>(problem: &Problem, data: &[C]) -> Result<System<C>, Eliminate
             e.equations.clone_from(&equations);
         }
     }
-    Ok((equations, elimination))
+    Ok(((equations, elimination), factors))
 }
 
-/// The `nonzero` expressions as polynomials in the system's variables (the unknowns left
-/// after elimination, hidden ones included); `None` for one that involves an eliminated
-/// unknown (it cannot divide the system's equations).
-fn nonzero_factors<C: Ring>(problem: &Problem, data: &[C]) -> Vec<Option<Poly<C>>> {
+/// The `nonzero` expressions in a system's variables (see [`system_and_factors`]).
+type Factors<C> = Vec<Option<Poly<C>>>;
+
+/// Polynomials in the problem's declared unknowns renumbered into the system's variables
+/// (the eliminated unknowns left out); `None` for one that involves an eliminated unknown.
+fn system_variables<C: Ring>(problem: &Problem, polys: &[Poly<C>]) -> Factors<C> {
     let layout = &problem.layout;
     let kept: Vec<usize> = (0..layout.unknown_count())
         .filter(|i| !layout.eliminate.contains(i))
         .collect();
     let n = kept.len();
-    let Ok(expressions) = problem.nonzero_expressions(data) else {
-        return vec![None; problem.nonzero_count()];
-    };
-    expressions
+    polys
         .iter()
         .map(|e| {
             let mut out = Poly::zero(n);
@@ -238,10 +254,9 @@ fn nonzero_divisions(problem: &Problem, seed: u64) -> Vec<Vec<u32>> {
     let mut first_factors: Option<Vec<Option<Poly<F>>>> = None;
     for _ in 0..2 {
         let data = random_data_fp::<{ crate::algebra::P1 }>(&plain.layout, &mut rng);
-        let Ok((equations, _)) = system(&plain, &data) else {
+        let Ok(((equations, _), factors)) = system_and_factors(&plain, &data) else {
             return Vec::new();
         };
-        let factors = nonzero_factors(&plain, &data);
         // The leading term must be the same on both instances (±1 times one monomial);
         // the other coefficients may depend on the data.
         let leading = |f: &Option<Poly<F>>| {

@@ -387,12 +387,14 @@ fn entry_tokens(terms: &[(Monomial, Expr)], style: VarStyle) -> TokenStream {
 }
 
 /// The table form's items (the coefficient functions and the fill table) and the code in
-/// `solve` that computes the coefficients and fills the template `m`.
+/// `solve` that computes the coefficients and fills the template `m` (allocated by
+/// `alloc`).
 fn table_form_tokens(
     program: &mut Program,
     fill_pos: &[usize],
     n_slots: usize,
     template_len: usize,
+    alloc: &TokenStream,
 ) -> Result<(TokenStream, TokenStream), EmitError> {
     let too_large = |coefficients: usize| {
         EmitError::Unsupported(format!(
@@ -439,7 +441,6 @@ fn table_form_tokens(
         calls.push(quote!(#name(&d, &mut c);));
     }
     let (zeroed, fill) = (rt::zeroed_coefficients(), rt::fill_template());
-    let size_l = lit(template_len);
     Ok((
         quote! {
             #(#fns)*
@@ -451,7 +452,7 @@ fn table_form_tokens(
         quote! {
             let mut c = #zeroed::<#nc>();
             #(#calls)*
-            let mut m = vec![0.0f64; #size_l];
+            #alloc
             #fill(&mut m, &c[..], &TEMPLATE_FILL);
         },
     ))
@@ -553,7 +554,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         VarStyle::Locals
     };
     let (coefficient_fns, coefficients_and_fill) = if table_form {
-        table_form_tokens(&mut program, &fill_pos, n_slots, rows * cols)?
+        table_form_tokens(&mut program, &fill_pos, n_slots, rows * cols, &alloc)?
     } else {
         let coeff_stmts = program.stmt_tokens();
         let mut fill_order: Vec<(usize, &Expr)> = fill_pos

@@ -265,7 +265,8 @@ def estimate_relative_pose(
     ``local_optimisation``, ``final_refinement``, ``seed``, ``pixel_noise``, ``gyro_noise``,
     ``fit_gyro_noise``, ``max_points``, ``gravity_noise_deg``), ``refinement``, ``quality`` and ``velocity``
     as dicts, ``essential_solver`` (five_point, eight_point), ``grsrp_solver`` (ten,
-    twenty), ``gravity_solver`` (six, twelve), ``r0_source`` (gsrp, rectified, gyro or a
+    twenty), ``grsrp_model`` (exact, paper: the model grsrp scores and refines with),
+    ``gravity_solver`` (six, twelve), ``r0_source`` (gsrp, rectified, gyro or a
     3 x 3 rotation), ``nrsrp_cauchy_px``, ``refine_readout`` (refine a common scale of the
     views' readout times with the pose; gyro-aided methods). Defaults: ``options()``.
     """

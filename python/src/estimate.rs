@@ -242,7 +242,8 @@ pub fn failure_error(f: &Failure, path: Option<&PathBuf>) -> PyErr {
 /// the Rust ``EstimateOptions`` with their names, applied on the preset: the
 /// ``RobustOptions`` fields flat or in ``robust={...}`` (``seed``, ``threshold=("sampson_pixels",
 /// 2.5)``, ``max_iterations``, ...), ``refinement``, ``quality``, ``velocity`` as dicts,
-/// ``essential_solver``, ``grsrp_solver``, ``gravity_solver``, ``r0_source`` (``"gsrp"``,
+/// ``essential_solver``, ``grsrp_solver``, ``grsrp_model`` (``"exact"`` or ``"paper"``),
+/// ``gravity_solver``, ``r0_source`` (``"gsrp"``,
 /// ``"rectified"``, ``"gyro"`` or a 3 x 3 rotation) and ``nrsrp_cauchy_px``; see
 /// ``rspose.options()`` for every name and default.
 ///

@@ -7,7 +7,9 @@ use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
 use rspose_core::estimation::refine::LmOptions;
-use rspose_core::methods::{QualityOptions, R0Source, RobustOptions, Threshold, VelocityOptions};
+use rspose_core::methods::{
+    GrsrpModel, QualityOptions, R0Source, RobustOptions, Threshold, VelocityOptions,
+};
 use rspose_core::minimal::{EssentialSolver, GravitySolver, GrsrpSolver};
 use rspose_core::{EstimateOptions, Method};
 
@@ -69,6 +71,9 @@ const ESSENTIAL: [(&str, EssentialSolver); 2] = [
 /// The Python names of the G-RSRP solvers.
 const GRSRP: [(&str, GrsrpSolver); 2] =
     [("ten", GrsrpSolver::Ten), ("twenty", GrsrpSolver::Twenty)];
+/// The Python names of `grsrp`'s scoring models.
+const GRSRP_MODEL: [(&str, GrsrpModel); 2] =
+    [("paper", GrsrpModel::Paper), ("exact", GrsrpModel::Exact)];
 /// The Python names of the known-gravity solvers.
 const GRAVITY: [(&str, GravitySolver); 2] = [
     ("six", GravitySolver::Six),
@@ -77,21 +82,22 @@ const GRAVITY: [(&str, GravitySolver); 2] = [
 
 /// The essential solver named `name` (`five_point`, `eight_point`).
 pub fn essential_solver(name: &str) -> PyResult<EssentialSolver> {
-    named(name, &ESSENTIAL)
+    named(name, &ESSENTIAL, "solver")
 }
 
 /// The G-RSRP solver named `name` (`ten`, `twenty`).
 pub fn grsrp_solver(name: &str) -> PyResult<GrsrpSolver> {
-    named(name, &GRSRP)
+    named(name, &GRSRP, "solver")
 }
 
 /// The known-gravity solver named `name` (`six`, `twelve`).
 pub fn gravity_solver(name: &str) -> PyResult<GravitySolver> {
-    named(name, &GRAVITY)
+    named(name, &GRAVITY, "solver")
 }
 
-/// The value of `choices` named `name`; `ValueError` listing the names otherwise.
-fn named<T: Copy>(name: &str, choices: &[(&str, T)]) -> PyResult<T> {
+/// The value of `choices` named `name`; `ValueError` naming `what` was asked for and
+/// listing the names otherwise.
+fn named<T: Copy>(name: &str, choices: &[(&str, T)], what: &str) -> PyResult<T> {
     choices
         .iter()
         .find(|(n, _)| *n == name)
@@ -99,7 +105,7 @@ fn named<T: Copy>(name: &str, choices: &[(&str, T)]) -> PyResult<T> {
         .ok_or_else(|| {
             let names: Vec<&str> = choices.iter().map(|(n, _)| *n).collect();
             PyValueError::new_err(format!(
-                "unknown solver `{name}` (expected {})",
+                "unknown {what} `{name}` (expected {})",
                 names.join(" or ")
             ))
         })
@@ -315,6 +321,10 @@ pub fn request(
                     o.grsrp_solver =
                         grsrp_solver(&text(&v, &key)?).map_err(|e| in_option(&key, e))?
                 }
+                "grsrp_model" => {
+                    o.grsrp_model = named(&text(&v, &key)?, &GRSRP_MODEL, "model")
+                        .map_err(|e| in_option(&key, e))?
+                }
                 "gravity_solver" => {
                     o.gravity_solver =
                         gravity_solver(&text(&v, &key)?).map_err(|e| in_option(&key, e))?
@@ -390,6 +400,7 @@ pub fn options_dict<'py>(py: Python<'py>, req: &Request) -> PyResult<Bound<'py, 
     d.set_item("refinement", refinement)?;
     d.set_item("essential_solver", name_of(o.essential_solver, &ESSENTIAL))?;
     d.set_item("grsrp_solver", name_of(o.grsrp_solver, &GRSRP))?;
+    d.set_item("grsrp_model", name_of(o.grsrp_model, &GRSRP_MODEL))?;
     d.set_item("gravity_solver", name_of(o.gravity_solver, &GRAVITY))?;
     match (&req.r0, o.r0_source) {
         (R0Request::Gyro, _) => d.set_item("r0_source", "gyro")?,

@@ -186,6 +186,8 @@ def test_options(good):
         rspose.estimate_relative_pose(*args, rows="exact")
     with pytest.raises(ValueError, match="unknown solver `nine`"):
         rspose.estimate_relative_pose(*args, grsrp_solver="nine")
+    with pytest.raises(ValueError, match="grsrp_model.*`linear`"):
+        rspose.estimate_relative_pose(*args, grsrp_model="linear")
 
 
 def test_garbage_never_crashes(good):

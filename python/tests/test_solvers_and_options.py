@@ -102,12 +102,13 @@ def test_options_are_the_rust_defaults_and_presets():
     assert (r["pixel_noise"], r["gyro_noise"], r["max_points"]) == (1.0, 0.1, 20000)
     assert r["fit_gyro_noise"] is True
     assert d["r0_source"] == "rectified" and d["essential_solver"] == "five_point"
+    assert d["grsrp_model"] == "exact"
     assert d["refinement"]["max_iterations"] == 50 and d["quality"]["min_inliers"] == 15
     assert d["velocity"]["min_inliers"] == 30
     paper = rspose.options("grsrp", preset="paper")
     assert paper["robust"]["threshold"] == ("algebraic", 0.01)
     assert (paper["robust"]["adaptive"], paper["robust"]["max_iterations"]) == (False, 200)
-    assert paper["r0_source"] == "gsrp"
+    assert paper["r0_source"] == "gsrp" and paper["grsrp_model"] == "paper"
 
 
 def test_options_round_trip_through_keywords():
@@ -115,6 +116,7 @@ def test_options_round_trip_through_keywords():
         "rectified+v", seed=4, threshold=("algebraic", 0.02), refinement={"fd_step": 1e-7},
         quality={"min_inliers": 9}, velocity={"prior_std": float("inf")}, grsrp_solver="twenty",
         gravity_solver="twelve", essential_solver="eight_point", r0_source=np.eye(3),
+        grsrp_model="paper",
         nrsrp_cauchy_px=3.0,
     )
     again = rspose.options(**custom)

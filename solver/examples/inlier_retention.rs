@@ -1,8 +1,10 @@
 //! How many true inliers the library defaults keep, and how many outliers they accept, on
 //! the paper's simulated protocol (1 px, no linear velocity) at several gyro-noise levels and
 //! outlier fractions:
-//! `cargo run --release -p rspose --example inlier_retention [SCENES] [--no-fit]`
-//! (`--no-fit`: without the fit of the pair's gyro noise, `RobustOptions::fit_gyro_noise`).
+//! `cargo run --release -p rspose --example inlier_retention [SCENES] [--no-fit] [--paper-model]`
+//! (default 120 scenes a row; `--no-fit`: without the fit of the pair's gyro noise,
+//! `RobustOptions::fit_gyro_noise`; `--paper-model`: `grsrp`/`grsrp+` score and refine with
+//! the paper's linearised model, `EstimateOptions::grsrp_model`).
 //!
 //! Every scene is simulated with a known inlier mask (`GroundTruth::inliers`); a match is a
 //! kept true inlier when the mask and the estimate's inlier flag are both true, an accepted
@@ -10,6 +12,7 @@
 //! over the scenes with an estimate. The figures are
 //! totals over all scenes of a row, so scenes with many matches do not count more.
 
+use rspose::methods::GrsrpModel;
 use rspose::model::geometry::{rotation_error_deg, translation_error_deg};
 use rspose::{estimate_relative_pose, EstimateOptions, Method};
 use rspose::{simulate, SimulationOptions};
@@ -36,12 +39,18 @@ struct Tally {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let fit = !args.iter().any(|a| a == "--no-fit");
-    let scenes: u64 = match args.iter().find(|a| *a != "--no-fit") {
+    let flag = |name: &str| args.iter().any(|a| a == name);
+    let fit = !flag("--no-fit");
+    let model = if flag("--paper-model") {
+        GrsrpModel::Paper
+    } else {
+        GrsrpModel::Exact
+    };
+    let scenes: u64 = match args.iter().find(|a| !a.starts_with("--")) {
         Some(s) => s
             .parse()
             .map_err(|_| format!("SCENES must be a positive integer, got `{s}`"))?,
-        None => 40,
+        None => 120,
     };
     let settings = [
         (0.5, 0.1, 0.0),
@@ -60,11 +69,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     });
     let methods = [Method::Rectified, Method::Grsrp, Method::GrsrpPlus];
     println!(
-        "{scenes} scenes a row, library defaults (EstimateOptions::for_method){}",
+        "{scenes} scenes a row, library defaults (EstimateOptions::for_method){}{}",
         if fit {
             ""
         } else {
             " without the gyro-noise fit"
+        },
+        if model == GrsrpModel::Paper {
+            ", grsrp scored and refined with the paper's model"
+        } else {
+            ""
         }
     );
     println!("| rad/s | gyro noise | outliers | method | true inliers kept | outliers accepted | mean rotation / translation error (deg) | failures |");
@@ -88,6 +102,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 let mut options = EstimateOptions::for_method(m);
                 options.robust.seed = seed;
                 options.robust.fit_gyro_noise = fit;
+                options.grsrp_model = model;
                 let flags = match estimate_relative_pose(&view1, &view2, &pair.matches, &options) {
                     Ok(est) => {
                         tally.rotation_error_deg +=

@@ -1,7 +1,7 @@
 //! `rspose compare`: every method on a set of pair files (e.g. from a real recording),
 //! against each pair's rotation reference (ground truth, else the gyro-integrated rotation).
 
-use super::estimate::{apply_r0, R0Choice, Rows};
+use super::estimate::{apply_r0, GrsrpModelChoice, R0Choice, Rows};
 use super::{CliError, Preset, ALL_METHODS};
 use rspose::data::pair_file::PairFile;
 use rspose::estimation::readout::ReadoutOptions;
@@ -21,6 +21,9 @@ pub struct Args {
     /// Where grsrp/grsrp+ take R_0 from (default: the preset's).
     #[arg(long, value_enum)]
     r0: Option<R0Choice>,
+    /// The model grsrp/grsrp+ score and refine with (default: the preset's).
+    #[arg(long, value_enum)]
+    grsrp_model: Option<GrsrpModelChoice>,
     /// Row rotations for pairs with a gyro log.
     #[arg(long, value_enum, default_value_t = Rows::Integrated)]
     rows: Rows,
@@ -86,6 +89,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
     for (pair, path) in pairs.iter().zip(&paths) {
         let mut o = a.preset.options(rspose::Method::GrsrpPlus, a.seed);
         apply_r0(&mut o, a.r0, pair, path)?;
+        if let Some(m) = a.grsrp_model {
+            o.grsrp_model = m.model();
+        }
         options.push(o);
     }
     // `grsrp-gravity` needs an accelerometer's gravity, which recordings often lack.

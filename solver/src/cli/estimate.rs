@@ -3,7 +3,7 @@
 use super::{CliError, Preset};
 use rspose::data::pair_file::PairFile;
 use rspose::experiment::evaluate::pose_errors;
-use rspose::methods::R0Source;
+use rspose::methods::{GrsrpModel, R0Source};
 use rspose::model::geometry::rotation_error_deg;
 use rspose::{estimate_relative_pose, EstimateError, Method};
 use std::path::PathBuf;
@@ -27,6 +27,10 @@ pub struct Args {
     /// rectified), or `gyro` (integrated from the pair's gyro log between the frames).
     #[arg(long, value_enum)]
     r0: Option<R0Choice>,
+    /// The model grsrp/grsrp+ score and refine with: the preset's choice (paper: `paper`,
+    /// default: `exact`).
+    #[arg(long, value_enum)]
+    grsrp_model: Option<GrsrpModelChoice>,
     /// Row rotations from a gyro log: `integrated` (exact, the default) or `constant` (the
     /// mean rate over each readout). Without a log the constant `gyro` rates are used.
     #[arg(long, value_enum, default_value_t = Rows::Integrated)]
@@ -49,6 +53,25 @@ pub enum R0Choice {
     Rectified,
     /// Integrated from the pair's gyro log.
     Gyro,
+}
+
+/// The model `grsrp`/`grsrp+` score and refine with, on the command line.
+#[derive(Debug, Clone, Copy, clap::ValueEnum, PartialEq, Eq)]
+pub enum GrsrpModelChoice {
+    /// The paper's linearised model.
+    Paper,
+    /// The exact angular model.
+    Exact,
+}
+
+impl GrsrpModelChoice {
+    /// The library's option value.
+    pub fn model(self) -> GrsrpModel {
+        match self {
+            GrsrpModelChoice::Paper => GrsrpModel::Paper,
+            GrsrpModelChoice::Exact => GrsrpModel::Exact,
+        }
+    }
 }
 
 /// Row-rotation model for pairs with a gyro log.
@@ -97,6 +120,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
     }
     let mut options = a.preset.options(method, a.seed);
     apply_r0(&mut options, a.r0, &pair, &a.pair)?;
+    if let Some(m) = a.grsrp_model {
+        options.grsrp_model = m.model();
+    }
     if a.refine_readout {
         options.readout = Some(rspose::estimation::readout::ReadoutOptions::default());
     }

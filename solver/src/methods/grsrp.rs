@@ -2,11 +2,13 @@
 //! (the library default)
 //! or is given ([`super::R0Source`]); the generated G-RSRP solver (10 or 20 solutions,
 //! [`crate::minimal::GrsrpSolver`]) runs on 5-point samples in RANSAC, each solution
-//! `R = R_0 exp([a]×)`, `t` (sign by cheirality on the sample), scored with the paper's model
-//! `m2^T [t]× (I + v2 [w2]×) R (I - v1 [w1]×) m1` with `w = −λω` (algebraic or Sampson).
-//! `grsrp+` then refines `(R, t)` by LM with unit-quaternion tangent steps and unit `t` over
-//! the RANSAC inliers: on the paper's algebraic cost with the paper's algebraic threshold,
-//! on the row-noise-weighted Sampson residual of the same model with a pixel threshold.
+//! `R = R_0 exp([a]×)`, `t` (sign by cheirality on the sample). The hypotheses are scored,
+//! locally optimised and (`grsrp+`) refined with [`super::GrsrpModel`]: the paper's model
+//! `m2^T [t]× (I + v2 [w2]×) R (I - v1 [w1]×) m1` with `w = −λω` (the paper preset) or the
+//! exact angular model it linearises (the default), algebraic or Sampson.
+//! `grsrp+` refines `(R, t)` by LM with unit-quaternion tangent steps and unit `t` over
+//! the RANSAC inliers: on the algebraic cost with the paper's algebraic threshold,
+//! on the row-noise-weighted Sampson residual with a pixel threshold.
 
 use super::noise_fit::{final_inliers, refine_and_classify};
 use super::pose_ransac::{indices, orient, point_data, run, threshold, GrsrpRansac};
@@ -15,7 +17,7 @@ use super::{
 };
 use crate::data::pair_file::Match;
 use crate::model::camera::View;
-use crate::model::epipolar::{PoseModel, ResidualKind};
+use crate::model::epipolar::ResidualKind;
 
 /// Estimate with `grsrp` (`plus = false`) or `grsrp+` (`plus = true`); inputs already
 /// validated by the caller.
@@ -33,8 +35,10 @@ pub fn estimate(
         R0Source::Given(r) => r,
     };
     let (kind, thr_sq) = threshold(view1, view2, options.robust.threshold);
+    let model = options.grsrp_model.pose_model();
     let mut est = GrsrpRansac {
         data: &data,
+        model,
         kind,
         solver: options.grsrp_solver,
         r0,
@@ -55,7 +59,7 @@ pub fn estimate(
         let r = refine_and_classify(
             &data,
             (view1, view2),
-            (PoseModel::PaperLinear, refine_kind),
+            (model, refine_kind),
             (kind, thr_sq),
             (&h, &res.inliers),
             options,
@@ -68,7 +72,7 @@ pub fn estimate(
         final_inliers(
             &data,
             (view1, view2),
-            PoseModel::PaperLinear,
+            model,
             (kind, thr_sq),
             &h,
             &options.robust,

@@ -29,6 +29,7 @@ use crate::estimation::readout::{refine_readout_scale, ReadoutOptions};
 use crate::estimation::refine::LmOptions;
 use crate::minimal::{EssentialSolver, GravitySolver, GrsrpSolver};
 use crate::model::camera::{CameraError, View};
+use crate::model::epipolar::PoseModel;
 use nalgebra::{Matrix3, Vector3};
 pub use noise_fit::NoiseFit;
 pub use quality::{Quality, QualityOptions};
@@ -46,7 +47,8 @@ pub enum Method {
     Nrsrp,
     /// `grsrp`: the paper's G-RSRP minimal solver in RANSAC.
     Grsrp,
-    /// `grsrp+`: `grsrp` + the paper's algebraic refinement.
+    /// `grsrp+`: `grsrp` + a final refinement over the inliers (the paper's algebraic cost
+    /// in the paper preset; see [`GrsrpModel`]).
     GrsrpPlus,
     /// `rectified`: undistort by gyro, 5-point RANSAC, Sampson refinement.
     Rectified,
@@ -216,6 +218,33 @@ pub enum R0Source {
     Given(Matrix3<f64>),
 }
 
+/// The model `grsrp`/`grsrp+` score, locally optimise and refine their hypotheses with.
+/// The G-RSRP solver always generates the hypotheses from the paper's linearised model;
+/// only what judges and polishes them differs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum GrsrpModel {
+    /// The paper's linearised model
+    /// `m2^T [t]× (I + v2 [w2]×) R (I - v1 [w1]×) m1` (used by [`EstimateOptions::paper`]).
+    /// Its first-order row rotation errs by about `f (v λ |ω|)² / 2` px at row `v`, so
+    /// the pose it refines to is biased at fast rotation and the inlier test must allow for
+    /// the truncation error, which admits more outliers at late rows.
+    Paper,
+    /// The exact angular model `(Ω2(v2)^T m2)^T [t]× R (Ω1(v1)^T m1)` (`rectified`'s), of
+    /// which the paper's is the first-order expansion in `v λ ω`. Default.
+    #[default]
+    Exact,
+}
+
+impl GrsrpModel {
+    /// The residual model it names.
+    pub fn pose_model(self) -> PoseModel {
+        match self {
+            GrsrpModel::Paper => PoseModel::PaperLinear,
+            GrsrpModel::Exact => PoseModel::ExactAngular,
+        }
+    }
+}
+
 /// All options of [`estimate_relative_pose`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct EstimateOptions {
@@ -233,6 +262,9 @@ pub struct EstimateOptions {
     pub gravity_solver: GravitySolver,
     /// Source of `R_0` for `grsrp`/`grsrp+`.
     pub r0_source: R0Source,
+    /// The model `grsrp`/`grsrp+` score and refine with (default [`GrsrpModel::Exact`];
+    /// the paper preset: [`GrsrpModel::Paper`]).
+    pub grsrp_model: GrsrpModel,
     /// Cauchy loss scale of `nrsrp`, in pixels (default 2).
     pub nrsrp_cauchy_px: f64,
     /// Thresholds of the quality flags on every estimate.
@@ -255,6 +287,7 @@ impl EstimateOptions {
         EstimateOptions {
             method,
             r0_source: R0Source::Gsrp,
+            grsrp_model: GrsrpModel::Paper,
             robust: RobustOptions {
                 threshold: Threshold::Algebraic(0.01),
                 global_shutter_threshold: Threshold::Algebraic(0.01),
@@ -320,6 +353,7 @@ impl Default for EstimateOptions {
             grsrp_solver: GrsrpSolver::Ten,
             gravity_solver: GravitySolver::Six,
             r0_source: R0Source::Rectified,
+            grsrp_model: GrsrpModel::Exact,
             nrsrp_cauchy_px: 2.0,
             quality: QualityOptions::default(),
             velocity: VelocityOptions::default(),

@@ -233,9 +233,11 @@ impl RansacEstimator for EssentialRansac<'_> {
     }
 }
 
-/// G-RSRP RANSAC: the generated solver with a fixed `R_0`, scored with the paper's model.
+/// G-RSRP RANSAC: the generated solver with a fixed `R_0`, scored (and locally optimised)
+/// with `model`: the paper's linearised model or the exact angular one.
 pub(crate) struct GrsrpRansac<'a> {
     pub data: &'a PointData,
+    pub model: PoseModel,
     pub kind: ResidualKind,
     pub solver: GrsrpSolver,
     pub r0: Matrix3<f64>,
@@ -268,7 +270,7 @@ impl RansacEstimator for GrsrpRansac<'_> {
     fn residual_sq(&self, m: &Hypothesis, i: usize) -> f64 {
         let r = self
             .data
-            .residual(PoseModel::PaperLinear, self.kind, i, &m.r, &m.t, &m.e);
+            .residual(self.model, self.kind, i, &m.r, &m.t, &m.e);
         if r.is_finite() {
             r * r
         } else {
@@ -276,22 +278,16 @@ impl RansacEstimator for GrsrpRansac<'_> {
         }
     }
     fn score_bounded(&self, m: &Hypothesis, thr_sq: f64, bound: f64) -> Score {
-        let (msac, inliers) = self.data.msac(
-            PoseModel::PaperLinear,
-            self.kind,
-            &m.r,
-            &m.t,
-            &m.e,
-            thr_sq,
-            bound,
-        );
+        let (msac, inliers) = self
+            .data
+            .msac(self.model, self.kind, &m.r, &m.t, &m.e, thr_sq, bound);
         Score { msac, inliers }
     }
     fn refine(&self, m: &Hypothesis, inliers: &[usize], thr_sq: f64) -> Option<Hypothesis> {
         let res = refine_pose(
             self.data,
             inliers,
-            PoseModel::PaperLinear,
+            self.model,
             self.kind,
             Loss::Truncated(thr_sq.sqrt()),
             m.pose(),

@@ -75,7 +75,7 @@ pub(crate) fn classify_all(
         Method::Grsrp | Method::GrsrpPlus => (
             view1.clone(),
             view2.clone(),
-            PoseModel::PaperLinear,
+            options.grsrp_model.pose_model(),
             threshold(view1, view2, robust.threshold),
         ),
         Method::Nrsrp => {

@@ -16,6 +16,7 @@
 //! No equation is dropped as a normalisation then: one in `t` alone would constrain it.
 
 use crate::algebra::{Monomial, Poly, Ring};
+use std::collections::HashMap;
 use thiserror::Error;
 
 /// Why a set of unknowns cannot be eliminated linearly.
@@ -83,6 +84,19 @@ pub fn eliminate_linear<C: Ring>(
     equations: &[Poly<C>],
     nvars: usize,
     eliminated: &[usize],
+) -> Result<Eliminated<C>, EliminateError> {
+    eliminate_linear_selected(equations, nvars, eliminated, None)
+}
+
+/// [`eliminate_linear`] that computes only the equations `wanted` (indices into the full
+/// list of [`Eliminated::equations`], increasing) and returns those, in that order; all of
+/// them with `None`. The minors are the costly part, and most are often redundant (see
+/// [`crate::independent`]).
+pub fn eliminate_linear_selected<C: Ring>(
+    equations: &[Poly<C>],
+    nvars: usize,
+    eliminated: &[usize],
+    wanted: Option<&[usize]>,
 ) -> Result<Eliminated<C>, EliminateError> {
     let mut elim: Vec<usize> = eliminated.to_vec();
     elim.sort_unstable();
@@ -152,13 +166,23 @@ pub fn eliminate_linear<C: Ring>(
         });
     }
     let dropped = only_eliminated;
-    let mut equations_out = kept;
-    for rows in combinations(matrix.len(), cols) {
+    let free = kept.len();
+    let is_wanted = |i: usize| wanted.is_none_or(|w| w.binary_search(&i).is_ok());
+    let mut equations_out: Vec<Poly<C>> = kept
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| is_wanted(*i))
+        .map(|(_, e)| e)
+        .collect();
+    for (k, rows) in combinations(matrix.len(), cols).into_iter().enumerate() {
+        // Every minor has its index, zero or not: equations are referred to by index, and a
+        // minor that vanishes on the whole data family (e.g. three rows of one cross
+        // product, of rank 2) is exactly zero mod p but rounding noise in f64, so dropping
+        // the zero ones would number the equations differently over the two rings.
+        if !is_wanted(free + k) {
+            continue;
+        }
         let sub: Vec<Vec<Poly<C>>> = rows.iter().map(|&r| matrix[r].clone()).collect();
-        // Every minor is kept, zero or not: equations are referred to by index, and a minor
-        // that vanishes on the whole data family (e.g. three rows of one cross product,
-        // of rank 2) is exactly zero mod p but rounding noise in f64, so dropping the zero
-        // ones would number the equations differently over the two rings.
         equations_out.push(determinant(&sub, nrem));
     }
     Ok(Eliminated {
@@ -191,38 +215,47 @@ fn combinations(n: usize, k: usize) -> Vec<Vec<usize>> {
 }
 
 /// Determinant of a square matrix of polynomials by Laplace expansion along the first row
-/// (division-free, so it works over any ring; the eliminated blocks are tiny).
+/// (division-free, so it works over any ring), each minor of the lower rows computed once
+/// (memoised by its column set: `2^n` minors instead of `n!` expansions, with the same
+/// operations in the same order as the plain expansion).
 fn determinant<C: Ring>(m: &[Vec<Poly<C>>], nvars: usize) -> Poly<C> {
     let n = m.len();
-    match n {
-        0 => Poly::constant(nvars, C::one()),
-        1 => m[0][0].clone(),
-        _ => {
-            let mut acc = Poly::zero(nvars);
-            for j in 0..n {
-                if m[0][j].is_zero() {
-                    continue;
-                }
-                let minor: Vec<Vec<Poly<C>>> = m[1..]
-                    .iter()
-                    .map(|row| {
-                        row.iter()
-                            .enumerate()
-                            .filter(|(c, _)| *c != j)
-                            .map(|(_, p)| p.clone())
-                            .collect()
-                    })
-                    .collect();
-                let term = m[0][j].mul(&determinant(&minor, nvars));
-                acc = if j % 2 == 0 {
-                    acc.add(&term)
-                } else {
-                    acc.sub(&term)
-                };
-            }
-            acc
-        }
+    if n == 0 {
+        return Poly::constant(nvars, C::one());
     }
+    let mut memo = HashMap::new();
+    lower_minor(m, 0, &(0..n).collect::<Vec<_>>(), nvars, &mut memo)
+}
+
+/// The minor of rows `row..` and columns `columns` of `m` (see [`determinant`]).
+fn lower_minor<C: Ring>(
+    m: &[Vec<Poly<C>>],
+    row: usize,
+    columns: &[usize],
+    nvars: usize,
+    memo: &mut HashMap<Vec<usize>, Poly<C>>,
+) -> Poly<C> {
+    if columns.len() == 1 {
+        return m[row][columns[0]].clone();
+    }
+    if let Some(p) = memo.get(columns) {
+        return p.clone();
+    }
+    let mut acc = Poly::zero(nvars);
+    for (j, &c) in columns.iter().enumerate() {
+        if m[row][c].is_zero() {
+            continue;
+        }
+        let rest: Vec<usize> = columns.iter().copied().filter(|&x| x != c).collect();
+        let term = m[row][c].mul(&lower_minor(m, row + 1, &rest, nvars, memo));
+        acc = if j % 2 == 0 {
+            acc.add(&term)
+        } else {
+            acc.sub(&term)
+        };
+    }
+    memo.insert(columns.to_vec(), acc.clone());
+    acc
 }
 
 #[cfg(test)]

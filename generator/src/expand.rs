@@ -26,6 +26,9 @@ pub struct Problem {
     /// `divisions[i][k]`: how many times equation `i` of the system (after elimination) is
     /// divided by the k-th `nonzero` expression (see [`Problem::with_divisions`]).
     divisions: Vec<Vec<u32>>,
+    /// The equations of the system (after elimination and division) that are kept, in
+    /// order; `None`: all (see [`Problem::with_independent`]).
+    independent: Option<Vec<usize>>,
 }
 
 /// Failure to load a problem file.
@@ -440,6 +443,7 @@ impl Problem {
             needed,
             nonzero,
             divisions,
+            independent: None,
         }
     }
 
@@ -483,6 +487,21 @@ impl Problem {
     /// See [`Problem::with_divisions`] (empty when nothing is divided).
     pub fn divisions(&self) -> &[Vec<u32>] {
         &self.divisions
+    }
+
+    /// The same problem keeping only equations `kept` (indices, increasing) of its system
+    /// after elimination and division: planning drops those that are linear combinations
+    /// of the others on the whole data family ([`crate::independent`]), which changes
+    /// neither the ideal nor the solutions.
+    pub fn with_independent(&self, kept: Vec<usize>) -> Problem {
+        let mut p = self.clone();
+        p.independent = Some(kept);
+        p
+    }
+
+    /// See [`Problem::with_independent`] (`None`: every equation is kept).
+    pub fn independent(&self) -> Option<&[usize]> {
+        self.independent.as_deref()
     }
 
     /// Each `nonzero` expression as a polynomial in the declared (not hidden) unknowns,

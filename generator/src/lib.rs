@@ -1,7 +1,7 @@
 //! # mingen — a minimal-solver generator
 //!
 //! Pipeline (one module per stage, in order):
-//! `problem file -> lang (parse, check) -> expand -> eliminate -> instance (Z_p / f64 data)
+//! `problem file -> lang (parse, check) -> expand -> eliminate -> independent -> instance (Z_p / f64 data)
 //!  -> groebner -> quotient (basis, #solutions) -> template (search, build, shrink,
 //!  validate) -> emit`, with `interpret` + `audit` solving the same template in f64 without
 //! compilation. [`pipeline`] is the one module that runs the stages in that order.
@@ -19,6 +19,7 @@ pub mod build;
 pub mod eliminate;
 pub mod emit;
 pub mod groebner;
+pub mod independent;
 pub mod instances_file;
 pub mod interpret;
 pub mod problem;

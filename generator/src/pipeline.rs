@@ -2,7 +2,9 @@
 //! stages in order:
 //!
 //! 1. [`plan_file`]: problem file -> [`Problem`] (lexer, parser, checker, expansion);
-//! 2. [`plan`]: options resolved, the linear elimination checked, then [`find_template`]:
+//! 2. [`plan`]: options resolved, the linear elimination checked, `nonzero` expressions
+//!    divided out, equations that are combinations of others dropped
+//!    ([`crate::independent`]), then [`find_template`]:
 //!    random instances mod p -> Gröbner basis, solution count and quotient basis
 //!    ([`analyse_within`]) -> best elimination template on that same instance and Gröbner
 //!    basis ([`best_template`](crate::template::best_template)) -> validation on fresh
@@ -15,7 +17,7 @@
 //! files is `crate::generate`'s and `crate::build`'s.
 
 use crate::algebra::{Fp, Monomial, MonomialOrder, Poly, Ring};
-use crate::eliminate::{eliminate_linear, EliminateError, Eliminated};
+use crate::eliminate::{eliminate_linear_selected, EliminateError, Eliminated};
 use crate::emit::{
     emit_solver, CodeForm, EliminationSpec, EmitError, PolishSpec, SolverSpec, Tracer,
 };
@@ -151,19 +153,37 @@ fn system_and_factors<C: Ring>(
             .try_evaluate_with_nonzero(data)
             .unwrap_or_else(|e| panic!("evaluating problem {}: {e}", problem.layout.name))
     };
+    // Only the kept equations are computed (the minors of an elimination are the costly
+    // part); `index` numbers them in the full system, which divisions refer to.
+    let kept = problem.independent();
     let (mut equations, mut elimination) = if problem.layout.eliminate.is_empty() {
+        let equations = match kept {
+            None => equations,
+            Some(kept) => {
+                let mut all: Vec<Option<Poly<C>>> = equations.into_iter().map(Some).collect();
+                kept.iter().filter_map(|&i| all.get_mut(i)?.take()).collect()
+            }
+        };
         (equations, None)
     } else {
-        let e = eliminate_linear(
+        let e = eliminate_linear_selected(
             &equations,
             problem.layout.unknown_count(),
             &problem.layout.eliminate,
+            kept,
         )?;
         (e.equations.clone(), Some(e))
     };
+    let index: Vec<usize> = match kept {
+        Some(kept) => kept.to_vec(),
+        None => (0..equations.len()).collect(),
+    };
     let factors = system_variables(problem, &expressions);
     if problem.divisions().iter().flatten().any(|&d| d > 0) {
-        for (eq, counts) in equations.iter_mut().zip(problem.divisions()) {
+        for (eq, &i) in equations.iter_mut().zip(&index) {
+            let Some(counts) = problem.divisions().get(i) else {
+                continue;
+            };
             for (factor, &count) in factors.iter().zip(counts) {
                 let Some(factor) = factor else { continue };
                 for _ in 0..count {
@@ -178,6 +198,24 @@ fn system_and_factors<C: Ring>(
         }
     }
     Ok(((equations, elimination), factors))
+}
+
+/// `problem` keeping only a linearly independent subset of its system's equations that
+/// spans the others (see [`crate::independent`]); unchanged when every equation is needed.
+fn drop_dependent_equations(problem: Problem, seed: u64) -> Problem {
+    const P: u32 = crate::algebra::P1;
+    let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(seed ^ 0x1d9e);
+    let mut instance = || {
+        let data = random_data_fp::<P>(&problem.layout, &mut rng);
+        system(&problem, &data).ok().map(|(equations, _)| equations)
+    };
+    let (Some(first), Some(second)) = (instance(), instance()) else {
+        return problem;
+    };
+    match crate::independent::independent_subset(&first, &second) {
+        Some(kept) => problem.with_independent(kept),
+        None => problem,
+    }
 }
 
 /// The `nonzero` expressions in a system's variables (see [`system_and_factors`]).
@@ -428,7 +466,7 @@ pub fn plan(
             });
         }
     }
-    let problem = divide_out_nonzero(problem, options);
+    let problem = drop_dependent_equations(divide_out_nonzero(problem, options), options.seed);
     let mut generated =
         find_template(&ProblemSource::new(&problem), options).map_err(|source| {
             PipelineError::Template {

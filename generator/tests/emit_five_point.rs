@@ -512,9 +512,17 @@ fn invalid_templates_are_rejected() {
     let mut bad = spec.clone();
     bad.layout.name = "five-point".into();
     assert!(emit_solver(&bad).is_err(), "not a module name");
-    let mut bad = spec;
-    bad.layout.data[1].name = "e1".into();
+    let mut bad = spec.clone();
+    bad.layout.data[1].name = bad.layout.data[0].name.clone();
     assert!(emit_solver(&bad).is_err(), "field name collision");
+    // Names that differ only in case keep their spelling as fields.
+    let mut cased = spec;
+    cased.layout.data[1].name = cased.layout.data[0].name.to_lowercase();
+    let code = emit_solver(&cased).unwrap();
+    syn::parse_file(&code).expect("emitted code parses");
+    let (upper, lower) = (&cased.layout.data[0].name, &cased.layout.data[1].name);
+    assert!(code.contains(&format!("pub {upper}:")) && code.contains(&format!("pub {lower}:")));
+    assert!(code.contains("#[allow(non_snake_case)]"));
 }
 
 /// Templates above 40 rows are allocated on the heap (here: the 5-point rows repeated to 45

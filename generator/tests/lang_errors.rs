@@ -224,13 +224,6 @@ const CASES: &[(&str, &str, usize, usize, &str)] = &[
         "field name 'type' is a Rust keyword",
     ),
     (
-        "case_clash",
-        "problem p\nunknown x\ndata E: mat3,\n     e: mat3\nx = 0\n",
-        4,
-        6,
-        "data name 'e' clashes with 'E': both become the field name 'e'",
-    ),
-    (
         "scalar_name_clash",
         "problem p\nunknown t[3], t2\nt2 = 0\n",
         2,

@@ -4,7 +4,9 @@ use super::action::action_matrix_tokens;
 use super::coefficients::{Expr, Program, VarStyle};
 use super::files::generated_header_for_path;
 use super::runtime_api as rt;
-use super::structs::{emit_data, emit_solution, field_ident, slot_access};
+use super::structs::{
+    data_field_idents, emit_data, emit_solution, slot_access, solution_field_idents,
+};
 use super::tokens::{doc, lit};
 use super::traced::Traced;
 use super::{CodeForm, EmitError, SolverSpec};
@@ -469,8 +471,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     // Data flattening, in slot order.
     let n_slots = layout.data_slot_count();
     let mut slot_expr: Vec<Option<TokenStream>> = vec![None; n_slots];
-    for d in &layout.data {
-        let field = field_ident(&d.name, "data")?;
+    for (d, field) in layout.data.iter().zip(data_field_idents(layout)?) {
         let per = d.kind.slots();
         for e in 0..d.len.unwrap_or(1) {
             for k in 0..per {
@@ -691,8 +692,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         None => (quote!(), quote!()),
     };
     let mut field_inits = Vec::new();
-    for u in layout.declared_unknowns() {
-        let id = field_ident(&u.name, "unknown")?;
+    for (u, id) in layout.declared_unknowns().zip(solution_field_idents(layout)?) {
         let polished = spec.polish.is_some();
         let val = |i: usize| {
             if polished {

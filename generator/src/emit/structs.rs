@@ -9,26 +9,54 @@ use proc_macro2::{Ident, TokenStream};
 use quote::quote;
 use std::collections::BTreeSet;
 
-/// Lowercased symbol name as a Rust field identifier.
-pub(super) fn field_ident(name: &str, what: &str) -> Result<Ident, EmitError> {
-    let lower = name.to_lowercase();
-    syn::parse_str::<Ident>(&lower).map_err(|_| {
-        EmitError::Unsupported(format!(
-            "{what} `{name}` does not give a Rust field name (`{lower}` is not an identifier or is a keyword)"
-        ))
-    })
-}
-
-pub(super) fn check_unique(idents: &[Ident], what: &str) -> Result<(), EmitError> {
+/// The Rust field identifiers of one struct's symbols, in order: each name lowercased,
+/// except names that lowercase to the same word (`x` and `X`), which keep their spelling
+/// (the struct then allows non-snake-case fields). The rule depends on the set of names,
+/// not their order, and never maps two names to one field.
+pub(super) fn field_idents<'a>(
+    names: impl Iterator<Item = &'a str>,
+    what: &str,
+) -> Result<Vec<Ident>, EmitError> {
+    let names: Vec<&str> = names.collect();
+    let lower: Vec<String> = names.iter().map(|n| n.to_lowercase()).collect();
+    let idents = names
+        .iter()
+        .zip(&lower)
+        .map(|(name, l)| {
+            let shared = lower.iter().filter(|m| *m == l).count() > 1;
+            let field = if shared { name } else { l.as_str() };
+            syn::parse_str::<Ident>(field).map_err(|_| {
+                EmitError::Unsupported(format!(
+                    "{what} `{name}` does not give a Rust field name (`{field}` is not an identifier or is a keyword)"
+                ))
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
     let mut seen = BTreeSet::new();
-    for i in idents {
+    for i in &idents {
         if !seen.insert(i.to_string()) {
             return Err(EmitError::Unsupported(format!(
-                "two {what} symbols map to the field name `{i}` (names are lowercased)"
+                "two {what} symbols map to the field name `{i}`"
             )));
         }
     }
-    Ok(())
+    Ok(idents)
+}
+
+/// The struct attribute and the documentation's naming note for `idents`: all lowercase
+/// (the usual case), or some names kept as spelled.
+fn naming(idents: &[Ident]) -> (TokenStream, &'static str) {
+    if idents
+        .iter()
+        .all(|i| !i.to_string().chars().any(char::is_uppercase))
+    {
+        (quote!(), "lowercased")
+    } else {
+        (
+            quote!(#[allow(non_snake_case)]),
+            "lowercased, except names that differ only in case, which keep their spelling",
+        )
+    }
 }
 
 pub(super) fn element_type(kind: DataKind) -> TokenStream {
@@ -83,13 +111,18 @@ pub(super) fn slot_access(field: &Ident, ds: &DataSymbol, e: usize, k: usize) ->
     }
 }
 
+/// The `Data` struct's field identifiers, in the layout's data order.
+pub(super) fn data_field_idents(layout: &ProblemLayout) -> Result<Vec<Ident>, EmitError> {
+    field_idents(layout.data.iter().map(|d| d.name.as_str()), "data")
+}
+
+/// The `Solution` struct's field identifiers, in declaration order.
+pub(super) fn solution_field_idents(layout: &ProblemLayout) -> Result<Vec<Ident>, EmitError> {
+    field_idents(layout.declared_unknowns().map(|u| u.name.as_str()), "unknown")
+}
+
 pub(super) fn emit_data(layout: &ProblemLayout) -> Result<TokenStream, EmitError> {
-    let idents = layout
-        .data
-        .iter()
-        .map(|d| field_ident(&d.name, "data"))
-        .collect::<Result<Vec<_>, _>>()?;
-    check_unique(&idents, "data")?;
+    let idents = data_field_idents(layout)?;
     let mut fields = Vec::new();
     let mut zeros = Vec::new();
     let mut big = false;
@@ -140,14 +173,16 @@ pub(super) fn emit_data(layout: &ProblemLayout) -> Result<TokenStream, EmitError
             quote!(),
         )
     };
+    let (allow, note) = naming(&idents);
     let d = doc(format!(
-        "Input data of `{}`: one field per data symbol of the problem file (lowercased).",
+        "Input data of `{}`: one field per data symbol of the problem file ({note}).",
         layout.name
     ));
     let slot_impl = emit_data_slots(layout, &idents)?;
     Ok(quote! {
         #d
         #derive
+        #allow
         pub struct Data { #(#fields)* }
         #default_impl
         #slot_impl
@@ -259,11 +294,7 @@ fn emit_data_slots(layout: &ProblemLayout, idents: &[Ident]) -> Result<TokenStre
 }
 
 pub(super) fn emit_solution(layout: &ProblemLayout) -> Result<TokenStream, EmitError> {
-    let idents = layout
-        .declared_unknowns()
-        .map(|u| field_ident(&u.name, "unknown"))
-        .collect::<Result<Vec<_>, _>>()?;
-    check_unique(&idents, "unknown")?;
+    let idents = solution_field_idents(layout)?;
     let mut fields = Vec::new();
     let mut zeros = Vec::new();
     let mut big = false;
@@ -304,14 +335,16 @@ pub(super) fn emit_solution(layout: &ProblemLayout) -> Result<TokenStream, EmitE
             quote!(),
         )
     };
+    let (allow, note) = naming(&idents);
     let d = doc(format!(
-        "One real solution of `{}`: one field per unknown symbol (lowercased).",
+        "One real solution of `{}`: one field per unknown symbol ({note}).",
         layout.name
     ));
     let unknowns_impl = emit_solution_unknowns(layout, &idents);
     Ok(quote! {
         #d
         #derive
+        #allow
         pub struct Solution { #(#fields)* }
         #default_impl
         #unknowns_impl

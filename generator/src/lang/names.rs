@@ -1,7 +1,8 @@
 //! Declared names that the emitter turns into Rust identifiers, checked where they are
 //! declared so that a problem `inspect` accepts is one `generate` can emit: the problem
-//! name becomes a module name, data and unknown symbols become struct fields (lowercased).
-//! A Rust keyword, or two names equal after lowercasing, is an error at the declaration.
+//! name becomes a module name, data and unknown symbols become struct fields (lowercased,
+//! except names that differ only in case, which keep their spelling). A name whose field
+//! could be a Rust keyword is an error at the declaration.
 
 use super::ast::Name;
 use super::LangError;
@@ -27,25 +28,23 @@ pub fn check_problem_name(name: &Name) -> Result<(), LangError> {
     }
 }
 
-/// The field names taken so far, per struct (data, solution), with the declared names.
+/// The scalar unknown names taken so far; data and unknown names are checked one by one.
 #[derive(Default)]
 pub struct FieldNames {
-    data: HashMap<String, String>,
-    unknowns: HashMap<String, String>,
     /// Scalar names of the unknowns (`t1 t2 t3` for `t[3]`), which name the unknowns in
     /// messages and the solution's flat order.
     scalars: HashMap<String, String>,
 }
 
 impl FieldNames {
-    /// Records a data symbol's field name, or says why it cannot be one.
+    /// Checks that a data symbol gives a field name.
     pub fn data(&mut self, name: &Name) -> Result<(), LangError> {
-        field(&mut self.data, name, "data")
+        field(name, "data")
     }
 
-    /// Records an unknown's field name and scalar names (`len` entries for an array).
+    /// Checks an unknown's field name and records its scalar names (`len` entries for an array).
     pub fn unknown(&mut self, name: &Name, len: Option<usize>) -> Result<(), LangError> {
-        field(&mut self.unknowns, name, "unknown")?;
+        field(name, "unknown")?;
         let scalars: Vec<String> = match len {
             None => vec![name.name.clone()],
             Some(n) => (1..=n).map(|i| format!("{}{i}", name.name)).collect(),
@@ -66,26 +65,20 @@ impl FieldNames {
     }
 }
 
-fn field(taken: &mut HashMap<String, String>, name: &Name, what: &str) -> Result<(), LangError> {
+fn field(name: &Name, what: &str) -> Result<(), LangError> {
+    // The field is the lowercased name, or the name as written when another name of the
+    // struct lowercases alike (`emit::structs::field_idents`): both must be identifiers.
     let lower = name.name.to_lowercase();
-    if !is_rust_ident(&lower) {
-        return Err(LangError::new(
-            name.pos,
-            format!(
-                "{what} name '{}' cannot be emitted: its field name '{lower}' is a Rust keyword",
-                name.name
-            ),
-        ));
+    for field in [&lower, &name.name] {
+        if !is_rust_ident(field) {
+            return Err(LangError::new(
+                name.pos,
+                format!(
+                    "{what} name '{}' cannot be emitted: its field name '{field}' is a Rust keyword",
+                    name.name
+                ),
+            ));
+        }
     }
-    if let Some(other) = taken.get(&lower) {
-        return Err(LangError::new(
-            name.pos,
-            format!(
-                "{what} name '{}' clashes with '{other}': both become the field name '{lower}' (names are lowercased)",
-                name.name
-            ),
-        ));
-    }
-    taken.insert(lower, name.name.clone());
     Ok(())
 }

@@ -47,7 +47,7 @@ pub mod build;
 mod candidates;
 mod error;
 pub mod explore;
-mod linalg;
+pub(crate) mod linalg;
 mod options;
 pub mod search;
 pub mod select;

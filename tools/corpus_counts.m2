@@ -108,4 +108,11 @@ report("relpose_known_rotation_2pt", ideal(apply(2, i -> sc(transpose x2D_i * sk
 R = QQ[e1,e2,e3,e4,e5,e6,e7,e8]; x1D = apply(5,i->sub(pt(),R)); x2D = apply(5,i->sub(pt(),R));
 Em = matrix{{e1,e2,e3},{e4,e5,e6},{e7,e8,1}};
 report("relpose_5pt_entries", ideal(apply(5, i -> sc(transpose x2D_i * Em * x1D_i))) + ideal(det Em) + ideal(flatten entries (2*Em*transpose(Em)*Em - trace(Em*transpose(Em))*Em)));
+-- r6p (the linearised rolling-shutter absolute pose; unknowns renamed: `v3` and `CC` are taken)
+R = QQ[vx,vy,vz,wx,wy,wz,cx,cy,cz,tx,ty,tz];
+vv = matrix{{vx},{vy},{vz}}; ww = matrix{{wx},{wy},{wz}}; Cv = matrix{{cx},{cy},{cz}}; tt = matrix{{tx},{ty},{tz}};
+I3 = id_(R^3);
+report("r6p", ideal flatten apply(6, i -> (x := sub(pt(),R); X := sub(v3(),R); u := x_(1,0);
+  P := (I3 + u*sk(ww))*(I3 + sk(vv))*X + Cv + u*tt;
+  {u*P_(2,0) - P_(1,0), P_(0,0) - x_(0,0)*P_(2,0)})));
 exit 0

@@ -167,7 +167,7 @@ pub fn eliminate_linear_selected<C: Ring>(
     }
     let dropped = only_eliminated;
     let free = kept.len();
-    let is_wanted = |i: usize| wanted.is_none_or(|w| w.binary_search(&i).is_ok());
+    let is_wanted = |i: usize| wanted.map_or(true, |w| w.binary_search(&i).is_ok());
     let mut equations_out: Vec<Poly<C>> = kept
         .into_iter()
         .enumerate()
@@ -193,6 +193,33 @@ pub fn eliminate_linear_selected<C: Ring>(
         inhomogeneous,
         dropped,
     })
+}
+
+/// The unknowns among `candidates` (flat indices) that every equation has only in terms of
+/// degree one: `c x` with `c` free of unknowns (data and numbers), as an absolute pose's
+/// translation. Eliminating them ([`eliminate_linear`]) leaves the minors of a matrix
+/// `[A b]` whose `A` involves no unknown, so the minors are combinations of the entries of
+/// `b`: as many independent equations as rows beyond the unknowns, of `b`'s degree.
+pub fn purely_linear_unknowns<C: Ring>(
+    equations: &[Poly<C>],
+    candidates: impl IntoIterator<Item = usize>,
+) -> Vec<usize> {
+    candidates
+        .into_iter()
+        .filter(|&x| {
+            let mut appears = false;
+            let only_linear = equations.iter().all(|e| {
+                e.terms().all(|(m, _)| match m.0.get(x) {
+                    Some(&k) if k > 0 => {
+                        appears = true;
+                        k == 1 && m.0.iter().map(|&d| u32::from(d)).sum::<u32>() == 1
+                    }
+                    _ => true,
+                })
+            });
+            appears && only_linear
+        })
+        .collect()
 }
 
 /// All `k`-subsets of `0..n` in lexicographic order.

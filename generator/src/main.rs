@@ -135,6 +135,11 @@ struct SearchArgs {
     /// default: the file's `option newton`, else 0).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=8))]
     newton: Option<u32>,
+    /// Eliminate the unknowns that appear only linearly with data coefficients (`yes`,
+    /// the default, when it keeps the solution count) or keep them (`no`); default: the
+    /// file's `option auto_eliminate`.
+    #[arg(long, value_name = "yes|no", value_parser = ["yes", "no"])]
+    auto_eliminate: Option<String>,
 }
 
 impl SearchArgs {
@@ -152,6 +157,7 @@ impl SearchArgs {
                 extra_degree: self.extra_degree,
                 basis: self.basis.clone(),
                 newton: self.newton,
+                auto_eliminate: self.auto_eliminate.as_deref().map(|v| v == "yes"),
             },
             ..TemplateOptions::default()
         })
@@ -336,9 +342,15 @@ fn problem_summary(p: &Problem) -> Map<String, Value> {
 }
 
 fn inspect(file: &PathBuf, as_json: bool, options: &TemplateOptions) -> Result<(), CliError> {
-    let p = Problem::from_file(file)?;
-    let mut summary = problem_summary(&p);
+    let parsed = Problem::from_file(file)?;
     let plan = plan_file(file, options)?;
+    // The planned problem: the file's, with what planning added (automatic elimination).
+    let p = &plan.problem;
+    let mut summary = problem_summary(p);
+    summary.insert(
+        "eliminated_automatically".into(),
+        json!(parsed.layout.eliminate.is_empty() && !p.layout.eliminate.is_empty()),
+    );
     if let Value::Object(algebra) = plan.summary_json() {
         summary.extend(algebra);
     }
@@ -357,7 +369,12 @@ fn inspect(file: &PathBuf, as_json: bool, options: &TemplateOptions) -> Result<(
             .iter()
             .filter_map(|&i| names.get(i).map(String::as_str))
             .collect();
-        outln!(out, "eliminate: {}", el.join(" "));
+        let how = if parsed.layout.eliminate.is_empty() {
+            " (automatic: they appear only linearly, with data coefficients; `option auto_eliminate = no` keeps them)"
+        } else {
+            ""
+        };
+        outln!(out, "eliminate: {}{how}", el.join(" "));
     }
     outln!(out, "data ({} slots):", p.layout.data_slot_count());
     for d in &p.layout.data {
@@ -421,6 +438,13 @@ fn print_plan(out: &mut String, plan: &mingen::pipeline::SolverPlan) {
                 divisions.len()
             );
         }
+    }
+    if let Some(kept) = plan.problem.independent() {
+        outln!(
+            out,
+            "equations kept: {} (the others are linear combinations of them)",
+            kept.len()
+        );
     }
     outln!(
         out,

@@ -17,7 +17,9 @@
 //! files is `crate::generate`'s and `crate::build`'s.
 
 use crate::algebra::{Fp, Monomial, MonomialOrder, Poly, Ring};
-use crate::eliminate::{eliminate_linear_selected, EliminateError, Eliminated};
+use crate::eliminate::{
+    eliminate_linear_selected, purely_linear_unknowns, EliminateError, Eliminated,
+};
 use crate::emit::{
     emit_solver, CodeForm, EliminationSpec, EmitError, PolishSpec, SolverSpec, Tracer,
 };
@@ -161,7 +163,9 @@ fn system_and_factors<C: Ring>(
             None => equations,
             Some(kept) => {
                 let mut all: Vec<Option<Poly<C>>> = equations.into_iter().map(Some).collect();
-                kept.iter().filter_map(|&i| all.get_mut(i)?.take()).collect()
+                kept.iter()
+                    .filter_map(|&i| all.get_mut(i)?.take())
+                    .collect()
             }
         };
         (equations, None)
@@ -198,6 +202,48 @@ fn system_and_factors<C: Ring>(
         }
     }
     Ok(((equations, elimination), factors))
+}
+
+/// `problem` with its purely linear unknowns eliminated as `eliminate` would
+/// ([`purely_linear_unknowns`]: every term that has one is that unknown times data), when
+/// the file eliminates nothing, allows it (`option auto_eliminate`), the elimination is
+/// inhomogeneous (so each solution keeps its own values of them, recovered from the null
+/// vector; a homogeneous one would identify solutions that differ in their scale) and the
+/// solution count stays the same. Unchanged otherwise.
+fn eliminate_linear_unknowns(problem: Problem, options: &TemplateOptions) -> Problem {
+    const P: u32 = crate::algebra::P1;
+    let layout = &problem.layout;
+    let allowed = options
+        .overrides
+        .auto_eliminate
+        .or(layout.options.auto_eliminate)
+        .unwrap_or(true);
+    if !layout.eliminate.is_empty() || !allowed {
+        return problem;
+    }
+    let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(options.seed ^ 0xe11a);
+    let data = random_data_fp::<P>(layout, &mut rng);
+    let visible = layout.unknown_count() - layout.hidden_count();
+    let linear = purely_linear_unknowns(&problem.evaluate(&data), 0..visible);
+    if linear.is_empty() || linear.len() == visible {
+        return problem;
+    }
+    let mut eliminated = problem.clone();
+    eliminated.layout.eliminate = linear;
+    match system(&eliminated, &data) {
+        Ok((_, Some(e))) if e.inhomogeneous => {}
+        _ => return problem,
+    }
+    let deadline = options.budget.start();
+    let count = |p: &Problem| {
+        analyse_within(&ProblemSource::new(p), options.seed, Some(deadline))
+            .ok()
+            .map(|a| a.count)
+    };
+    match (count(&eliminated), count(&problem)) {
+        (Some(a), Some(b)) if a == b => eliminated,
+        _ => problem,
+    }
 }
 
 /// `problem` keeping only a linearly independent subset of its system's equations that
@@ -466,6 +512,7 @@ pub fn plan(
             });
         }
     }
+    let problem = eliminate_linear_unknowns(problem, options);
     let problem = drop_dependent_equations(divide_out_nonzero(problem, options), options.seed);
     let mut generated =
         find_template(&ProblemSource::new(&problem), options).map_err(|source| {

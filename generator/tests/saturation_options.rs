@@ -123,6 +123,7 @@ fn options_choose_the_action_and_are_checked() {
         ("option basis = best", "option basis"),
         ("option newton = 9", "option newton"),
         ("option newton = fast", "option newton"),
+        ("option auto_eliminate = maybe", "option auto_eliminate"),
         ("option speed = 3", "unknown option 'speed'"),
     ] {
         let e = Problem::parse(&format!("{src}{line}\n"), "c.mp").unwrap_err();

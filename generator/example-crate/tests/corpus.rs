@@ -360,3 +360,50 @@ fn p2p2pl_finds_the_planted_pose() {
         solve_flat::<ex::p2p2pl::Solver>(&flat, &[vec![b, c, d, l]])
     });
 }
+
+/// A rolling-shutter camera under the linearised model of `r6p`: small `v`, `w`, `t`, a
+/// centre term `C` that puts the points ahead, and each image point on its own row (the
+/// row `u` solves `u P_z(u) = P_y(u)`, a quadratic since `P` is linear in `u`).
+#[test]
+fn r6p_finds_the_planted_rolling_shutter_pose() {
+    check(25, 1e-8, 1e-4, |rng| {
+        let small = |rng: &mut ChaCha8Rng, s: f64| unit(rng) * rng.gen_range(0.0..s);
+        let (v, w, t) = (small(rng, 0.2), small(rng, 0.2), small(rng, 0.3));
+        let c = Vector3::new(0.0, 0.0, 5.0) + small(rng, 1.0);
+        let skew = |a: &Vector3<f64>| a.cross_matrix();
+        let rotation = Matrix3::identity() + skew(&v);
+        let mut points = Vec::new();
+        let mut world = Vec::new();
+        while world.len() < 6 {
+            let x = unit(rng) * 2.0;
+            let p0 = rotation * x + c;
+            let p1 = skew(&w) * rotation * x + t;
+            // p1z u^2 + (p0z - p1y) u - p0y = 0, the root near p0y / p0z.
+            let (a, b, q) = (p1.z, p0.z - p1.y, -p0.y);
+            let u = if a.abs() < 1e-12 {
+                -q / b
+            } else {
+                let d = b * b - 4.0 * a * q;
+                if d < 0.0 {
+                    continue;
+                }
+                let sq = d.sqrt() * b.signum();
+                2.0 * -q / (b + sq)
+            };
+            let p = p0 + p1 * u;
+            if p.z < 0.5 {
+                continue;
+            }
+            points.push([p.x / p.z, u]);
+            world.push(x);
+        }
+        let mut flat = Vec::new();
+        points.iter().for_each(|p| flat.extend(p));
+        world.iter().for_each(|x| push_vec(&mut flat, x));
+        let truth: Vec<f64> = [v, w, c, t]
+            .iter()
+            .flat_map(|a| a.iter().copied())
+            .collect();
+        solve_flat::<ex::r6p::Solver>(&flat, &[truth])
+    });
+}

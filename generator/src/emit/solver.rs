@@ -692,7 +692,10 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         None => (quote!(), quote!()),
     };
     let mut field_inits = Vec::new();
-    for (u, id) in layout.declared_unknowns().zip(solution_field_idents(layout)?) {
+    for (u, id) in layout
+        .declared_unknowns()
+        .zip(solution_field_idents(layout)?)
+    {
         let polished = spec.polish.is_some();
         let val = |i: usize| {
             if polished {

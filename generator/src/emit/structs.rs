@@ -118,7 +118,10 @@ pub(super) fn data_field_idents(layout: &ProblemLayout) -> Result<Vec<Ident>, Em
 
 /// The `Solution` struct's field identifiers, in declaration order.
 pub(super) fn solution_field_idents(layout: &ProblemLayout) -> Result<Vec<Ident>, EmitError> {
-    field_idents(layout.declared_unknowns().map(|u| u.name.as_str()), "unknown")
+    field_idents(
+        layout.declared_unknowns().map(|u| u.name.as_str()),
+        "unknown",
+    )
 }
 
 pub(super) fn emit_data(layout: &ProblemLayout) -> Result<TokenStream, EmitError> {

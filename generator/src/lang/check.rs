@@ -361,11 +361,20 @@ impl Checker {
                         ))
                     }
                 },
+                "auto_eliminate" => match v.as_str() {
+                    "yes" => o.auto_eliminate.replace(true).is_some(),
+                    "no" => o.auto_eliminate.replace(false).is_some(),
+                    _ => {
+                        return bad(&format!(
+                            "option auto_eliminate: expected 'yes' or 'no', found '{v}'"
+                        ))
+                    }
+                },
                 other => {
                     return Err(LangError::new(
                         name.pos,
                         format!(
-                            "unknown option '{other}' (the options are action, extra_degree, basis, newton)"
+                            "unknown option '{other}' (the options are action, extra_degree, basis, newton, auto_eliminate)"
                         ),
                     ))
                 }

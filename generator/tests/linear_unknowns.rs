@@ -1,0 +1,133 @@
+//! Planning without being told: unknowns that appear only linearly with data coefficients
+//! are eliminated (when that keeps the solutions), equations that are linear combinations
+//! of others are dropped, and names that differ only in case give distinct fields.
+
+use mingen::pipeline::{emit_plan_from, plan, SolverPlan};
+use mingen::problem::ProblemOptions;
+use mingen::template::TemplateOptions;
+use mingen::Problem;
+
+fn planned(src: &str, opts: &TemplateOptions) -> SolverPlan {
+    let problem = Problem::parse(src, "t.mp").unwrap_or_else(|e| panic!("{e}"));
+    plan(problem, "t.mp", opts).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn eliminated(p: &SolverPlan) -> Vec<String> {
+    p.eliminated_names()
+}
+
+fn audit_median(p: &SolverPlan) -> f64 {
+    let a = mingen::audit::audit_plan(
+        p,
+        &mingen::audit::AuditOptions {
+            instances: 200,
+            seed: 7,
+        },
+    );
+    assert_eq!(a.failures, 0, "{a}");
+    a.median_log10_residual
+}
+
+/// The upright 2-point absolute pose, written with all three rows of each cross product
+/// (the third is a combination of the other two).
+const UP2P: &str = "problem up2p_plain
+unknown c, s, t[3]
+data pw[2]: vec3, x[2]: point
+let R = [[c, 0, s], [0, 1, 0], [-s, 0, c]]
+for i in 0..2 {
+  skew(x[i]) * (R * pw[i] + t) = 0 * t
+}
+c*c + s*s = 1
+";
+
+#[test]
+fn a_translation_that_appears_only_linearly_is_eliminated_automatically() {
+    let opts = TemplateOptions::default();
+    let auto = planned(UP2P, &opts);
+    assert_eq!(eliminated(&auto), ["t1", "t2", "t3"]);
+    assert_eq!(auto.generated.count, 2);
+    let (rows, cols) = auto.generated.built.template.eliminated_size();
+    // Kept: the same count, a smaller template.
+    let kept = planned(&format!("{UP2P}option auto_eliminate = no\n"), &opts);
+    assert!(eliminated(&kept).is_empty());
+    assert_eq!(kept.generated.count, 2);
+    let (krows, kcols) = kept.generated.built.template.eliminated_size();
+    assert!(
+        rows * cols < krows * kcols,
+        "{rows}x{cols} vs {krows}x{kcols}"
+    );
+    assert!(audit_median(&auto) < -12.0);
+    // The command line overrides the file either way.
+    let off = TemplateOptions {
+        overrides: ProblemOptions {
+            auto_eliminate: Some(false),
+            ..ProblemOptions::default()
+        },
+        ..TemplateOptions::default()
+    };
+    assert!(eliminated(&planned(UP2P, &off)).is_empty());
+    // The emitted solver still returns every declared unknown.
+    let code = emit_plan_from(&auto, "t.mp").unwrap();
+    assert!(code.contains("pub const UNKNOWNS: usize = 5;"));
+}
+
+#[test]
+fn a_homogeneous_linear_unknown_is_not_eliminated_automatically() {
+    // t appears linearly in the epipolar constraints but they are homogeneous in t (with
+    // t't = 1): eliminating it would identify t and -t, so it stays.
+    let src = "problem kr
+unknown t[3]
+data x1[2]: point, x2[2]: point, R: rotation
+for i in 0..2 {
+  x2[i]' * skew(t) * R * x1[i] = 0
+}
+t' * t = 1
+";
+    let p = planned(src, &TemplateOptions::default());
+    assert!(eliminated(&p).is_empty());
+    assert_eq!(p.generated.count, 2);
+}
+
+#[test]
+fn dependent_equations_are_dropped_and_the_solutions_kept() {
+    // The three rows of x × P for each point: one of every three is a combination of the
+    // other two; after the automatic elimination the minors repeat each other too.
+    let p = planned(UP2P, &TemplateOptions::default());
+    let kept = p
+        .problem
+        .independent()
+        .expect("dependent equations dropped");
+    assert_eq!(kept.len(), 2, "{kept:?}");
+    // Without elimination the third rows go, the other four stay with c^2 + s^2 = 1.
+    let plain = planned(
+        &format!("{UP2P}option auto_eliminate = no\n"),
+        &TemplateOptions::default(),
+    );
+    assert_eq!(plain.problem.independent().map(<[usize]>::len), Some(5));
+    assert_eq!(plain.generated.count, 2);
+    assert!(audit_median(&plain) < -12.0);
+}
+
+#[test]
+fn names_that_differ_only_in_case_are_distinct_fields() {
+    // x (image points) and X (world points), as users write them.
+    let src = "problem p2p_known_rotation
+unknown t[3]
+data x[2]: point, X[2]: vec3, R: rotation
+for i in 0..2 {
+  let P = R*X[i] + t
+  x[i][1]*P[2] - P[1] = 0
+}
+let P0 = R*X[0] + t
+P0[0] - x[0][0]*P0[2] = 0
+";
+    let p = planned(src, &TemplateOptions::default());
+    // Three unknowns, all linear: nothing would be left, so nothing is eliminated.
+    assert!(eliminated(&p).is_empty());
+    assert_eq!(p.generated.count, 1);
+    let code = emit_plan_from(&p, "t.mp").unwrap();
+    assert!(code.contains("pub x: [[f64; 2]; 2],"), "{code}");
+    assert!(code.contains("pub X: [[f64; 3]; 2],"));
+    assert!(code.contains("#[allow(non_snake_case)]"));
+    syn::parse_file(&code).expect("the emitted code parses");
+}

@@ -573,8 +573,21 @@ fn audit(
         return emit(&format!("{text}\n"));
     }
     let (rows, cols) = plan.generated.built.template.eliminated_size();
+    // Far above rounding level without polishing: say what fixes it (Newton steps only
+    // sharpen roots the action matrix found, so they are the usual remedy, not a given one).
+    let newton = plan.problem.layout.options.newton.unwrap_or(0);
+    let hint = if newton == 0 && report.median_log10_residual > -11.0 {
+        format!(
+            "hint: the median residual is far above rounding level; Gauss-Newton polishing \
+             (`option newton = 2` in the problem file, or --newton 2 here) usually brings it \
+             there: `mingen audit {} --newton 2` shows the effect\n",
+            file.display()
+        )
+    } else {
+        String::new()
+    };
     emit(&format!(
-        "problem {} (template {rows} x {cols}, {} solutions; {source})\n{report}",
+        "problem {} (template {rows} x {cols}, {} solutions; {source})\n{report}{hint}",
         plan.problem.name(),
         plan.generated.count
     ))

@@ -6,8 +6,8 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 /// Corpus problems also emitted in each form of the coefficient code (`src/lib.rs`'s
-/// `inline` and `table` modules): one with elimination and Newton polishing, one with a
-/// large template.
+/// `inline` and `table` modules): one with a large template and Newton polishing, one
+/// whose affine equations planning substitutes into the others.
 const BOTH_FORMS: [&str; 2] = ["p35pf", "relpose_5pt_entries"];
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

@@ -195,6 +195,165 @@ pub fn eliminate_linear_selected<C: Ring>(
     })
 }
 
+/// The equations whose every term has total degree at most one in the unknowns, with at
+/// least one of degree one: `A x + b = 0` with `A`, `b` free of unknowns (data and
+/// numbers), as the epipolar constraints on the entries of an essential matrix.
+pub fn affine_equations<C: Ring>(equations: &[Poly<C>]) -> Vec<usize> {
+    let degree = |m: &Monomial| m.0.iter().map(|&d| u32::from(d)).sum::<u32>();
+    equations
+        .iter()
+        .enumerate()
+        .filter(|(_, e)| {
+            e.terms().all(|(m, _)| degree(m) <= 1) && e.terms().any(|(m, _)| degree(m) == 1)
+        })
+        .map(|(i, _)| i)
+        .collect()
+}
+
+/// Substitutes the unknowns `pivots` (flat indices, one per equation of `linear`) solved
+/// from the affine equations `linear` (see [`affine_equations`]) into the other
+/// equations. With `A_p` the pivots' coefficient block (data only) and `r(u) = A_f u + b`
+/// the rest, Cramer's rule gives `d x_p = g(u)` with `d = det A_p` and `g_i` the
+/// determinant of `A_p` with column `i` replaced by `-r(u)`, polynomials in the remaining
+/// unknowns `u` of degree at most one. An equation of degree `m` in the pivots becomes
+/// `d^m f(g / d, u)`, computed without division (every ring, every instance alike). The
+/// result is an [`Eliminated`] whose equations are the substituted ones (in their order),
+/// whose coefficient matrix is `[A_p r(u)]` (one row per affine equation: at a solution
+/// `u` the pivots are its null vector over the last entry) and which is inhomogeneous.
+pub fn substitute_linear<C: Ring>(
+    equations: &[Poly<C>],
+    nvars: usize,
+    pivots: &[usize],
+    linear: &[usize],
+) -> Result<Eliminated<C>, EliminateError> {
+    let k = pivots.len();
+    if linear.len() != k || k == 0 {
+        return Err(EliminateError::TooFewRows {
+            rows: linear.len(),
+            k,
+            needed: k,
+        });
+    }
+    let remaining: Vec<usize> = (0..nvars).filter(|i| !pivots.contains(i)).collect();
+    if remaining.is_empty() {
+        return Err(EliminateError::NothingLeft);
+    }
+    let nrem = remaining.len();
+    let project = |m: &Monomial| Monomial(remaining.iter().map(|&i| m.0[i]).collect());
+    let mut matrix: Vec<Vec<Poly<C>>> = Vec::with_capacity(k);
+    for &r in linear {
+        let mut row = vec![Poly::zero(nrem); k + 1];
+        for (m, c) in equations[r].terms() {
+            match pivots.iter().position(|&p| m.0[p] > 0) {
+                Some(j) => row[j].add_term(Monomial(vec![0; nrem]), c.clone()),
+                None => row[k].add_term(project(m), c.clone()),
+            }
+        }
+        matrix.push(row);
+    }
+    let block = |replace: Option<usize>| -> Vec<Vec<Poly<C>>> {
+        matrix
+            .iter()
+            .map(|row| {
+                (0..k)
+                    .map(|j| match replace {
+                        Some(i) if i == j => row[k].neg(),
+                        _ => row[j].clone(),
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    let d = determinant(&block(None), nrem);
+    let g: Vec<Poly<C>> = (0..k).map(|i| determinant(&block(Some(i)), nrem)).collect();
+    let mut out = Vec::new();
+    for (idx, eq) in equations.iter().enumerate() {
+        if linear.contains(&idx) {
+            continue;
+        }
+        let pivot_degree = |m: &Monomial| pivots.iter().map(|&p| u32::from(m.0[p])).sum::<u32>();
+        let top = eq.terms().map(|(m, _)| pivot_degree(m)).max().unwrap_or(0);
+        let mut acc = Poly::zero(nrem);
+        for (m, c) in eq.terms() {
+            let mut term = Poly::constant(nrem, c.clone());
+            term = term.mul(&Poly::from_terms(nrem, [(project(m), C::one())]));
+            for (i, &p) in pivots.iter().enumerate() {
+                if m.0[p] > 0 {
+                    term = term.mul(&g[i].pow(u32::from(m.0[p])));
+                }
+            }
+            let rest = top - pivot_degree(m);
+            if rest > 0 {
+                term = term.mul(&d.pow(rest));
+            }
+            acc = acc.add(&term);
+        }
+        out.push(acc);
+    }
+    Ok(Eliminated {
+        equations: out,
+        remaining,
+        eliminated: pivots.to_vec(),
+        coefficient_matrix: matrix,
+        inhomogeneous: true,
+        dropped: Vec::new(),
+    })
+}
+
+/// Pivots for [`substitute_linear`]: for the affine equations `linear`, one unknown each
+/// whose coefficient block is nonsingular on this instance, chosen from the last unknown
+/// backwards (the first ones stay, in their order). `None` if the equations are dependent
+/// or a pivot would leave no unknown.
+pub fn linear_pivots<const P: u32>(
+    equations: &[Poly<crate::algebra::Fp<P>>],
+    nvars: usize,
+    linear: &[usize],
+) -> Option<Vec<usize>> {
+    use crate::algebra::{Field, Fp};
+    // Rows: coefficients of x_0 .. x_{n-1} of each affine equation, Gauss-Jordan over the
+    // columns from the last to the first.
+    let mut rows: Vec<Vec<Fp<P>>> = linear
+        .iter()
+        .map(|&r| {
+            let mut row = vec![Fp::<P>::zero(); nvars];
+            for (m, c) in equations[r].terms() {
+                if let Some(j) = (0..nvars).find(|&j| m.0[j] == 1) {
+                    row[j] = *c;
+                }
+            }
+            row
+        })
+        .collect();
+    let mut pivots = Vec::new();
+    let mut next = 0;
+    for col in (0..nvars).rev() {
+        if next == rows.len() {
+            break;
+        }
+        let Some(r) = (next..rows.len()).find(|&r| !rows[r][col].is_zero()) else {
+            continue;
+        };
+        rows.swap(next, r);
+        let inv = rows[next][col].inv()?;
+        let pivot_row: Vec<Fp<P>> = rows[next].iter().map(|x| *x * inv).collect();
+        for (i, row) in rows.iter_mut().enumerate() {
+            if i != next && !row[col].is_zero() {
+                let f = row[col];
+                for (x, y) in row.iter_mut().zip(&pivot_row) {
+                    *x = *x - f * *y;
+                }
+            }
+        }
+        rows[next] = pivot_row;
+        pivots.push(col);
+        next += 1;
+    }
+    (pivots.len() == linear.len() && pivots.len() < nvars).then(|| {
+        pivots.sort_unstable();
+        pivots
+    })
+}
+
 /// The unknowns among `candidates` (flat indices) that every equation has only in terms of
 /// degree one: `c x` with `c` free of unknowns (data and numbers), as an absolute pose's
 /// translation. Eliminating them ([`eliminate_linear`]) leaves the minors of a matrix

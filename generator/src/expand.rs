@@ -29,6 +29,9 @@ pub struct Problem {
     /// The equations of the system (after elimination and division) that are kept, in
     /// order; `None`: all (see [`Problem::with_independent`]).
     independent: Option<Vec<usize>>,
+    /// The affine equations whose unknowns `layout.eliminate` are substituted into the
+    /// others (see [`Problem::with_substitution`]); `None`: `eliminate` takes minors.
+    substitution: Option<Vec<usize>>,
 }
 
 /// Failure to load a problem file.
@@ -444,6 +447,7 @@ impl Problem {
             nonzero,
             divisions,
             independent: None,
+            substitution: None,
         }
     }
 
@@ -497,6 +501,23 @@ impl Problem {
         let mut p = self.clone();
         p.independent = Some(kept);
         p
+    }
+
+    /// The same problem with the unknowns `pivots` (flat indices) solved from the affine
+    /// equations `linear` (indices into the problem's equations) by Cramer's rule and
+    /// substituted into the others ([`crate::eliminate::substitute_linear`]); the solver
+    /// recovers them as the null vector of the affine equations at each solution. Planning
+    /// chooses them where the solution count stays the same.
+    pub fn with_substitution(&self, pivots: Vec<usize>, linear: Vec<usize>) -> Problem {
+        let mut p = self.clone();
+        p.layout.eliminate = pivots;
+        p.substitution = Some(linear);
+        p
+    }
+
+    /// See [`Problem::with_substitution`].
+    pub fn substitution(&self) -> Option<&[usize]> {
+        self.substitution.as_deref()
     }
 
     /// See [`Problem::with_independent`] (`None`: every equation is kept).

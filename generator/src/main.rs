@@ -369,10 +369,12 @@ fn inspect(file: &PathBuf, as_json: bool, options: &TemplateOptions) -> Result<(
             .iter()
             .filter_map(|&i| names.get(i).map(String::as_str))
             .collect();
-        let how = if parsed.layout.eliminate.is_empty() {
-            " (automatic: they appear only linearly, with data coefficients; `option auto_eliminate = no` keeps them)"
-        } else {
+        let how = if !parsed.layout.eliminate.is_empty() {
             ""
+        } else if p.substitution().is_some() {
+            " (automatic: solved from the affine equations and substituted into the others; `option auto_eliminate = no` keeps them)"
+        } else {
+            " (automatic: they appear only linearly, with data coefficients; `option auto_eliminate = no` keeps them)"
         };
         outln!(out, "eliminate: {}{how}", el.join(" "));
     }

@@ -18,7 +18,8 @@
 
 use crate::algebra::{Fp, Monomial, MonomialOrder, Poly, Ring};
 use crate::eliminate::{
-    eliminate_linear_selected, purely_linear_unknowns, EliminateError, Eliminated,
+    affine_equations, eliminate_linear_selected, linear_pivots, purely_linear_unknowns,
+    substitute_linear, EliminateError, Eliminated,
 };
 use crate::emit::{
     emit_solver, CodeForm, EliminationSpec, EmitError, PolishSpec, SolverSpec, Tracer,
@@ -169,6 +170,21 @@ fn system_and_factors<C: Ring>(
             }
         };
         (equations, None)
+    } else if let Some(linear) = problem.substitution() {
+        let mut e = substitute_linear(
+            &equations,
+            problem.layout.unknown_count(),
+            &problem.layout.eliminate,
+            linear,
+        )?;
+        if let Some(kept) = kept {
+            let mut all: Vec<Option<Poly<C>>> = e.equations.drain(..).map(Some).collect();
+            e.equations = kept
+                .iter()
+                .filter_map(|&i| all.get_mut(i)?.take())
+                .collect();
+        }
+        (e.equations.clone(), Some(e))
     } else {
         let e = eliminate_linear_selected(
             &equations,
@@ -213,12 +229,7 @@ fn system_and_factors<C: Ring>(
 fn eliminate_linear_unknowns(problem: Problem, options: &TemplateOptions) -> Problem {
     const P: u32 = crate::algebra::P1;
     let layout = &problem.layout;
-    let allowed = options
-        .overrides
-        .auto_eliminate
-        .or(layout.options.auto_eliminate)
-        .unwrap_or(true);
-    if !layout.eliminate.is_empty() || !allowed {
+    if !auto_eliminate_allowed(&problem, options) {
         return problem;
     }
     let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(options.seed ^ 0xe11a);
@@ -234,16 +245,63 @@ fn eliminate_linear_unknowns(problem: Problem, options: &TemplateOptions) -> Pro
         Ok((_, Some(e))) if e.inhomogeneous => {}
         _ => return problem,
     }
+    same_count(eliminated, problem, options)
+}
+
+/// `problem` with the unknowns its affine equations determine substituted into its other
+/// equations ([`substitute_linear`]: Cramer's rule on a pivot block of data only), when the
+/// file eliminates nothing, allows it (`option auto_eliminate`), some equation is not
+/// affine and the solution count stays the same: the linear constraints leave the
+/// nonlinear ones in fewer unknowns, as the null-space parametrisation of the 5-point
+/// problem's essential matrix does. Unchanged otherwise.
+fn substitute_affine_equations(problem: Problem, options: &TemplateOptions) -> Problem {
+    const P: u32 = crate::algebra::P1;
+    let layout = &problem.layout;
+    if !auto_eliminate_allowed(&problem, options) || problem.layout.hidden_count() > 0 {
+        return problem;
+    }
+    let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(options.seed ^ 0x5b57);
+    let data = random_data_fp::<P>(layout, &mut rng);
+    let equations = problem.evaluate(&data);
+    let linear = affine_equations(&equations);
+    if linear.is_empty() || linear.len() == equations.len() {
+        return problem;
+    }
+    let Some(pivots) = linear_pivots(&equations, layout.unknown_count(), &linear) else {
+        return problem;
+    };
+    let substituted = problem.with_substitution(pivots, linear);
+    if system(&substituted, &data).is_err() {
+        return problem;
+    }
+    same_count(substituted, problem, options)
+}
+
+/// `candidate` if its solution count is that of `original` (both found within the
+/// budget), else `original`.
+fn same_count(candidate: Problem, original: Problem, options: &TemplateOptions) -> Problem {
     let deadline = options.budget.start();
     let count = |p: &Problem| {
         analyse_within(&ProblemSource::new(p), options.seed, Some(deadline))
             .ok()
             .map(|a| a.count)
     };
-    match (count(&eliminated), count(&problem)) {
-        (Some(a), Some(b)) if a == b => eliminated,
-        _ => problem,
+    match (count(&candidate), count(&original)) {
+        (Some(a), Some(b)) if a == b => candidate,
+        _ => original,
     }
+}
+
+/// Whether planning may eliminate unknowns on its own: the file eliminates nothing and
+/// neither the command line nor the file's `option auto_eliminate` says no.
+fn auto_eliminate_allowed(problem: &Problem, options: &TemplateOptions) -> bool {
+    let layout = &problem.layout;
+    layout.eliminate.is_empty()
+        && options
+            .overrides
+            .auto_eliminate
+            .or(layout.options.auto_eliminate)
+            .unwrap_or(true)
 }
 
 /// `problem` keeping only a linearly independent subset of its system's equations that
@@ -512,7 +570,7 @@ pub fn plan(
             });
         }
     }
-    let problem = eliminate_linear_unknowns(problem, options);
+    let problem = substitute_affine_equations(eliminate_linear_unknowns(problem, options), options);
     let problem = drop_dependent_equations(divide_out_nonzero(problem, options), options.seed);
     let mut generated =
         find_template(&ProblemSource::new(&problem), options).map_err(|source| {

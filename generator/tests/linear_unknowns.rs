@@ -1,6 +1,7 @@
 //! Planning without being told: unknowns that appear only linearly with data coefficients
-//! are eliminated (when that keeps the solutions), equations that are linear combinations
-//! of others are dropped, and names that differ only in case give distinct fields.
+//! are eliminated and unknowns fixed by affine equations substituted (when that keeps the
+//! solutions), equations that are linear combinations of others are dropped, and names
+//! that differ only in case give distinct fields.
 
 use mingen::pipeline::{emit_plan_from, plan, SolverPlan};
 use mingen::problem::ProblemOptions;
@@ -72,9 +73,10 @@ fn a_translation_that_appears_only_linearly_is_eliminated_automatically() {
 }
 
 #[test]
-fn a_homogeneous_linear_unknown_is_not_eliminated_automatically() {
-    // t appears linearly in the epipolar constraints but they are homogeneous in t (with
-    // t't = 1): eliminating it would identify t and -t, so it stays.
+fn affine_equations_are_substituted_and_a_homogeneous_unknown_keeps_both_signs() {
+    // The epipolar constraints with a known rotation are linear and homogeneous in t.
+    // Minors would identify t and -t; instead two of t1, t2, t3 are solved from them by
+    // Cramer's rule and substituted into t't = 1, which keeps both solutions.
     let src = "problem kr
 unknown t[3]
 data x1[2]: point, x2[2]: point, R: rotation
@@ -83,9 +85,25 @@ for i in 0..2 {
 }
 t' * t = 1
 ";
-    let p = planned(src, &TemplateOptions::default());
-    assert!(eliminated(&p).is_empty());
+    let opts = TemplateOptions::default();
+    let p = planned(src, &opts);
+    assert_eq!(eliminated(&p), ["t2", "t3"]);
+    assert_eq!(p.problem.substitution(), Some(&[0, 1][..]));
     assert_eq!(p.generated.count, 2);
+    assert_eq!(p.generated.built.template.eliminated_size(), (1, 3));
+    assert!(audit_median(&p) < -13.0);
+    let kept = planned(&format!("{src}option auto_eliminate = no\n"), &opts);
+    assert!(eliminated(&kept).is_empty());
+    assert_eq!(kept.generated.count, 2);
+    // The five-point problem on the entries of E: five entries substituted, the
+    // published 10x20.
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../templates/classic/relpose_5pt_entries.mp");
+    let p = planned(&std::fs::read_to_string(file).unwrap(), &opts);
+    assert_eq!(eliminated(&p), ["e4", "e5", "e6", "e7", "e8"]);
+    assert_eq!(p.generated.count, 10);
+    assert_eq!(p.generated.built.template.eliminated_size(), (10, 20));
+    assert!(audit_median(&p) < -13.0);
 }
 
 #[test]

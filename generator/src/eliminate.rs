@@ -211,8 +211,9 @@ pub fn affine_equations<C: Ring>(equations: &[Poly<C>]) -> Vec<usize> {
 }
 
 /// Substitutes the unknowns `pivots` (flat indices, one per equation of `linear`) solved
-/// from the affine equations `linear` (see [`affine_equations`]) into the other
-/// equations. With `A_p` the pivots' coefficient block (data only) and `r(u) = A_f u + b`
+/// from the independent affine equations `linear` (see [`affine_equations`]) into the
+/// other equations except `implied` (affine equations that are combinations of
+/// `linear`, see [`linear_pivots`]). With `A_p` the pivots' coefficient block (data only) and `r(u) = A_f u + b`
 /// the rest, Cramer's rule gives `d x_p = g(u)` with `d = det A_p` and `g_i` the
 /// determinant of `A_p` with column `i` replaced by `-r(u)`, polynomials in the remaining
 /// unknowns `u` of degree at most one. An equation of degree `m` in the pivots becomes
@@ -224,7 +225,7 @@ pub fn substitute_linear<C: Ring>(
     equations: &[Poly<C>],
     nvars: usize,
     pivots: &[usize],
-    linear: &[usize],
+    (linear, implied): (&[usize], &[usize]),
 ) -> Result<Eliminated<C>, EliminateError> {
     let k = pivots.len();
     if linear.len() != k || k == 0 {
@@ -268,7 +269,9 @@ pub fn substitute_linear<C: Ring>(
     let g: Vec<Poly<C>> = (0..k).map(|i| determinant(&block(Some(i)), nrem)).collect();
     let mut out = Vec::new();
     for (idx, eq) in equations.iter().enumerate() {
-        if linear.contains(&idx) {
+        // The affine equations are solved; those implied by them would be zero up to
+        // rounding, so they are left out too.
+        if linear.contains(&idx) || implied.contains(&idx) {
             continue;
         }
         let pivot_degree = |m: &Monomial| pivots.iter().map(|&p| u32::from(m.0[p])).sum::<u32>();
@@ -300,19 +303,21 @@ pub fn substitute_linear<C: Ring>(
     })
 }
 
-/// Pivots for [`substitute_linear`]: for the affine equations `linear`, one unknown each
-/// whose coefficient block is nonsingular on this instance, chosen from the last unknown
-/// backwards (the first ones stay, in their order). `None` if the equations are dependent
-/// or a pivot would leave no unknown.
+/// Pivots for [`substitute_linear`] from the affine equations `linear`: a maximal
+/// independent subset of them (on this instance) and one unknown each whose coefficient
+/// block is nonsingular, chosen from the last unknown backwards (the first ones stay, in
+/// their order). Returns `(pivots, used, implied)`: the pivot unknowns, the equations they
+/// are solved from, and the affine equations that are combinations of those (satisfied
+/// with them). `None` if no pivot is found or the pivots would leave no unknown.
 pub fn linear_pivots<const P: u32>(
     equations: &[Poly<crate::algebra::Fp<P>>],
     nvars: usize,
     linear: &[usize],
-) -> Option<Vec<usize>> {
+) -> Option<(Vec<usize>, Vec<usize>, Vec<usize>)> {
     use crate::algebra::{Field, Fp};
-    // Rows: coefficients of x_0 .. x_{n-1} of each affine equation, Gauss-Jordan over the
-    // columns from the last to the first.
-    let mut rows: Vec<Vec<Fp<P>>> = linear
+    // Rows: coefficients of x_0 .. x_{n-1} of each affine equation (with its index),
+    // Gauss-Jordan over the columns from the last to the first.
+    let mut rows: Vec<(usize, Vec<Fp<P>>)> = linear
         .iter()
         .map(|&r| {
             let mut row = vec![Fp::<P>::zero(); nvars];
@@ -321,7 +326,7 @@ pub fn linear_pivots<const P: u32>(
                     row[j] = *c;
                 }
             }
-            row
+            (r, row)
         })
         .collect();
     let mut pivots = Vec::new();
@@ -330,13 +335,13 @@ pub fn linear_pivots<const P: u32>(
         if next == rows.len() {
             break;
         }
-        let Some(r) = (next..rows.len()).find(|&r| !rows[r][col].is_zero()) else {
+        let Some(r) = (next..rows.len()).find(|&r| !rows[r].1[col].is_zero()) else {
             continue;
         };
         rows.swap(next, r);
-        let inv = rows[next][col].inv()?;
-        let pivot_row: Vec<Fp<P>> = rows[next].iter().map(|x| *x * inv).collect();
-        for (i, row) in rows.iter_mut().enumerate() {
+        let inv = rows[next].1[col].inv()?;
+        let pivot_row: Vec<Fp<P>> = rows[next].1.iter().map(|x| *x * inv).collect();
+        for (i, (_, row)) in rows.iter_mut().enumerate() {
             if i != next && !row[col].is_zero() {
                 let f = row[col];
                 for (x, y) in row.iter_mut().zip(&pivot_row) {
@@ -344,14 +349,19 @@ pub fn linear_pivots<const P: u32>(
                 }
             }
         }
-        rows[next] = pivot_row;
+        rows[next].1 = pivot_row;
         pivots.push(col);
         next += 1;
     }
-    (pivots.len() == linear.len() && pivots.len() < nvars).then(|| {
-        pivots.sort_unstable();
-        pivots
-    })
+    if pivots.is_empty() || pivots.len() >= nvars {
+        return None;
+    }
+    pivots.sort_unstable();
+    let mut used: Vec<usize> = rows[..next].iter().map(|(r, _)| *r).collect();
+    let mut implied: Vec<usize> = rows[next..].iter().map(|(r, _)| *r).collect();
+    used.sort_unstable();
+    implied.sort_unstable();
+    Some((pivots, used, implied))
 }
 
 /// The unknowns among `candidates` (flat indices) that every equation has only in terms of

@@ -31,7 +31,7 @@ pub struct Problem {
     independent: Option<Vec<usize>>,
     /// The affine equations whose unknowns `layout.eliminate` are substituted into the
     /// others (see [`Problem::with_substitution`]); `None`: `eliminate` takes minors.
-    substitution: Option<Vec<usize>>,
+    substitution: Option<(Vec<usize>, Vec<usize>)>,
 }
 
 /// Failure to load a problem file.
@@ -505,19 +505,27 @@ impl Problem {
 
     /// The same problem with the unknowns `pivots` (flat indices) solved from the affine
     /// equations `linear` (indices into the problem's equations) by Cramer's rule and
-    /// substituted into the others ([`crate::eliminate::substitute_linear`]); the solver
-    /// recovers them as the null vector of the affine equations at each solution. Planning
-    /// chooses them where the solution count stays the same.
-    pub fn with_substitution(&self, pivots: Vec<usize>, linear: Vec<usize>) -> Problem {
+    /// substituted into the others but `implied` (affine equations that are combinations
+    /// of `linear`; [`crate::eliminate::substitute_linear`]); the solver recovers them as
+    /// the null vector of the affine equations at each solution. Planning chooses them
+    /// where the solution count stays the same.
+    pub fn with_substitution(
+        &self,
+        pivots: Vec<usize>,
+        linear: Vec<usize>,
+        implied: Vec<usize>,
+    ) -> Problem {
         let mut p = self.clone();
         p.layout.eliminate = pivots;
-        p.substitution = Some(linear);
+        p.substitution = Some((linear, implied));
         p
     }
 
-    /// See [`Problem::with_substitution`].
-    pub fn substitution(&self) -> Option<&[usize]> {
-        self.substitution.as_deref()
+    /// See [`Problem::with_substitution`]: the solved and the implied affine equations.
+    pub fn substitution(&self) -> Option<(&[usize], &[usize])> {
+        self.substitution
+            .as_ref()
+            .map(|(l, i)| (l.as_slice(), i.as_slice()))
     }
 
     /// See [`Problem::with_independent`] (`None`: every equation is kept).

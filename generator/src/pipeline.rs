@@ -170,12 +170,12 @@ fn system_and_factors<C: Ring>(
             }
         };
         (equations, None)
-    } else if let Some(linear) = problem.substitution() {
+    } else if let Some(affine) = problem.substitution() {
         let mut e = substitute_linear(
             &equations,
             problem.layout.unknown_count(),
             &problem.layout.eliminate,
-            linear,
+            affine,
         )?;
         if let Some(kept) = kept {
             let mut all: Vec<Option<Poly<C>>> = e.equations.drain(..).map(Some).collect();
@@ -267,10 +267,11 @@ fn substitute_affine_equations(problem: Problem, options: &TemplateOptions) -> P
     if linear.is_empty() || linear.len() == equations.len() {
         return problem;
     }
-    let Some(pivots) = linear_pivots(&equations, layout.unknown_count(), &linear) else {
+    let Some((pivots, used, implied)) = linear_pivots(&equations, layout.unknown_count(), &linear)
+    else {
         return problem;
     };
-    let substituted = problem.with_substitution(pivots, linear);
+    let substituted = problem.with_substitution(pivots, used, implied);
     if system(&substituted, &data).is_err() {
         return problem;
     }
@@ -570,7 +571,7 @@ pub fn plan(
             });
         }
     }
-    let problem = substitute_affine_equations(eliminate_linear_unknowns(problem, options), options);
+    let problem = eliminate_linear_unknowns(substitute_affine_equations(problem, options), options);
     let problem = drop_dependent_equations(divide_out_nonzero(problem, options), options.seed);
     let mut generated =
         find_template(&ProblemSource::new(&problem), options).map_err(|source| {

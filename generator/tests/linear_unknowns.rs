@@ -30,7 +30,8 @@ fn audit_median(p: &SolverPlan) -> f64 {
 }
 
 /// The upright 2-point absolute pose, written with all three rows of each cross product
-/// (the third is a combination of the other two).
+/// (the third is a combination of the other two), the yaw as (cos, sin): every equation
+/// but `c^2 + s^2 = 1` is affine in (c, s, t).
 const UP2P: &str = "problem up2p_plain
 unknown c, s, t[3]
 data pw[2]: vec3, x[2]: point
@@ -41,17 +42,28 @@ for i in 0..2 {
 c*c + s*s = 1
 ";
 
+/// The same with the yaw as a half-angle tangent (a scaled rotation): the equations are
+/// quadratic in s, and t appears only in terms `data * t`.
+const UP2P_TAN: &str = "problem up2p_tan
+unknown s, t[3]
+data pw[2]: vec3, x[2]: point
+let R = [[1 - s*s, 0, 2*s], [0, 1 + s*s, 0], [-2*s, 0, 1 - s*s]]
+for i in 0..2 {
+  skew(x[i]) * (R * pw[i] + t) = 0 * t
+}
+";
+
 #[test]
 fn a_translation_that_appears_only_linearly_is_eliminated_automatically() {
     let opts = TemplateOptions::default();
-    let auto = planned(UP2P, &opts);
+    let auto = planned(UP2P_TAN, &opts);
     assert_eq!(eliminated(&auto), ["t1", "t2", "t3"]);
-    assert_eq!(auto.generated.count, 2);
+    assert!(auto.problem.substitution().is_none());
     let (rows, cols) = auto.generated.built.template.eliminated_size();
-    // Kept: the same count, a smaller template.
-    let kept = planned(&format!("{UP2P}option auto_eliminate = no\n"), &opts);
+    // Kept: the same count, a larger template.
+    let kept = planned(&format!("{UP2P_TAN}option auto_eliminate = no\n"), &opts);
     assert!(eliminated(&kept).is_empty());
-    assert_eq!(kept.generated.count, 2);
+    assert_eq!(kept.generated.count, auto.generated.count);
     let (krows, kcols) = kept.generated.built.template.eliminated_size();
     assert!(
         rows * cols < krows * kcols,
@@ -66,10 +78,23 @@ fn a_translation_that_appears_only_linearly_is_eliminated_automatically() {
         },
         ..TemplateOptions::default()
     };
-    assert!(eliminated(&planned(UP2P, &off)).is_empty());
+    assert!(eliminated(&planned(UP2P_TAN, &off)).is_empty());
     // The emitted solver still returns every declared unknown.
     let code = emit_plan_from(&auto, "t.mp").unwrap();
-    assert!(code.contains("pub const UNKNOWNS: usize = 5;"));
+    assert!(code.contains("pub const UNKNOWNS: usize = 4;"));
+}
+
+#[test]
+fn affine_equations_with_dependent_rows_are_substituted() {
+    // Six affine equations of rank four: four unknowns solved from four of them, the
+    // other two implied and left out, c^2 + s^2 = 1 left in c.
+    let p = planned(UP2P, &TemplateOptions::default());
+    assert_eq!(eliminated(&p), ["s", "t1", "t2", "t3"]);
+    let (used, implied) = p.problem.substitution().unwrap();
+    assert_eq!((used.len(), implied.len()), (4, 2));
+    assert_eq!(p.generated.count, 2);
+    assert_eq!(p.generated.built.template.eliminated_size(), (1, 3));
+    assert!(audit_median(&p) < -12.0);
 }
 
 #[test]
@@ -88,7 +113,7 @@ t' * t = 1
     let opts = TemplateOptions::default();
     let p = planned(src, &opts);
     assert_eq!(eliminated(&p), ["t2", "t3"]);
-    assert_eq!(p.problem.substitution(), Some(&[0, 1][..]));
+    assert_eq!(p.problem.substitution(), Some((&[0, 1][..], &[][..])));
     assert_eq!(p.generated.count, 2);
     assert_eq!(p.generated.built.template.eliminated_size(), (1, 3));
     assert!(audit_median(&p) < -13.0);
@@ -108,15 +133,18 @@ t' * t = 1
 
 #[test]
 fn dependent_equations_are_dropped_and_the_solutions_kept() {
-    // The three rows of x × P for each point: one of every three is a combination of the
-    // other two; after the automatic elimination the minors repeat each other too.
-    let p = planned(UP2P, &TemplateOptions::default());
+    // After the automatic elimination of t the 15 maximal minors of the 6 x 4 matrix
+    // [A b] (A of data only, rank 3) are multiples of one: of the three left null vectors
+    // of A, two are x_i' (x_i × ·), which annihilate b as well.
+    let p = planned(UP2P_TAN, &TemplateOptions::default());
     let kept = p
         .problem
         .independent()
         .expect("dependent equations dropped");
-    assert_eq!(kept.len(), 2, "{kept:?}");
-    // Without elimination the third rows go, the other four stay with c^2 + s^2 = 1.
+    assert_eq!(kept.len(), 1, "{kept:?}");
+    assert_eq!(p.generated.count, 2);
+    // Without elimination the third rows of the cross products go, the other four stay
+    // with c^2 + s^2 = 1.
     let plain = planned(
         &format!("{UP2P}option auto_eliminate = no\n"),
         &TemplateOptions::default(),

@@ -125,7 +125,8 @@ fn an_unknown_outside_the_quotient_basis_is_read_off_its_reduced_row() {
     let file = dir.join("line_circle.mp");
     std::fs::write(
         &file,
-        "problem line_circle\nunknown u, v\ndata a: scalar, b: scalar\nu*u + v*v = a\nu + v = b\n",
+        // Planning would substitute v from the affine equation; kept, v is read off.
+        "problem line_circle\nunknown u, v\ndata a: scalar, b: scalar\nu*u + v*v = a\nu + v = b\noption auto_eliminate = no\n",
     )
     .unwrap();
     let run = mingen(&[

@@ -479,7 +479,7 @@ impl Problem {
 
     /// The same problem with equation `i` of its system (after elimination) divided
     /// `divisions[i][k]` times by the k-th `nonzero` expression. Planning chooses the counts
-    /// where the division is exact on the whole data family (`pipeline::nonzero_divisions`):
+    /// where the division is exact on the whole data family (`rewrite::nonzero_divisions`):
     /// the expression does not vanish at a solution, so the divided system has the same
     /// solutions with smaller degrees.
     pub fn with_divisions(&self, divisions: Vec<Vec<u32>>) -> Problem {

@@ -25,6 +25,7 @@ pub mod interpret;
 pub mod problem;
 pub mod quotient;
 pub mod report;
+mod rewrite;
 pub mod template;
 
 // Problem language and its symbolic expansion.

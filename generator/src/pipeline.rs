@@ -16,16 +16,14 @@
 //! through [`SolverPlan::equations`], so every consumer sees the same elimination. Writing
 //! files is `crate::generate`'s and `crate::build`'s.
 
-use crate::algebra::{Fp, Monomial, MonomialOrder, Poly, Ring};
-use crate::eliminate::{
-    affine_equations, eliminate_linear_selected, linear_pivots, purely_linear_unknowns,
-    substitute_linear, EliminateError, Eliminated,
-};
+use crate::algebra::{Fp, Monomial, Poly, Ring};
+use crate::eliminate::{eliminate_linear_selected, substitute_linear, EliminateError, Eliminated};
 use crate::emit::{
     emit_solver, CodeForm, EliminationSpec, EmitError, PolishSpec, SolverSpec, Tracer,
 };
 use crate::instance::random_data_fp;
 use crate::quotient::{analyse_within, InstanceRng, InstanceSource};
+use crate::rewrite;
 use crate::template::search::best_template_within;
 use crate::template::validate::validate_within;
 use crate::template::{
@@ -137,7 +135,7 @@ impl InstanceSource for ProblemSource<'_> {
 pub type System<C> = (Vec<Poly<C>>, Option<Eliminated<C>>);
 
 /// The template's equations for data `data` over any ring (see [`System`]).
-fn system<C: Ring>(problem: &Problem, data: &[C]) -> Result<System<C>, EliminateError> {
+pub(crate) fn system<C: Ring>(problem: &Problem, data: &[C]) -> Result<System<C>, EliminateError> {
     system_and_factors(problem, data).map(|(system, _)| system)
 }
 
@@ -145,7 +143,7 @@ fn system<C: Ring>(problem: &Problem, data: &[C]) -> Result<System<C>, Eliminate
 /// unknowns left after elimination, hidden ones included; `None` for one that involves an
 /// eliminated unknown, which cannot divide the system's equations), from one evaluation of
 /// the problem.
-fn system_and_factors<C: Ring>(
+pub(crate) fn system_and_factors<C: Ring>(
     problem: &Problem,
     data: &[C],
 ) -> Result<(System<C>, Factors<C>), EliminateError> {
@@ -220,111 +218,8 @@ fn system_and_factors<C: Ring>(
     Ok(((equations, elimination), factors))
 }
 
-/// `problem` with its purely linear unknowns eliminated as `eliminate` would
-/// ([`purely_linear_unknowns`]: every term that has one is that unknown times data), when
-/// the file eliminates nothing, allows it (`option auto_eliminate`), the elimination is
-/// inhomogeneous (so each solution keeps its own values of them, recovered from the null
-/// vector; a homogeneous one would identify solutions that differ in their scale) and the
-/// solution count stays the same. Unchanged otherwise.
-fn eliminate_linear_unknowns(problem: Problem, options: &TemplateOptions) -> Problem {
-    const P: u32 = crate::algebra::P1;
-    let layout = &problem.layout;
-    if !auto_eliminate_allowed(&problem, options) {
-        return problem;
-    }
-    let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(options.seed ^ 0xe11a);
-    let data = random_data_fp::<P>(layout, &mut rng);
-    let visible = layout.unknown_count() - layout.hidden_count();
-    let linear = purely_linear_unknowns(&problem.evaluate(&data), 0..visible);
-    if linear.is_empty() || linear.len() == visible {
-        return problem;
-    }
-    let mut eliminated = problem.clone();
-    eliminated.layout.eliminate = linear;
-    match system(&eliminated, &data) {
-        Ok((_, Some(e))) if e.inhomogeneous => {}
-        _ => return problem,
-    }
-    same_count(eliminated, problem, options)
-}
-
-/// `problem` with the unknowns its affine equations determine substituted into its other
-/// equations ([`substitute_linear`]: Cramer's rule on a pivot block of data only), when the
-/// file eliminates nothing, allows it (`option auto_eliminate`), some equation is not
-/// affine and the solution count stays the same: the linear constraints leave the
-/// nonlinear ones in fewer unknowns, as the null-space parametrisation of the 5-point
-/// problem's essential matrix does. Unchanged otherwise.
-fn substitute_affine_equations(problem: Problem, options: &TemplateOptions) -> Problem {
-    const P: u32 = crate::algebra::P1;
-    let layout = &problem.layout;
-    if !auto_eliminate_allowed(&problem, options) || problem.layout.hidden_count() > 0 {
-        return problem;
-    }
-    let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(options.seed ^ 0x5b57);
-    let data = random_data_fp::<P>(layout, &mut rng);
-    let equations = problem.evaluate(&data);
-    let linear = affine_equations(&equations);
-    if linear.is_empty() || linear.len() == equations.len() {
-        return problem;
-    }
-    let Some((pivots, used, implied)) = linear_pivots(&equations, layout.unknown_count(), &linear)
-    else {
-        return problem;
-    };
-    let substituted = problem.with_substitution(pivots, used, implied);
-    if system(&substituted, &data).is_err() {
-        return problem;
-    }
-    same_count(substituted, problem, options)
-}
-
-/// `candidate` if its solution count is that of `original` (both found within the
-/// budget), else `original`.
-fn same_count(candidate: Problem, original: Problem, options: &TemplateOptions) -> Problem {
-    let deadline = options.budget.start();
-    let count = |p: &Problem| {
-        analyse_within(&ProblemSource::new(p), options.seed, Some(deadline))
-            .ok()
-            .map(|a| a.count)
-    };
-    match (count(&candidate), count(&original)) {
-        (Some(a), Some(b)) if a == b => candidate,
-        _ => original,
-    }
-}
-
-/// Whether planning may eliminate unknowns on its own: the file eliminates nothing and
-/// neither the command line nor the file's `option auto_eliminate` says no.
-fn auto_eliminate_allowed(problem: &Problem, options: &TemplateOptions) -> bool {
-    let layout = &problem.layout;
-    layout.eliminate.is_empty()
-        && options
-            .overrides
-            .auto_eliminate
-            .or(layout.options.auto_eliminate)
-            .unwrap_or(true)
-}
-
-/// `problem` keeping only a linearly independent subset of its system's equations that
-/// spans the others (see [`crate::independent`]); unchanged when every equation is needed.
-fn drop_dependent_equations(problem: Problem, seed: u64) -> Problem {
-    const P: u32 = crate::algebra::P1;
-    let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(seed ^ 0x1d9e);
-    let mut instance = || {
-        let data = random_data_fp::<P>(&problem.layout, &mut rng);
-        system(&problem, &data).ok().map(|(equations, _)| equations)
-    };
-    let (Some(first), Some(second)) = (instance(), instance()) else {
-        return problem;
-    };
-    match crate::independent::independent_subset(&first, &second) {
-        Some(kept) => problem.with_independent(kept),
-        None => problem,
-    }
-}
-
 /// The `nonzero` expressions in a system's variables (see [`system_and_factors`]).
-type Factors<C> = Vec<Option<Poly<C>>>;
+pub(crate) type Factors<C> = Vec<Option<Poly<C>>>;
 
 /// Polynomials in the problem's declared unknowns renumbered into the system's variables
 /// (the eliminated unknowns left out); `None` for one that involves an eliminated unknown.
@@ -351,111 +246,6 @@ fn system_variables<C: Ring>(problem: &Problem, polys: &[Poly<C>]) -> Factors<C>
             Some(out)
         })
         .collect()
-}
-
-/// `problem` with its `nonzero` expressions divided out of the equations they divide
-/// exactly (typically maximal minors after `eliminate`, which vanish wherever a rotation's
-/// Cayley denominator does): lower degrees, the same solutions. If the divided system
-/// without saturation has as many solutions as with it, saturation is dropped too (its
-/// solutions include the saturated system's, so equal counts mean no others), which
-/// removes the hidden unknowns from the template. Unchanged when nothing divides.
-fn divide_out_nonzero(problem: Problem, options: &TemplateOptions) -> Problem {
-    if problem.nonzero_count() == 0 {
-        return problem;
-    }
-    let divisions = nonzero_divisions(&problem, options.seed);
-    if divisions.is_empty() {
-        return problem;
-    }
-    let saturated = problem.with_divisions(divisions);
-    let plain = problem.without_saturation();
-    let unsaturated = plain.with_divisions(nonzero_divisions(&plain, options.seed));
-    let deadline = options.budget.start();
-    let count = |p: &Problem| {
-        crate::quotient::analyse_within(&ProblemSource::new(p), options.seed, Some(deadline))
-            .ok()
-            .map(|a| a.count)
-    };
-    match (count(&unsaturated), count(&saturated)) {
-        (Some(a), Some(b)) if a == b => unsaturated,
-        _ => saturated,
-    }
-}
-
-/// How many times each `nonzero` expression divides each equation of `problem`'s system
-/// exactly, on the whole data family: the smaller count of two random instances mod p
-/// (exact arithmetic; a division that is exact on random instances is exact as a
-/// polynomial identity in the data but with probability about degree / p). An expression
-/// must have the same leading term on both instances, with coefficient ±1 (its other
-/// coefficients may depend on the data).
-/// Empty when nothing divides.
-fn nonzero_divisions(problem: &Problem, seed: u64) -> Vec<Vec<u32>> {
-    type F = crate::algebra::Fp<{ crate::algebra::P1 }>;
-    let plain = problem.with_divisions(Vec::new());
-    let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(seed ^ 0xd1f1);
-    let mut counts: Option<Vec<Vec<u32>>> = None;
-    let mut first_factors: Option<Vec<Option<Poly<F>>>> = None;
-    for _ in 0..2 {
-        let data = random_data_fp::<{ crate::algebra::P1 }>(&plain.layout, &mut rng);
-        let Ok(((equations, _), factors)) = system_and_factors(&plain, &data) else {
-            return Vec::new();
-        };
-        // The leading term must be the same on both instances (±1 times one monomial);
-        // the other coefficients may depend on the data.
-        let leading = |f: &Option<Poly<F>>| {
-            f.as_ref()
-                .and_then(|f| f.leading(MonomialOrder::Grevlex))
-                .map(|(m, c)| (m.clone(), *c))
-        };
-        let constant: Vec<Option<()>> = match &first_factors {
-            None => factors.iter().map(|f| leading(f).map(|_| ())).collect(),
-            Some(first) => first
-                .iter()
-                .zip(&factors)
-                .map(|(a, b)| (leading(a).is_some() && leading(a) == leading(b)).then_some(()))
-                .collect(),
-        };
-        let these: Vec<Vec<u32>> = equations
-            .iter()
-            .map(|eq| {
-                factors
-                    .iter()
-                    .zip(&constant)
-                    .map(|(f, c)| match (f, c) {
-                        (Some(f), Some(_)) if f.degree().unwrap_or(0) > 0 => {
-                            let mut p = eq.clone();
-                            let mut k = 0;
-                            while !p.is_zero() {
-                                match p.divide(f) {
-                                    Some((q, r)) if r.is_zero() => {
-                                        p = q;
-                                        k += 1;
-                                    }
-                                    _ => break,
-                                }
-                            }
-                            k
-                        }
-                        _ => 0,
-                    })
-                    .collect()
-            })
-            .collect();
-        counts = Some(match counts {
-            None => these,
-            Some(c) => c
-                .iter()
-                .zip(&these)
-                .map(|(a, b)| a.iter().zip(b).map(|(x, y)| (*x).min(*y)).collect())
-                .collect(),
-        });
-        first_factors.get_or_insert(factors);
-    }
-    let counts = counts.unwrap_or_default();
-    if counts.iter().flatten().all(|&k| k == 0) {
-        return Vec::new();
-    }
-    counts
 }
 
 /// Everything needed to solve, audit or emit a problem.
@@ -571,8 +361,14 @@ pub fn plan(
             });
         }
     }
-    let problem = eliminate_linear_unknowns(substitute_affine_equations(problem, options), options);
-    let problem = drop_dependent_equations(divide_out_nonzero(problem, options), options.seed);
+    let problem = rewrite::eliminate_linear_unknowns(
+        rewrite::substitute_affine_equations(problem, options),
+        options,
+    );
+    let problem = rewrite::drop_dependent_equations(
+        rewrite::divide_out_nonzero(problem, options),
+        options.seed,
+    );
     let mut generated =
         find_template(&ProblemSource::new(&problem), options).map_err(|source| {
             PipelineError::Template {

@@ -125,10 +125,11 @@ pub struct ProblemOptions {
     /// inaccurate on its own (`mingen audit` shows it); it costs a few evaluations of the
     /// equations and their gradients per solution and step.
     pub newton: Option<u32>,
-    /// `option auto_eliminate = yes|no` (default yes): whether planning eliminates, as
+    /// `option auto_eliminate = yes|no` (default yes): whether planning, when the file
+    /// eliminates nothing and the solution count stays the same, solves unknowns from
+    /// affine equations and substitutes them into the others, or else eliminates, as
     /// `eliminate` would, the unknowns that every equation has only in terms of degree one
-    /// with data coefficients (a translation, say), when the file eliminates nothing and
-    /// the solution count stays the same (`pipeline::eliminate_linear_unknowns`).
+    /// with data coefficients (a translation, say); see `rewrite.rs`.
     pub auto_eliminate: Option<bool>,
 }
 

@@ -199,12 +199,11 @@ pub fn eliminate_linear_selected<C: Ring>(
 /// least one of degree one: `A x + b = 0` with `A`, `b` free of unknowns (data and
 /// numbers), as the epipolar constraints on the entries of an essential matrix.
 pub fn affine_equations<C: Ring>(equations: &[Poly<C>]) -> Vec<usize> {
-    let degree = |m: &Monomial| m.0.iter().map(|&d| u32::from(d)).sum::<u32>();
     equations
         .iter()
         .enumerate()
         .filter(|(_, e)| {
-            e.terms().all(|(m, _)| degree(m) <= 1) && e.terms().any(|(m, _)| degree(m) == 1)
+            e.terms().all(|(m, _)| m.degree() <= 1) && e.terms().any(|(m, _)| m.degree() == 1)
         })
         .map(|(i, _)| i)
         .collect()
@@ -278,8 +277,7 @@ pub fn substitute_linear<C: Ring>(
         let top = eq.terms().map(|(m, _)| pivot_degree(m)).max().unwrap_or(0);
         let mut acc = Poly::zero(nrem);
         for (m, c) in eq.terms() {
-            let mut term = Poly::constant(nrem, c.clone());
-            term = term.mul(&Poly::from_terms(nrem, [(project(m), C::one())]));
+            let mut term = Poly::from_terms(nrem, [(project(m), c.clone())]);
             for (i, &p) in pivots.iter().enumerate() {
                 if m.0[p] > 0 {
                     term = term.mul(&g[i].pow(u32::from(m.0[p])));
@@ -314,53 +312,34 @@ pub fn linear_pivots<const P: u32>(
     nvars: usize,
     linear: &[usize],
 ) -> Option<(Vec<usize>, Vec<usize>, Vec<usize>)> {
-    use crate::algebra::{Field, Fp};
-    // Rows: coefficients of x_0 .. x_{n-1} of each affine equation (with its index),
-    // Gauss-Jordan over the columns from the last to the first.
-    let mut rows: Vec<(usize, Vec<Fp<P>>)> = linear
-        .iter()
-        .map(|&r| {
-            let mut row = vec![Fp::<P>::zero(); nvars];
-            for (m, c) in equations[r].terms() {
-                if let Some(j) = (0..nvars).find(|&j| m.0[j] == 1) {
-                    row[j] = *c;
-                }
-            }
-            (r, row)
-        })
-        .collect();
-    let mut pivots = Vec::new();
-    let mut next = 0;
-    for col in (0..nvars).rev() {
-        if next == rows.len() {
-            break;
-        }
-        let Some(r) = (next..rows.len()).find(|&r| !rows[r].1[col].is_zero()) else {
-            continue;
-        };
-        rows.swap(next, r);
-        let inv = rows[next].1[col].inv()?;
-        let pivot_row: Vec<Fp<P>> = rows[next].1.iter().map(|x| *x * inv).collect();
-        for (i, (_, row)) in rows.iter_mut().enumerate() {
-            if i != next && !row[col].is_zero() {
-                let f = row[col];
-                for (x, y) in row.iter_mut().zip(&pivot_row) {
-                    *x = *x - f * *y;
-                }
+    use crate::template::linalg::EchelonBasis;
+    // Each affine equation's coefficients of x_{n-1} .. x_0 (reversed, so that the echelon
+    // basis takes its pivots from the last unknown backwards); the rows that enlarge the
+    // basis are the independent ones, its pivot columns the pivot unknowns.
+    let mut basis = EchelonBasis::<P>::new(nvars);
+    let (mut used, mut implied) = (Vec::new(), Vec::new());
+    for &r in linear {
+        let mut row = vec![0u32; nvars];
+        for (m, c) in equations[r].terms() {
+            if let Some(j) = m.0.iter().position(|&e| e == 1) {
+                row[nvars - 1 - j] = c.value();
             }
         }
-        rows[next].1 = pivot_row;
-        pivots.push(col);
-        next += 1;
+        if basis.insert(row) {
+            used.push(r);
+        } else {
+            implied.push(r);
+        }
     }
+    let mut pivots: Vec<usize> = basis
+        .pivot_columns()
+        .into_iter()
+        .map(|c| nvars - 1 - c)
+        .collect();
     if pivots.is_empty() || pivots.len() >= nvars {
         return None;
     }
     pivots.sort_unstable();
-    let mut used: Vec<usize> = rows[..next].iter().map(|(r, _)| *r).collect();
-    let mut implied: Vec<usize> = rows[next..].iter().map(|(r, _)| *r).collect();
-    used.sort_unstable();
-    implied.sort_unstable();
     Some((pivots, used, implied))
 }
 
@@ -381,7 +360,7 @@ pub fn purely_linear_unknowns<C: Ring>(
                 e.terms().all(|(m, _)| match m.0.get(x) {
                     Some(&k) if k > 0 => {
                         appears = true;
-                        k == 1 && m.0.iter().map(|&d| u32::from(d)).sum::<u32>() == 1
+                        k == 1 && m.degree() == 1
                     }
                     _ => true,
                 })

@@ -135,9 +135,10 @@ struct SearchArgs {
     /// default: the file's `option newton`, else 0).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=8))]
     newton: Option<u32>,
-    /// Eliminate the unknowns that appear only linearly with data coefficients (`yes`,
-    /// the default, when it keeps the solution count) or keep them (`no`); default: the
-    /// file's `option auto_eliminate`.
+    /// Solve unknowns from affine equations and substitute them, or else eliminate the
+    /// unknowns that appear only linearly with data coefficients (`yes`, the default, when
+    /// it keeps the solution count), or keep them (`no`); default: the file's
+    /// `option auto_eliminate`.
     #[arg(long, value_name = "yes|no", value_parser = ["yes", "no"])]
     auto_eliminate: Option<String>,
 }

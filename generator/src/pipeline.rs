@@ -155,19 +155,10 @@ pub(crate) fn system_and_factors<C: Ring>(
             .unwrap_or_else(|e| panic!("evaluating problem {}: {e}", problem.layout.name))
     };
     // Only the kept equations are computed (the minors of an elimination are the costly
-    // part); `index` numbers them in the full system, which divisions refer to.
+    // part).
     let kept = problem.independent();
     let (mut equations, mut elimination) = if problem.layout.eliminate.is_empty() {
-        let equations = match kept {
-            None => equations,
-            Some(kept) => {
-                let mut all: Vec<Option<Poly<C>>> = equations.into_iter().map(Some).collect();
-                kept.iter()
-                    .filter_map(|&i| all.get_mut(i)?.take())
-                    .collect()
-            }
-        };
-        (equations, None)
+        (select(equations, kept), None)
     } else if let Some(affine) = problem.substitution() {
         let mut e = substitute_linear(
             &equations,
@@ -175,13 +166,7 @@ pub(crate) fn system_and_factors<C: Ring>(
             &problem.layout.eliminate,
             affine,
         )?;
-        if let Some(kept) = kept {
-            let mut all: Vec<Option<Poly<C>>> = e.equations.drain(..).map(Some).collect();
-            e.equations = kept
-                .iter()
-                .filter_map(|&i| all.get_mut(i)?.take())
-                .collect();
-        }
+        e.equations = select(std::mem::take(&mut e.equations), kept);
         (e.equations.clone(), Some(e))
     } else {
         let e = eliminate_linear_selected(
@@ -192,13 +177,11 @@ pub(crate) fn system_and_factors<C: Ring>(
         )?;
         (e.equations.clone(), Some(e))
     };
-    let index: Vec<usize> = match kept {
-        Some(kept) => kept.to_vec(),
-        None => (0..equations.len()).collect(),
-    };
     let factors = system_variables(problem, &expressions);
     if problem.divisions().iter().flatten().any(|&d| d > 0) {
-        for (eq, &i) in equations.iter_mut().zip(&index) {
+        for (k, eq) in equations.iter_mut().enumerate() {
+            // Divisions number the equations of the full system.
+            let i = kept.map_or(k, |kept| kept[k]);
             let Some(counts) = problem.divisions().get(i) else {
                 continue;
             };
@@ -216,6 +199,19 @@ pub(crate) fn system_and_factors<C: Ring>(
         }
     }
     Ok(((equations, elimination), factors))
+}
+
+/// The equations `kept` (increasing indices) of `equations`; all with `None`.
+fn select<T>(equations: Vec<T>, kept: Option<&[usize]>) -> Vec<T> {
+    match kept {
+        None => equations,
+        Some(kept) => equations
+            .into_iter()
+            .enumerate()
+            .filter(|(i, _)| kept.binary_search(i).is_ok())
+            .map(|(_, e)| e)
+            .collect(),
+    }
 }
 
 /// The `nonzero` expressions in a system's variables (see [`system_and_factors`]).

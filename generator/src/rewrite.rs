@@ -47,7 +47,7 @@ pub(crate) fn eliminate_linear_unknowns(problem: Problem, options: &TemplateOpti
 }
 
 /// `problem` with the unknowns its affine equations determine substituted into its other
-/// equations ([`substitute_linear`]: Cramer's rule on a pivot block of data only), when the
+/// equations ([`crate::eliminate::substitute_linear`]: Cramer's rule on a pivot block of data only), when the
 /// file eliminates nothing, allows it (`option auto_eliminate`), some equation is not
 /// affine and the solution count stays the same: the linear constraints leave the
 /// nonlinear ones in fewer unknowns, as the null-space parametrisation of the 5-point
@@ -138,16 +138,7 @@ pub(crate) fn divide_out_nonzero(problem: Problem, options: &TemplateOptions) ->
     let saturated = problem.with_divisions(divisions);
     let plain = problem.without_saturation();
     let unsaturated = plain.with_divisions(nonzero_divisions(&plain, options.seed));
-    let deadline = options.budget.start();
-    let count = |p: &Problem| {
-        crate::quotient::analyse_within(&ProblemSource::new(p), options.seed, Some(deadline))
-            .ok()
-            .map(|a| a.count)
-    };
-    match (count(&unsaturated), count(&saturated)) {
-        (Some(a), Some(b)) if a == b => unsaturated,
-        _ => saturated,
-    }
+    same_count(unsaturated, saturated, options)
 }
 
 /// How many times each `nonzero` expression divides each equation of `problem`'s system

@@ -156,6 +156,12 @@ impl<const P: u32> EchelonBasis<P> {
         }
         false
     }
+    /// The pivot columns of the rows inserted so far, increasing.
+    pub(crate) fn pivot_columns(&self) -> Vec<usize> {
+        (0..self.ncols)
+            .filter(|&c| self.by_pivot[c].is_some())
+            .collect()
+    }
 }
 
 /// The support (row indices) of the left kernel of `m` (rows x `ncols`): the rows that

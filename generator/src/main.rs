@@ -97,7 +97,7 @@ enum Command {
         out: Option<PathBuf>,
         /// Form of the coefficient code with --out: `inline` (straight-line code in
         /// `solve`), `table` (coefficient functions of bounded size and a fill table:
-        /// compile time linear in the template's size) or `auto` (table above 8192
+        /// compile time linear in the template's size) or `auto` (table above 2048
         /// template entries plus coefficient statements).
         #[arg(long, value_name = "auto|inline|table", value_parser = ["auto", "inline", "table"], requires = "out")]
         code_form: Option<String>,

@@ -287,6 +287,7 @@ pub fn resolve_options(problem: &Problem, options: &TemplateOptions) -> Template
     }
     if let Some(b) = basis {
         out.basis_selection = b != "standard";
+        out.alternative_bases = b != "standard";
     }
     out
 }

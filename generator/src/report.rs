@@ -3,8 +3,10 @@
 //! JSON. Everything but the seconds is deterministic (seeded instances, fixed pipeline).
 //!
 //! Two header comments of a problem file are read: `# published: TEXT` (the best
-//! published template or solver, e.g. `31x46 (PoseLib relpose_6pt_focal)`) and
-//! `# Macaulay2: N ...` (an independent count).
+//! published template or solver, e.g. `31x46 (PoseLib relpose_6pt_focal)`, or, for the
+//! benchmark of Martyushev et al., their sizes by kind: `std 76x100, red 73x97 (...)`,
+//! see [`PublishedSizes`]) and `# Macaulay2: N ...` (an independent count). Template sizes
+//! compare by area (rows x columns), as the field does.
 
 use crate::audit::{audit_plan, AuditOptions, AuditReport};
 use crate::generate::GenerateError;
@@ -50,6 +52,8 @@ pub struct ReportRow {
     pub template: Option<(usize, usize)>,
     /// The `# published:` header line.
     pub published: Option<String>,
+    /// The template sizes read from the `# published:` line.
+    pub published_sizes: PublishedSizes,
     /// The action monomial.
     pub action: Option<String>,
     /// The audit on random instances.
@@ -88,6 +92,60 @@ pub fn problem_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, ReportError> {
     Ok(out)
 }
 
+/// Published template sizes `(rows, columns)`, read from a `# published:` header line:
+/// `std RxC` (standard quotient basis), `red RxC` (redundant solving basis; the smallest
+/// if several), `nstd RxC` (a non-standard basis) and a bare leading `RxC` (a size whose
+/// kind is not stated, e.g. a PoseLib solver's).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PublishedSizes {
+    /// With the standard basis of some monomial order.
+    pub std: Option<(usize, usize)>,
+    /// With a redundant solving basis.
+    pub red: Option<(usize, usize)>,
+    /// With a non-standard basis.
+    pub nstd: Option<(usize, usize)>,
+    /// Of unstated kind.
+    pub other: Option<(usize, usize)>,
+}
+
+impl PublishedSizes {
+    /// Parses the text of a `# published:` line (see the type's documentation).
+    pub fn parse(text: &str) -> PublishedSizes {
+        fn size(t: &str) -> Option<(usize, usize)> {
+            let t = t.trim_matches(|c: char| c == ',' || c == ';' || c == '(' || c == ')');
+            let (r, c) = t.split_once('x')?;
+            Some((r.parse().ok()?, c.parse().ok()?))
+        }
+        let smaller = |a: Option<(usize, usize)>, b: (usize, usize)| match a {
+            Some(a) if a.0 * a.1 <= b.0 * b.1 => Some(a),
+            _ => Some(b),
+        };
+        let mut out = PublishedSizes::default();
+        let words: Vec<&str> = text.split_whitespace().collect();
+        for (k, w) in words.iter().enumerate() {
+            let next = words.get(k + 1).and_then(|n| size(n));
+            match (w.trim_end_matches(':'), next) {
+                ("std", Some(s)) => out.std = smaller(out.std, s),
+                ("red", Some(s)) => out.red = smaller(out.red, s),
+                ("nstd", Some(s)) => out.nstd = smaller(out.nstd, s),
+                _ => {}
+            }
+        }
+        if let Some(s) = words.first().and_then(|w| size(w)) {
+            out.other = Some(s);
+        }
+        out
+    }
+    /// The smallest area among the sizes given.
+    pub fn best_area(&self) -> Option<usize> {
+        [self.std, self.red, self.nstd, self.other]
+            .into_iter()
+            .flatten()
+            .map(|(r, c)| r * c)
+            .min()
+    }
+}
+
 /// The text after `# KEY:` on the first comment line that has it.
 fn header_value(source: &str, key: &str) -> Option<String> {
     source.lines().find_map(|l| {
@@ -119,6 +177,9 @@ pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOpti
             .and_then(|v| v.split_whitespace().next().map(str::to_string)),
         template: None,
         published: header_value(&source, "published"),
+        published_sizes: header_value(&source, "published")
+            .map(|t| PublishedSizes::parse(&t))
+            .unwrap_or_default(),
         action: None,
         audit: None,
         seconds: 0.0,
@@ -185,6 +246,8 @@ impl ReportRow {
             "macaulay2": self.macaulay2,
             "template": self.template.map(|(r, c)| json!({"rows": r, "cols": c})),
             "published": self.published,
+            "area_over_std": self.area_ratio(self.published_sizes.std.map(|(r, c)| r * c)),
+            "area_over_best": self.area_ratio(self.published_sizes.best_area()),
             "action": self.action,
             "audit": self.audit.as_ref().map(|a| json!({
                 "instances": a.instances,
@@ -195,6 +258,12 @@ impl ReportRow {
             "seconds": self.seconds,
             "error": self.error,
         })
+    }
+
+    /// Our template's area over `area`, when both are known.
+    pub fn area_ratio(&self, area: Option<usize>) -> Option<f64> {
+        let (r, c) = self.template?;
+        area.filter(|&a| a > 0).map(|a| (r * c) as f64 / a as f64)
     }
 
     fn markdown_cells(&self) -> Vec<String> {
@@ -218,6 +287,10 @@ impl ReportRow {
                 (None, None) => dash(),
             },
             self.published.clone().unwrap_or_else(dash),
+            self.area_ratio(self.published_sizes.std.map(|(r, c)| r * c))
+                .map_or_else(dash, |x| format!("{x:.2}")),
+            self.area_ratio(self.published_sizes.best_area())
+                .map_or_else(dash, |x| format!("{x:.2}")),
             self.action.clone().unwrap_or_else(dash),
             self.audit.as_ref().map_or_else(dash, |a| {
                 format!(
@@ -244,6 +317,8 @@ pub fn to_markdown(rows: &[ReportRow]) -> String {
         "Macaulay2",
         "template",
         "published",
+        "area / std",
+        "area / best",
         "action",
         "audit: median / p99 log10 residual / failures",
         "seconds",
@@ -280,5 +355,22 @@ mod tests {
         assert_eq!(header_value(src, "Macaulay2").as_deref(), Some("15 (x)"));
         assert_eq!(header_value("published: 3\n", "published"), None);
         assert_eq!(header_value("# publishedx: 3\n", "published"), None);
+    }
+
+    #[test]
+    fn published_sizes_are_read_by_kind() {
+        let p = PublishedSizes::parse("std 76x100, red 73x97, red 80x90 (eliminationTemplates)");
+        assert_eq!(p.std, Some((76, 100)));
+        assert_eq!(p.red, Some((73, 97)));
+        assert_eq!(p.nstd, None);
+        assert_eq!(p.other, None);
+        assert_eq!(p.best_area(), Some(73 * 97));
+        let q = PublishedSizes::parse("25x35 (PoseLib p35pf)");
+        assert_eq!(q.other, Some((25, 35)));
+        assert_eq!(q.std, None);
+        assert_eq!(
+            PublishedSizes::parse("a Gröbner-basis solver").best_area(),
+            None
+        );
     }
 }

@@ -11,6 +11,8 @@
 # `random:N` (N instances with every slot uniform in [-1, 1]). SIGN_FREE: comma-
 # separated unknown indices whose joint sign is free (an eliminated unit translation).
 # Arguments after `--` go to `mingen generate` (e.g. --code-form inline).
+# PROFILE=dev builds the solver's crate in the dev (debug) profile instead of release, as
+# a user's `cargo build` does: emitted code must build in any profile.
 # Example (G-RSRP with unknown readout, 100 solutions):
 #   python3 tools/grsrp_readout_instances.py 200 2 --solutions /tmp/s.txt > /tmp/i.txt
 #   tools/emitted_solver/run.sh templates/large/grsrp_readout.mp /tmp/i.txt /tmp/s.txt 3,4,5
@@ -23,6 +25,12 @@ if [[ ${#args[@]} -lt 2 ]]; then
     sed -n 2,16p "$0" >&2
     exit 2
 fi
+profile=${PROFILE:-release}
+case $profile in
+    release) flag=(--release); dir=release ;;
+    dev) flag=(); dir=debug ;;
+    *) echo "PROFILE must be release or dev, not '$profile'" >&2; exit 2 ;;
+esac
 problem=${args[0]}
 name=$(basename "$problem" .mp)
 work="$root/target/emitted-solver/$name"
@@ -43,15 +51,15 @@ mingen-runtime = { path = "$root/generator/runtime" }
 [workspace]
 TOML
 # Dependencies first, so that the figure below is the solver's own compile time.
-cargo build --release -q --manifest-path "$work/Cargo.toml" -p mingen-runtime
+cargo build "${flag[@]}" -q --manifest-path "$work/Cargo.toml" -p mingen-runtime
 touch "$work/src/main.rs"
 start=$(date +%s%N)
-if ! log=$(cargo build --release -q --manifest-path "$work/Cargo.toml" 2>&1); then
+if ! log=$(cargo build "${flag[@]}" -q --manifest-path "$work/Cargo.toml" 2>&1); then
     echo "$log" >&2
     exit 1
 fi
 end=$(date +%s%N)
 lines=$(wc -l < "$work/src/solver.rs")
 ms=$(( (end - start) / 1000000 ))
-printf '%s: %d lines emitted, compiled in %d.%d s (release)\n' "$name" "$lines" $((ms / 1000)) $((ms % 1000 / 100))
-"${CARGO_TARGET_DIR:-$work/target}/release/emitted-solver-$name" "${args[@]:1}"
+printf '%s: %d lines emitted, compiled in %d.%d s (%s)\n' "$name" "$lines" $((ms / 1000)) $((ms % 1000 / 100)) "$profile"
+"${CARGO_TARGET_DIR:-$work/target}/$dir/emitted-solver-$name" "${args[@]:1}"

@@ -21,8 +21,9 @@ pub const SMALL_TEMPLATE_ROWS: usize = 40;
 
 /// Solvers whose template entries plus coefficient statements exceed this are emitted in
 /// table form (see [`VarStyle::Array`]): straight-line code of that length inside one
-/// function makes the compiler's time grow faster than linearly.
-pub const TABLE_FORM_MIN_SIZE: usize = 8192;
+/// function makes the compiler's time grow faster than linearly, and its recursion deep
+/// enough to overflow rustc's default stack in a debug build.
+pub const TABLE_FORM_MIN_SIZE: usize = 2048;
 
 /// Coefficient statements per function in table form.
 const STATEMENTS_PER_FUNCTION: usize = 512;

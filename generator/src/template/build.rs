@@ -8,6 +8,7 @@
 //! [`super::search`].
 
 use super::candidates::{candidate_bytes, candidates, Blocks, Candidate, ShrinkStep};
+use super::exclude::{exclude_monomials, Excluded};
 use super::linalg::gauss_jordan;
 use super::select::{self, SelectedTemplate};
 use super::shrink::shrink;
@@ -38,20 +39,23 @@ pub(crate) struct DegreeSearch<'a> {
     pub(crate) basis_selection: bool,
     /// Time and memory budget.
     pub(crate) deadline: Option<&'a Deadline>,
+    /// Whether to run the greedy exclusion ([`super::exclude`]) on the shrunk template.
+    pub(crate) exclude: bool,
 }
 
 /// The shrunk elimination template for `action` from the equations of one random instance
-/// mod P and the quotient basis `basis` (descending grevlex, as from
-/// [`crate::quotient::standard_monomials`]), with the distinct-eigenvalue flag computed by
-/// the caller.
+/// mod P and the quotient basis `basis` (the standard monomials of some monomial order,
+/// described by `label`), with the distinct-eigenvalue flag computed by the caller.
 ///
 /// Candidate rows are all multiples of the equations up to total degree `d`, for `d` in
 /// `search.degrees` in increasing order, until every reducible monomial is reducible; then
-/// shrinking removes rows and columns, and with `search.basis_selection` a selected basis
-/// replaces the standard one when its template is smaller. Deterministic.
+/// shrinking removes rows and columns (and with `search.exclude`, the greedy exclusion
+/// searches further), and with `search.basis_selection` a selected basis replaces the
+/// standard one when its template is smaller. Deterministic.
 pub(crate) fn build_template<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     basis: &[Monomial],
+    label: &str,
     action: &Action,
     search: &DegreeSearch,
     distinct: bool,
@@ -104,7 +108,37 @@ pub(crate) fn build_template<const P: u32>(
                 cands.len(),
                 ne + blocks.reducible.len() + basis.len(),
             )];
-            let kept = shrink::<P>(&blocks, cands, &mut history);
+            let kept = shrink::<P>(&blocks, cands.clone(), &mut history);
+            let ex = if search.exclude {
+                exclude_monomials::<P>(&blocks, cands, kept, search.deadline)
+            } else {
+                Excluded {
+                    pool: Vec::new(),
+                    kept,
+                    excluded: 0,
+                }
+            };
+            let kept = if ex.excluded > 0 {
+                let kept = shrink::<P>(&blocks, ex.pool, &mut Vec::new());
+                let kept = if kept.len() <= ex.kept.len() {
+                    kept
+                } else {
+                    ex.kept
+                };
+                let cols =
+                    blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + basis.len();
+                history.push((
+                    format!(
+                        "greedy exclusion from the candidates ({} moves: equation degrees, excess monomials)",
+                        ex.excluded
+                    ),
+                    kept.len(),
+                    cols,
+                ));
+                kept
+            } else {
+                ex.kept
+            };
             let score = kept.len()
                 * (blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + basis.len());
             if best.as_ref().map_or(true, |b| score < b.0) {
@@ -120,7 +154,7 @@ pub(crate) fn build_template<const P: u32>(
         blocks,
         kept,
         history,
-        label: "standard monomials (grevlex)".to_string(),
+        label: label.to_string(),
     });
     // Selected bases contain 1 and every variable. A variable outside the standard
     // (grevlex) basis is a leading term of the ideal, so the ideal holds a linear

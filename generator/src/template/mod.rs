@@ -34,6 +34,8 @@
 //! - `error`, `options`: [`TemplateError`] and [`TemplateOptions`], shared by all stages;
 //! - `candidates`: candidate rows, column blocks and the reducibility test;
 //! - [`shrink`]: removal of rows and columns reducibility does not need;
+//! - `exclude`: greedy exclusion of excess monomials from the candidate pool (a local
+//!   search over the independent sets shrinking chooses among);
 //! - [`select`]: quotient bases chosen among a template's columns;
 //! - [`explore`]: size tables over orders for developers (not used by the pipeline);
 //! - [`validate`](mod@validate): the template against Gröbner normal forms on fresh instances;
@@ -46,6 +48,7 @@ mod action;
 pub mod build;
 mod candidates;
 mod error;
+mod exclude;
 pub mod explore;
 pub(crate) mod linalg;
 mod options;

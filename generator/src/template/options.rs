@@ -34,6 +34,14 @@ pub struct TemplateOptions {
     /// elimination of all multiples up to a low degree, and the smallest template over the
     /// standard basis and these bases is kept (ties to the standard basis). On by default.
     pub basis_selection: bool,
+    /// Also try the standard bases of grevlex under other variable orders (the orders of
+    /// [`super::select::basis_orders`]; one Gröbner basis each on the analysis instance),
+    /// keeping, for each action, the smallest template. On by default; off with
+    /// `basis = standard`.
+    pub alternative_bases: bool,
+    /// Rebuild the chosen template with the greedy exclusion of candidate rows
+    /// ([`super::exclude`]) and keep it when it has fewer rows. On by default.
+    pub exclude_monomials: bool,
     /// Seed of all random choices (instances).
     pub seed: u64,
     /// Options that override those of the problem file (`option NAME = VALUE`) when the
@@ -58,6 +66,8 @@ impl Default for TemplateOptions {
             validate_instances: 10,
             exponent_caps: 0,
             basis_selection: true,
+            alternative_bases: true,
+            exclude_monomials: true,
             seed: 2024,
             hidden_vars: 0,
             overrides: ProblemOptions::default(),

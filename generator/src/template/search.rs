@@ -12,15 +12,21 @@
 use super::build::{build_template, BuiltTemplate, DegreeSearch};
 use super::candidates::start_degree;
 use super::linalg::is_squarefree;
+use super::select::{basis_orders, BasisOrder};
 use super::validate::nf_action_charpoly;
 use super::{Action, ActionChoice, TemplateError, TemplateOptions};
+use crate::algebra::MonomialOrder;
 use crate::algebra::{Fp, Monomial, Poly};
 use crate::budget::Deadline;
 use crate::groebner::GroebnerBasis;
-use crate::quotient::Analysis;
+use crate::groebner::{groebner_with, GroebnerOptions};
+use crate::quotient::{standard_monomials, Analysis};
 
 /// Every action's result: `(action, template or why none)`.
 pub type PerAction = Vec<(Action, Result<BuiltTemplate, TemplateError>)>;
+
+/// How the grevlex standard basis of the analysis is described.
+const STANDARD: &str = "standard monomials (grevlex)";
 
 /// Seed offset of the random linear-combination action.
 const RANDOM_ACTION_SEED: u64 = 0xAC71_0000;
@@ -76,6 +82,10 @@ pub(crate) fn best_template_within(
         let (r, c) = b.template.eliminated_size();
         r * c
     };
+    if opts.alternative_bases {
+        let bases = alternative_bases(eqs, basis, visible, deadline);
+        try_alternative_bases(eqs, &bases, visible, opts, deadline, &mut all);
+    }
     let pick = |need_distinct: bool| {
         all.iter()
             .enumerate()
@@ -90,7 +100,7 @@ pub(crate) fn best_template_within(
         pick(false)
     };
     match best {
-        Some(b) => Ok((b, all)),
+        Some(b) => Ok((refine(eqs, b, visible, opts, deadline), all)),
         None => Err(no_action(&all, opts)),
     }
 }
@@ -128,8 +138,9 @@ fn search_actions<const P: u32>(
                 degrees: starts[k]..=starts[k] + opts.max_extra_degree,
                 basis_selection: opts.basis_selection && (!skip_selection || distinct[k]),
                 deadline: Some(deadline),
+                exclude: false,
             };
-            let r = build_template(eqs, basis, v, &search, distinct[k], opts);
+            let r = build_template(eqs, basis, STANDARD, v, &search, distinct[k], opts);
             (v.clone(), r)
         })
         .collect();
@@ -181,8 +192,9 @@ fn raise_degree<const P: u32>(
                 degrees: d..=d,
                 basis_selection: false,
                 deadline: Some(deadline),
+                exclude: false,
             };
-            let r = build_template(eqs, basis, a, &search, distinct[k], opts);
+            let r = build_template(eqs, basis, STANDARD, a, &search, distinct[k], opts);
             let stop = matches!(
                 &r,
                 Err(TemplateError::NotReducible {
@@ -200,6 +212,141 @@ fn raise_degree<const P: u32>(
         if any {
             return;
         }
+    }
+}
+
+/// The standard bases of grevlex under the variable orders of
+/// [`super::select::basis_orders`] other than the identity (the visible variables permuted,
+/// hidden ones last), each from a Gröbner basis of the equations with the variables
+/// renamed; bases equal to `basis` or to an earlier one, or of another size, are left out.
+/// Stops when the budget runs out. Each comes with its description.
+fn alternative_bases<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    basis: &[Monomial],
+    visible: usize,
+    deadline: &Deadline,
+) -> Vec<(String, Vec<Monomial>)> {
+    let nvars = basis.first().map_or(0, Monomial::nvars);
+    let mut seen: Vec<Vec<Monomial>> = vec![sorted(basis.to_vec())];
+    let mut out = Vec::new();
+    for order in basis_orders(visible).into_iter().skip(1) {
+        let BasisOrder::Grevlex(perm) = &order else {
+            continue;
+        };
+        if deadline.check_time().is_err() {
+            break;
+        }
+        // y_k = x_perm[k]: the k-th largest variable of the new order.
+        let perm: Vec<usize> = perm.iter().copied().chain(visible..nvars).collect();
+        let to_y = |m: &Monomial| Monomial(perm.iter().map(|&i| m.0[i]).collect());
+        let permuted: Vec<Poly<Fp<P>>> = eqs
+            .iter()
+            .map(|f| Poly::from_terms(nvars, f.terms().map(|(m, c)| (to_y(m), *c))))
+            .collect();
+        let gopts = GroebnerOptions {
+            deadline: Some(*deadline),
+            ..GroebnerOptions::default()
+        };
+        let Ok(gb) = groebner_with(nvars, &permuted, &gopts) else {
+            continue;
+        };
+        let Ok(b) = standard_monomials(&gb) else {
+            continue;
+        };
+        let b: Vec<Monomial> = b
+            .iter()
+            .map(|y| {
+                let mut e = vec![0; nvars];
+                for (k, &i) in perm.iter().enumerate() {
+                    e[i] = y.0[k];
+                }
+                Monomial(e)
+            })
+            .collect();
+        let b = sorted(b);
+        if b.len() != basis.len() || seen.contains(&b) {
+            continue;
+        }
+        seen.push(b.clone());
+        out.push((format!("standard monomials ({})", order.describe(&[])), b));
+    }
+    out
+}
+
+fn sorted(mut b: Vec<Monomial>) -> Vec<Monomial> {
+    b.sort_by(|x, y| MonomialOrder::Grevlex.cmp(y, x));
+    b
+}
+
+/// Replaces each action's template by the smallest one built on an alternative standard
+/// basis, where that is smaller (actions without a template keep their error).
+fn try_alternative_bases<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    bases: &[(String, Vec<Monomial>)],
+    visible: usize,
+    opts: &TemplateOptions,
+    deadline: &Deadline,
+    all: &mut PerAction,
+) {
+    for (label, b) in bases {
+        for (action, result) in all.iter_mut() {
+            let Ok(current) = result else { continue };
+            if deadline.check_time().is_err() {
+                return;
+            }
+            let start = start_degree(eqs, b, action, visible);
+            let search = DegreeSearch {
+                degrees: start..=start + opts.max_extra_degree,
+                basis_selection: false,
+                deadline: Some(deadline),
+                exclude: false,
+            };
+            let distinct = current.distinct_eigenvalues;
+            if let Ok(t) = build_template(eqs, b, label, action, &search, distinct, opts) {
+                let area = |x: &BuiltTemplate| {
+                    let (r, c) = x.template.eliminated_size();
+                    r * c
+                };
+                if area(&t) < area(current) {
+                    *result = Ok(t);
+                }
+            }
+        }
+    }
+}
+
+/// The chosen template rebuilt on its basis with the greedy exclusion of
+/// [`super::exclude`], when that is smaller; otherwise the template itself.
+fn refine<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    best: BuiltTemplate,
+    visible: usize,
+    opts: &TemplateOptions,
+    deadline: &Deadline,
+) -> BuiltTemplate {
+    if !opts.exclude_monomials {
+        return best;
+    }
+    let t = &best.template;
+    let start = start_degree(eqs, &t.basis, &t.action, visible);
+    let search = DegreeSearch {
+        degrees: start..=start + opts.max_extra_degree,
+        basis_selection: false,
+        deadline: Some(deadline),
+        exclude: true,
+    };
+    let label = best.basis_choice.clone();
+    match build_template(
+        eqs,
+        &t.basis,
+        &label,
+        &t.action,
+        &search,
+        best.distinct_eigenvalues,
+        opts,
+    ) {
+        Ok(r) if r.template.eliminated_size().0 < t.eliminated_size().0 => r,
+        _ => best,
     }
 }
 

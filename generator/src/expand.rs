@@ -74,7 +74,7 @@ pub enum EvalError {
     Constant(Q),
 }
 
-/// A small dense matrix (1x1, 3x1, 1x3 or 3x3) over a ring, row-major.
+/// A small dense matrix (any shape RxC) over a ring, row-major.
 #[derive(Clone, Debug)]
 struct Mat<T> {
     shape: Shape,
@@ -147,6 +147,10 @@ impl<T: Ring> Mat<T> {
         }
     }
     fn det(&self) -> T {
+        if self.shape.rows != 3 {
+            let all: Vec<usize> = (0..self.shape.cols).collect();
+            return self.cofactor_det(0, &all);
+        }
         let m = |i, j| self.at(i, j);
         let minor = |a: usize, b: usize| {
             // Columns other than the first of the 2x2 minor on rows 1, 2.
@@ -157,7 +161,36 @@ impl<T: Ring> Mat<T> {
         let t2 = mul_skip(m(0, 2), &minor(0, 1));
         t0.sub(&t1).add(&t2)
     }
+    /// The determinant of the square block on rows `row..` and columns `cols`, by
+    /// cofactor expansion along its first row (any size; the checker allows up to 6x6).
+    fn cofactor_det(&self, row: usize, cols: &[usize]) -> T {
+        match cols {
+            [] => T::one(),
+            [c] => self.at(row, *c).clone(),
+            _ => {
+                let mut acc = T::zero();
+                for (k, &c) in cols.iter().enumerate() {
+                    let x = self.at(row, c);
+                    if x.is_zero() {
+                        continue;
+                    }
+                    let rest: Vec<usize> = cols.iter().copied().filter(|&d| d != c).collect();
+                    let term = mul_skip(x, &self.cofactor_det(row + 1, &rest));
+                    acc = if k % 2 == 0 {
+                        acc.add(&term)
+                    } else {
+                        sub_skip(&acc, &term)
+                    };
+                }
+                acc
+            }
+        }
+    }
     fn trace(&self) -> T {
+        if self.shape.rows != 3 {
+            return (1..self.shape.rows)
+                .fold(self.at(0, 0).clone(), |acc, i| acc.add(self.at(i, i)));
+        }
         self.at(0, 0).add(self.at(1, 1)).add(self.at(2, 2))
     }
 }

@@ -145,4 +145,6 @@ pub enum ExprKind {
     List(Vec<Expr>),
     /// `( e )`
     Paren(Box<Expr>),
+    /// `diff(e, x)`: the partial derivative of `e` by the unknown scalar `x`.
+    Diff(Box<Expr>, Box<Expr>),
 }

@@ -210,3 +210,38 @@ fn diff_matches_the_hand_expanded_derivative() {
     assert!((g[0] - (plus0[0] - minus0[0]) / (2.0 * h)).abs() < 1e-6);
     assert!((g[1] - (plus1[1] - minus1[1]) / (2.0 * h)).abs() < 1e-6);
 }
+
+#[test]
+fn laurent_equations_are_multiplied_by_the_smallest_clearing_monomial() {
+    let laurent = "problem l\nunknown x, y\ndata a: scalar, b: scalar\n\
+                   x + x^-1 = a\ny/x + 2/(x*y) = b\nx * x^-1 = a\nx^-2 * y = 1\n\
+                   (x*y)^-1 * x^3 - a = 0\n";
+    let hand = "problem l\nunknown x, y\ndata a: scalar, b: scalar\n\
+                x^2 + 1 = a*x\ny^2 + 2 = b*x*y\n1 = a\ny = x^2\nx^2 - a*y = 0\n";
+    let l = Problem::parse(laurent, "l.mp").unwrap();
+    let h = Problem::parse(hand, "h.mp").unwrap();
+    assert_eq!(l.expand(), h.expand());
+    agree_with_direct_evaluation(&l, 4);
+    let (data, x) = ([0.5, -1.5], [0.7, -0.3]);
+    assert_eq!(l.evaluate_direct(&data, &x).len(), 5);
+    for (u, v) in l
+        .evaluate_direct(&data, &x)
+        .iter()
+        .zip(h.evaluate_direct(&data, &x))
+    {
+        assert!((u - v).abs() < 1e-12, "{u} vs {v}");
+    }
+    // A Laurent problem solves like its polynomial form: x^2 - a x + 1 = 0 and
+    // y^2 - b x y + 2 = 0 have 4 solutions.
+    let dir = temp_dir("laurent");
+    let file = dir.join("l.mp");
+    std::fs::write(
+        &file,
+        "problem laurent2\nunknown x, y\ndata a: scalar, b: scalar\n\
+         x + 1/x = a\ny/x + 2/(x*y) = b\n",
+    )
+    .unwrap();
+    let plan = mingen::pipeline::plan_file(&file, &Default::default()).unwrap();
+    assert_eq!(plan.summary_json()["solutions"], 4);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -222,6 +222,12 @@ impl Checker {
                         "'nonzero' needs an expression in the unknowns, found a constant",
                     ));
                 }
+                if diff::reaches(&self.tape, v, |op| matches!(op, Op::Recip(_))) {
+                    return Err(self.err(
+                        expr.pos,
+                        "'nonzero' needs a polynomial (no negative powers or division by unknowns)",
+                    ));
+                }
                 self.nonzero.push((v, *pos));
                 Ok(())
             }

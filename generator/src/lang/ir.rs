@@ -63,6 +63,10 @@ pub enum Op {
     Unknown(usize),
     /// Data slot number s (1x1).
     Data(usize),
+    /// The reciprocal `1 / x_i` of unknown scalar number i (1x1): a Laurent monomial. The
+    /// expansion multiplies each equation by the smallest monomial that clears the
+    /// negative exponents (`Problem::expand`).
+    Recip(usize),
     /// A matrix from 1x1 nodes, row-major.
     Build(Shape, Vec<NodeId>),
     /// The 3x3 identity.
@@ -199,7 +203,7 @@ impl Tape {
         let deg = |n: &NodeId| self.nodes.get(*n).map_or(0, |n| n.degree);
         let degree = match &op {
             Op::Const(_) | Op::Identity => 0,
-            Op::Unknown(_) | Op::Data(_) => 1,
+            Op::Unknown(_) | Op::Data(_) | Op::Recip(_) => 1,
             Op::Build(_, e) => e.iter().map(deg).max().unwrap_or(0),
             Op::Add(a, b) | Op::Sub(a, b) => deg(a).max(deg(b)),
             Op::Mul(a, b) => deg(a).saturating_add(deg(b)),

@@ -518,6 +518,10 @@ impl<'a> Parser<'a> {
             return Ok(operand);
         }
         self.bump();
+        let negative = self.peek().tok == Tok::Minus;
+        if negative {
+            self.bump();
+        }
         let t = self.peek();
         let n = match &t.tok {
             Tok::Number(s) if !s.contains('.') => s.parse::<u32>().ok(),
@@ -526,19 +530,30 @@ impl<'a> Parser<'a> {
         let Some(n) = n.filter(|n| (1..=MAX_POWER).contains(n)) else {
             return Err(LangError::new(
                 t.pos,
-                format!("the exponent after '^' must be an integer from 1 to {MAX_POWER}"),
+                format!(
+                    "the exponent after '^' must be an integer from 1 to {MAX_POWER} or from -{MAX_POWER} to -1"
+                ),
             ));
         };
         self.bump();
-        if n == 1 {
-            return Ok(operand);
+        let pos = operand.pos;
+        let power = if n == 1 {
+            operand
+        } else {
+            let rest = (1..n)
+                .map(|_| (MulOp::Mul, caret.pos, operand.clone()))
+                .collect();
+            Expr {
+                pos,
+                kind: ExprKind::Product(Box::new(operand), rest),
+            }
+        };
+        if !negative {
+            return Ok(power);
         }
-        let rest = (1..n)
-            .map(|_| (MulOp::Mul, caret.pos, operand.clone()))
-            .collect();
         Ok(Expr {
-            pos: operand.pos,
-            kind: ExprKind::Product(Box::new(operand), rest),
+            pos,
+            kind: ExprKind::Recip(Box::new(power)),
         })
     }
 

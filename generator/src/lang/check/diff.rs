@@ -41,6 +41,11 @@ pub(super) fn derivative(
         let result = match op {
             Op::Const(_) | Op::Data(_) | Op::Identity => None,
             Op::Unknown(i) => (i == var).then(|| tape.konst(super::q_int(1))),
+            // d(1/x)/dx = -1/x^2.
+            Op::Recip(i) => (i == var).then(|| {
+                let sq = tape.mk(Op::Mul(id, id), Shape::SCALAR);
+                tape.mk(Op::Neg(sq), Shape::SCALAR)
+            }),
             Op::Build(s, entries) => {
                 let ds: Vec<Option<NodeId>> = entries.iter().map(d).collect();
                 if ds.iter().all(Option::is_none) {
@@ -105,10 +110,27 @@ fn det_derivative(tape: &mut Tape, a: NodeId, da: NodeId) -> NodeId {
     acc.unwrap_or_else(|| tape.konst(super::q_int(0)))
 }
 
+/// Whether node `n` or one of its operands satisfies `pred`.
+pub(super) fn reaches(tape: &Tape, n: NodeId, pred: impl Fn(&Op) -> bool) -> bool {
+    let mut seen = std::collections::HashSet::new();
+    let mut stack = vec![n];
+    while let Some(id) = stack.pop() {
+        if !seen.insert(id) {
+            continue;
+        }
+        let Some(op) = tape.op(id) else { continue };
+        if pred(op) {
+            return true;
+        }
+        stack.extend(operands(op));
+    }
+    false
+}
+
 /// The operand nodes of an operation.
 fn operands(op: &Op) -> Vec<NodeId> {
     match op {
-        Op::Const(_) | Op::Unknown(_) | Op::Data(_) | Op::Identity => Vec::new(),
+        Op::Const(_) | Op::Unknown(_) | Op::Data(_) | Op::Recip(_) | Op::Identity => Vec::new(),
         Op::Build(_, e) => e.clone(),
         Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) => vec![*a, *b],
         Op::Neg(a)

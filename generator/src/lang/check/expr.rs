@@ -224,16 +224,7 @@ impl Checker {
                             acc = self.tape.mk(Op::Mul(acc, n), s);
                         }
                         MulOp::Div => {
-                            let Some(q) = self.tape.constant(n).cloned() else {
-                                return Err(self.err(
-                                    t.pos,
-                                    "the divisor must be a constant (numbers and loop variables only)",
-                                ));
-                            };
-                            if q.is_zero() {
-                                return Err(self.err(t.pos, "division by zero"));
-                            }
-                            let inv = self.tape.konst(q.recip());
+                            let inv = self.reciprocal(n, t.pos)?;
                             acc = self.tape.mk(Op::Mul(acc, inv), a);
                         }
                     }
@@ -261,6 +252,10 @@ impl Checker {
                 Ok(v)
             }
             ExprKind::List(items) => self.list(items, e.pos),
+            ExprKind::Recip(inner) => {
+                let n = self.value(inner)?;
+                Ok(Val::Node(self.reciprocal(n, inner.pos)?))
+            }
             ExprKind::Diff(inner, var) => {
                 let n = self.value(inner)?;
                 let x = self.value(var)?;
@@ -282,6 +277,72 @@ impl Checker {
                 self.budget(e.pos)?;
                 Ok(Val::Node(out))
             }
+        }
+    }
+
+    /// The reciprocal of a divisor: a non-zero constant, or a monomial in the unknowns (a
+    /// product of unknowns, their reciprocals and a non-zero constant), whose reciprocal
+    /// is a Laurent monomial (`Op::Recip` leaves).
+    fn reciprocal(&mut self, n: NodeId, pos: Pos) -> Result<NodeId, LangError> {
+        let in_unknowns = super::diff::reaches(&self.tape, n, |op| {
+            matches!(op, Op::Unknown(_) | Op::Recip(_))
+        });
+        if !in_unknowns {
+            let Some(q) = self.tape.constant(n).cloned() else {
+                return Err(self.err(
+                    pos,
+                    "the divisor must be a constant (numbers and loop variables only)",
+                ));
+            };
+            if q.is_zero() {
+                return Err(self.err(pos, "division by zero"));
+            }
+            return Ok(self.tape.konst(q.recip()));
+        }
+        let s = self.tape.shape(n);
+        if !s.is_scalar() {
+            return Err(self.err(
+                pos,
+                format!(
+                    "the divisor must be a scalar monomial in the unknowns, found {}",
+                    s.describe()
+                ),
+            ));
+        }
+        self.monomial_reciprocal(n, pos, 0)
+    }
+
+    fn monomial_reciprocal(
+        &mut self,
+        n: NodeId,
+        pos: Pos,
+        depth: usize,
+    ) -> Result<NodeId, LangError> {
+        let not_monomial = |c: &Checker| {
+            c.err(
+                pos,
+                "the divisor must be a monomial in the unknowns (a product of unknowns and a non-zero constant, as in 2*x*y^2)",
+            )
+        };
+        if depth > 4 * crate::lang::parser::MAX_DEPTH {
+            return Err(not_monomial(self));
+        }
+        match self.tape.op(n).cloned() {
+            Some(Op::Unknown(i)) => Ok(self.tape.mk(Op::Recip(i), Shape::SCALAR)),
+            Some(Op::Recip(i)) => Ok(self.tape.mk(Op::Unknown(i), Shape::SCALAR)),
+            Some(Op::Const(q)) if !q.is_zero() => Ok(self.tape.konst(q.recip())),
+            Some(Op::Neg(a)) => {
+                let r = self.monomial_reciprocal(a, pos, depth + 1)?;
+                Ok(self.tape.mk(Op::Neg(r), Shape::SCALAR))
+            }
+            Some(Op::Mul(a, b))
+                if self.tape.shape(a).is_scalar() && self.tape.shape(b).is_scalar() =>
+            {
+                let ra = self.monomial_reciprocal(a, pos, depth + 1)?;
+                let rb = self.monomial_reciprocal(b, pos, depth + 1)?;
+                Ok(self.tape.mk(Op::Mul(ra, rb), Shape::SCALAR))
+            }
+            _ => Err(not_monomial(self)),
         }
     }
 

@@ -10,21 +10,32 @@ fn temp_dir(tag: &str) -> std::path::PathBuf {
     dir
 }
 
-#[test]
-fn digit_leading_problem_name_emits_a_valid_module() {
-    let dir = temp_dir("name");
-    let file = dir.join("3pra_st0.mp");
-    std::fs::write(
-        &file,
-        "problem 3pra_st0\nunknown x, y\ndata a: scalar, b: scalar\nx^2 + y^2 = a\nx*y = b\n",
-    )
-    .unwrap();
-    let out = mingen::build::Config::new()
-        .problems(&[&file])
-        .out_dir(&dir)
+/// A fresh directory for test `tag` holding the problem file `name` with `source`.
+fn problem_file(tag: &str, name: &str, source: &str) -> (std::path::PathBuf, std::path::PathBuf) {
+    let dir = temp_dir(tag);
+    let file = dir.join(name);
+    std::fs::write(&file, source).unwrap();
+    (dir, file)
+}
+
+/// Emits the solver of `file` into `dir` through the build-script API.
+fn compile(dir: &std::path::Path, file: &std::path::Path) -> Vec<mingen::build::Compiled> {
+    mingen::build::Config::new()
+        .problems(&[file])
+        .out_dir(dir)
         .cargo_metadata(false)
         .compile()
-        .unwrap();
+        .unwrap()
+}
+
+#[test]
+fn digit_leading_problem_name_emits_a_valid_module() {
+    let (dir, file) = problem_file(
+        "name",
+        "3pra_st0.mp",
+        "problem 3pra_st0\nunknown x, y\ndata a: scalar, b: scalar\nx^2 + y^2 = a\nx*y = b\n",
+    );
+    let out = compile(&dir, &file);
     assert_eq!(out[0].name, "p3pra_st0");
     assert!(mingen::lang::names::is_rust_ident(&out[0].name));
     let text = std::fs::read_to_string(dir.join("p3pra_st0.rs")).unwrap();
@@ -144,20 +155,13 @@ fn values_of_any_shape() {
 
 #[test]
 fn emitted_data_struct_for_sized_kinds() {
-    let dir = temp_dir("data");
-    let file = dir.join("sized.mp");
-    std::fs::write(
-        &file,
+    let (dir, file) = problem_file(
+        "data",
+        "sized.mp",
         "problem sized\nunknown x, y\ndata w: vec4, M: mat2x3, big: vec40\n\
          x^2 + w[0]*y = w[1] + big[39]\ny^2 + M[0][1]*x = M[1][2]\n",
-    )
-    .unwrap();
-    let out = mingen::build::Config::new()
-        .problems(&[&file])
-        .out_dir(&dir)
-        .cargo_metadata(false)
-        .compile()
-        .unwrap();
+    );
+    let out = compile(&dir, &file);
     let text = std::fs::read_to_string(&out[0].path).unwrap();
     syn::parse_file(&text).expect("the emitted solver parses");
     assert!(text.contains("pub w: [f64; 4],"), "{text}");
@@ -233,14 +237,12 @@ fn laurent_equations_are_multiplied_by_the_smallest_clearing_monomial() {
     }
     // A Laurent problem solves like its polynomial form: x^2 - a x + 1 = 0 and
     // y^2 - b x y + 2 = 0 have 4 solutions.
-    let dir = temp_dir("laurent");
-    let file = dir.join("l.mp");
-    std::fs::write(
-        &file,
+    let (dir, file) = problem_file(
+        "laurent",
+        "l.mp",
         "problem laurent2\nunknown x, y\ndata a: scalar, b: scalar\n\
          x + 1/x = a\ny/x + 2/(x*y) = b\n",
-    )
-    .unwrap();
+    );
     let plan = mingen::pipeline::plan_file(&file, &Default::default()).unwrap();
     assert_eq!(plan.summary_json()["solutions"], 4);
     std::fs::remove_dir_all(&dir).unwrap();

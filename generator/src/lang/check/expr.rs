@@ -457,6 +457,9 @@ impl Checker {
                 rows: rows.len(),
                 cols,
             };
+            if let [one] = entries[..] {
+                return Ok(Val::Node(one));
+            }
             return Ok(Val::Node(self.tape.mk(Op::Build(s, entries), s)));
         }
         let e = self.scalar_items(items)?;

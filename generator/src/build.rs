@@ -22,8 +22,9 @@
 //! // implements mingen_runtime::MinimalSolver.
 //! ```
 //!
-//! Each problem file becomes `<out_dir>/<name>.rs` (written only when its content
-//! changes), and `cargo:rerun-if-changed=<file>` is printed for it, so the build script
+//! Each problem file becomes `<out_dir>/<module>.rs` (the module name is the problem name
+//! lowercased, `p` prepended when it starts with a digit: `problem 8ptF` writes `p8ptf.rs`;
+//! written only when its content changes), and `cargo:rerun-if-changed=<file>` is printed for it, so the build script
 //! reruns when a problem file changes and not otherwise.
 
 use crate::emit::CodeForm;
@@ -53,10 +54,10 @@ pub enum BuildError {
         /// What went wrong.
         source: GenerateError,
     },
-    /// Two problem files declare the same problem name (they would write the same file).
-    #[error("problem `{name}` is declared by both {first} and {second}")]
+    /// Two problem files give the same module name (they would write the same file).
+    #[error("problem module `{name}` is declared by both {first} and {second}")]
     DuplicateName {
-        /// The problem name.
+        /// The module name ([`crate::problem::ProblemLayout::module_name`]).
         name: String,
         /// The first file declaring it.
         first: PathBuf,
@@ -76,11 +77,12 @@ pub enum BuildError {
 /// One solver written by [`Config::compile`].
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Compiled {
-    /// The problem name (the module to declare).
+    /// The module to declare and the file stem: the problem name lowercased, `p` prepended
+    /// when it starts with a digit ([`crate::problem::ProblemLayout::module_name`]).
     pub name: String,
     /// The problem file.
     pub problem: PathBuf,
-    /// The generated file, `<out_dir>/<name>.rs`.
+    /// The generated file, `<out_dir>/<module>.rs`.
     pub path: PathBuf,
     /// Whether the file already had this content (nothing was written).
     pub unchanged: bool,
@@ -148,7 +150,7 @@ impl Config {
         self
     }
 
-    /// Generates every problem's solver into `<out_dir>/<name>.rs`. Stops at the first
+    /// Generates every problem's solver into `<out_dir>/<module>.rs`. Stops at the first
     /// problem that fails; files of earlier problems are kept (each write is atomic).
     pub fn compile(&self) -> Result<Vec<Compiled>, BuildError> {
         if self.problems.is_empty() {
@@ -174,7 +176,7 @@ impl Config {
                 source,
             };
             let plan = plan_file(file, &self.options).map_err(|e| generate(e.into()))?;
-            let name = plan.problem.layout.name.clone();
+            let name = plan.problem.layout.module_name();
             if let Some(first) = seen.insert(name.clone(), file.clone()) {
                 return Err(BuildError::DuplicateName {
                     name,

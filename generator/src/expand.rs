@@ -6,7 +6,7 @@
 //! Evaluation walks the checked tape (see [`crate::lang::check`]) with small matrices whose
 //! entries are polynomials: no strings, no parsing, each shared subexpression computed once.
 
-use crate::algebra::{Monomial, Poly, Ring, Q};
+use crate::algebra::{Exponent, Fp, Monomial, Poly, Ring, P1, Q};
 use crate::lang::check::{Checked, Node, NodeId, Op, Shape};
 use crate::lang::{self, LangError};
 use crate::problem::ProblemLayout;
@@ -32,6 +32,84 @@ pub struct Problem {
     /// The affine equations whose unknowns `layout.eliminate` are substituted into the
     /// others (see [`Problem::with_substitution`]); `None`: `eliminate` takes minors.
     substitution: Option<(Vec<usize>, Vec<usize>)>,
+    /// Laurent equations (`x^-1`, `e / x`): see [`Laurent`]; empty when there are none.
+    laurent: Laurent,
+}
+
+/// The reciprocals of unknowns in the tape and, per scalar equation, the monomial that
+/// clears its negative exponents. Evaluation runs the tape with one extra variable per
+/// inverted unknown (`1/x_i` as a variable `y_j`), then folds each term `x^e y^f` to
+/// `x^(e - f + s)` with the equation's shift `s`: the smallest exponents that make every
+/// term of the equation a monomial (found from the equation's support on two random
+/// instances mod p, where a coefficient vanishes by accident with probability about
+/// 1/p). The shifted equation has the solutions of the Laurent equation with every
+/// inverted unknown non-zero, and may have more where one vanishes (`nonzero x` removes
+/// those).
+#[derive(Clone, Debug, Default)]
+struct Laurent {
+    /// The unknowns with a reciprocal in the tape (flat indices, increasing); the extra
+    /// variable `n + j` stands for `1 / x_inverted[j]`.
+    inverted: Vec<usize>,
+    /// Per scalar equation, the exponent of each unknown in its shift monomial.
+    shifts: Vec<Vec<Exponent>>,
+}
+
+impl Laurent {
+    /// The polynomial in `n + inverted.len() + rest` variables (unknowns, reciprocals, any
+    /// others) as a polynomial in `n + rest` variables, multiplied by the shift of
+    /// equation `eq`. Exponents that the shift does not clear (a term outside the support
+    /// the shift was found on) are clamped at zero.
+    fn fold<C: Ring>(&self, p: Poly<C>, n: usize, eq: usize) -> Poly<C> {
+        let k = self.inverted.len();
+        if k == 0 {
+            return p;
+        }
+        let shift = self.shifts.get(eq);
+        let total = p.nvars();
+        let mut out: BTreeMap<Monomial, C> = BTreeMap::new();
+        for (m, c) in p.terms() {
+            let mut e: Vec<Exponent> = Vec::with_capacity(total - k);
+            for i in 0..n {
+                let s = shift.and_then(|s| s.get(i)).copied().unwrap_or(0);
+                let neg = self
+                    .inverted
+                    .iter()
+                    .position(|&v| v == i)
+                    .map_or(0, |j| m.0[n + j]);
+                e.push((m.0[i] + s).saturating_sub(neg));
+            }
+            e.extend_from_slice(&m.0[n + k..]);
+            let key = Monomial(e);
+            match out.get_mut(&key) {
+                Some(acc) => *acc = acc.add(c),
+                None => {
+                    out.insert(key, c.clone());
+                }
+            }
+        }
+        Poly::from_terms(total - k, out.into_iter().filter(|(_, c)| !c.is_zero()))
+    }
+
+    /// The shift of each equation from the raw (unfolded) equations of some instances:
+    /// per unknown, the largest excess of its reciprocal's exponent over its own.
+    fn shifts_from<C: Ring>(&mut self, n: usize, instances: &[Vec<Poly<C>>]) {
+        let count = instances.first().map_or(0, Vec::len);
+        self.shifts = (0..count)
+            .map(|eq| {
+                let mut s = vec![0 as Exponent; n];
+                for polys in instances {
+                    let Some(p) = polys.get(eq) else { continue };
+                    for (m, _) in p.terms() {
+                        for (j, &v) in self.inverted.iter().enumerate() {
+                            let excess = m.0[n + j].saturating_sub(m.0[v]);
+                            s[v] = s[v].max(excess);
+                        }
+                    }
+                }
+                s
+            })
+            .collect();
+    }
 }
 
 /// Failure to load a problem file.
@@ -74,7 +152,7 @@ pub enum EvalError {
     Constant(Q),
 }
 
-/// A small dense matrix (1x1, 3x1, 1x3 or 3x3) over a ring, row-major.
+/// A small dense matrix (any shape RxC) over a ring, row-major.
 #[derive(Clone, Debug)]
 struct Mat<T> {
     shape: Shape,
@@ -147,6 +225,10 @@ impl<T: Ring> Mat<T> {
         }
     }
     fn det(&self) -> T {
+        if self.shape.rows != 3 {
+            let all: Vec<usize> = (0..self.shape.cols).collect();
+            return self.cofactor_det(0, &all);
+        }
         let m = |i, j| self.at(i, j);
         let minor = |a: usize, b: usize| {
             // Columns other than the first of the 2x2 minor on rows 1, 2.
@@ -157,7 +239,36 @@ impl<T: Ring> Mat<T> {
         let t2 = mul_skip(m(0, 2), &minor(0, 1));
         t0.sub(&t1).add(&t2)
     }
+    /// The determinant of the square block on rows `row..` and columns `cols`, by
+    /// cofactor expansion along its first row (any size; the checker allows up to 6x6).
+    fn cofactor_det(&self, row: usize, cols: &[usize]) -> T {
+        match cols {
+            [] => T::one(),
+            [c] => self.at(row, *c).clone(),
+            _ => {
+                let mut acc = T::zero();
+                for (k, &c) in cols.iter().enumerate() {
+                    let x = self.at(row, c);
+                    if x.is_zero() {
+                        continue;
+                    }
+                    let rest: Vec<usize> = cols.iter().copied().filter(|&d| d != c).collect();
+                    let term = mul_skip(x, &self.cofactor_det(row + 1, &rest));
+                    acc = if k % 2 == 0 {
+                        acc.add(&term)
+                    } else {
+                        sub_skip(&acc, &term)
+                    };
+                }
+                acc
+            }
+        }
+    }
     fn trace(&self) -> T {
+        if self.shape.rows != 3 {
+            return (1..self.shape.rows)
+                .fold(self.at(0, 0).clone(), |acc, i| acc.add(self.at(i, i)));
+        }
         self.at(0, 0).add(self.at(1, 1)).add(self.at(2, 2))
     }
 }
@@ -247,8 +358,11 @@ fn run_mixed<C: Ring>(
     nodes: &[Node],
     needed: &[bool],
     n: usize,
+    inverted: &[usize],
     data: &[C],
 ) -> Result<Vec<Option<Mixed<C>>>, EvalError> {
+    // The reciprocal of unknown `inverted[j]` is variable `n - inverted.len() + j`.
+    let first_recip = n - inverted.len();
     let mut vals: Vec<Option<Mixed<C>>> = Vec::with_capacity(nodes.len());
     for (id, node) in nodes.iter().enumerate() {
         if !needed.get(id).copied().unwrap_or(false) {
@@ -271,6 +385,10 @@ fn run_mixed<C: Ring>(
             )),
             Op::Data(s) => Mixed::K(Mat::scalar(data[*s].clone())),
             Op::Unknown(i) => Mixed::P(Mat::scalar(Poly::var(n, *i))),
+            Op::Recip(i) => Mixed::P(Mat::scalar(Poly::var(
+                n,
+                first_recip + inverted.iter().position(|v| v == i).unwrap_or(0),
+            ))),
             Op::Build(shape, entries) => {
                 if entries.iter().all(|x| matches!(get(x), Mixed::K(_))) {
                     Mixed::K(Mat {
@@ -357,7 +475,9 @@ fn run_tape<T: Ring>(
                 .expect("operands precede their users and are needed")
         };
         let v = match &node.op {
-            Op::Const(_) | Op::Unknown(_) | Op::Data(_) => Mat::scalar(leaf(&node.op)?),
+            Op::Const(_) | Op::Unknown(_) | Op::Data(_) | Op::Recip(_) => {
+                Mat::scalar(leaf(&node.op)?)
+            }
             Op::Build(shape, entries) => Mat {
                 shape: *shape,
                 e: entries.iter().map(|n| get(n).e[0].clone()).collect(),
@@ -416,7 +536,7 @@ impl Problem {
             .iter()
             .filter_map(|eq| saturated_expression(&checked.nodes, eq.node))
             .collect();
-        Problem::with_needed(checked, nonzero, Vec::new())
+        Problem::with_needed(checked, nonzero, Vec::new()).with_laurent()
     }
 
     fn with_needed(checked: Checked, nonzero: Vec<NodeId>, divisions: Vec<Vec<u32>>) -> Problem {
@@ -429,7 +549,7 @@ impl Problem {
             }
             needed[n] = true;
             match &checked.nodes[n].op {
-                Op::Const(_) | Op::Unknown(_) | Op::Data(_) | Op::Identity => {}
+                Op::Const(_) | Op::Unknown(_) | Op::Data(_) | Op::Recip(_) | Op::Identity => {}
                 Op::Build(_, e) => stack.extend(e),
                 Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) => stack.extend([*a, *b]),
                 Op::Neg(a)
@@ -448,7 +568,46 @@ impl Problem {
             divisions,
             independent: None,
             substitution: None,
+            laurent: Laurent::default(),
         }
+    }
+
+    /// Finds the reciprocals of unknowns in the needed tape and each equation's shift
+    /// ([`Laurent`]); nothing when there are none.
+    fn with_laurent(mut self) -> Problem {
+        let mut inverted: Vec<usize> = self
+            .checked
+            .nodes
+            .iter()
+            .zip(&self.needed)
+            .filter_map(|(node, &needed)| match node.op {
+                Op::Recip(i) if needed => Some(i),
+                _ => None,
+            })
+            .collect();
+        inverted.sort_unstable();
+        inverted.dedup();
+        if inverted.is_empty() {
+            return self;
+        }
+        self.laurent.inverted = inverted;
+        let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(0x1au64);
+        let instances: Vec<Vec<Poly<Fp<P1>>>> = (0..2)
+            .filter_map(|_| {
+                let data = crate::instance::random_data_fp::<P1>(&self.layout, &mut rng);
+                let (n, vals) = self.tape_values(&data).ok()?;
+                Some(
+                    self.checked
+                        .equations
+                        .iter()
+                        .map(|eq| entry_poly(&vals, eq.node, eq.row, eq.col, n))
+                        .collect(),
+                )
+            })
+            .collect();
+        let nu = self.layout.unknown_count();
+        self.laurent.shifts_from(nu, &instances);
+        self
     }
 
     /// The number of `nonzero` statements.
@@ -472,6 +631,8 @@ impl Problem {
         checked.equations.truncate(keep);
         checked.layout.unknowns.retain(|u| !u.hidden);
         let mut p = Problem::with_needed(checked, self.nonzero.clone(), self.divisions.clone());
+        p.laurent = self.laurent.clone();
+        p.laurent.shifts.truncate(keep);
         p.layout = self.layout.clone();
         p.layout.unknowns.retain(|u| !u.hidden);
         p
@@ -551,15 +712,20 @@ impl Problem {
     }
 
     fn equations_from<C: Ring>(&self, vals: &TapeValues<C>, n: usize) -> Vec<Poly<C>> {
+        let nu = self.layout.unknown_count();
         self.checked
             .equations
             .iter()
-            .map(|eq| entry_poly(vals, eq.node, eq.row, eq.col, n))
+            .enumerate()
+            .map(|(k, eq)| {
+                self.laurent
+                    .fold(entry_poly(vals, eq.node, eq.row, eq.col, n), nu, k)
+            })
             .collect()
     }
 
     fn nonzero_from<C: Ring>(&self, vals: &TapeValues<C>, n: usize) -> Vec<Poly<C>> {
-        let visible = n - self.layout.hidden_count();
+        let visible = n - self.laurent.inverted.len() - self.layout.hidden_count();
         self.nonzero
             .iter()
             .map(|&node| {
@@ -581,8 +747,12 @@ impl Problem {
                 found: data.len(),
             });
         }
-        let n = self.layout.unknown_count();
-        Ok((n, run_mixed(&self.checked.nodes, &self.needed, n, data)?))
+        let inverted = &self.laurent.inverted;
+        let n = self.layout.unknown_count() + inverted.len();
+        Ok((
+            n,
+            run_mixed(&self.checked.nodes, &self.needed, n, inverted, data)?,
+        ))
     }
 
     /// The problem's name.
@@ -641,14 +811,19 @@ impl Problem {
     pub fn expand(&self) -> Vec<Poly<Poly<Q>>> {
         let nu = self.layout.unknown_count();
         let nd = self.layout.data_slot_count();
-        let n = nu + nd;
+        let inverted = &self.laurent.inverted;
+        let nr = inverted.len();
+        let n = nu + nr + nd;
         let zero = Poly::zero(n);
         let one = Poly::constant(n, Q::from_integer(1.into()));
         let vals = run_tape(&self.checked.nodes, &self.needed, (&zero, &one), |op| {
             Ok(match op {
                 Op::Const(q) => Poly::constant(n, q.clone()),
                 Op::Unknown(i) => Poly::var(n, *i),
-                Op::Data(s) => Poly::var(n, nu + *s),
+                Op::Recip(i) => {
+                    Poly::var(n, nu + inverted.iter().position(|v| v == i).unwrap_or(0))
+                }
+                Op::Data(s) => Poly::var(n, nu + nr + *s),
                 _ => unreachable!("only leaves are passed to the leaf function"),
             })
         })
@@ -656,12 +831,13 @@ impl Problem {
         self.checked
             .equations
             .iter()
-            .map(|eq| {
+            .enumerate()
+            .map(|(k, eq)| {
                 let flat = vals[eq.node]
                     .as_ref()
                     .map(|m| m.at(eq.row, eq.col).clone())
                     .unwrap_or_else(|| Poly::zero(n));
-                split(&flat, nu, nd)
+                split(&self.laurent.fold(flat, nu, k), nu, nd)
             })
             .collect()
     }
@@ -691,6 +867,7 @@ impl Problem {
             let v = match &node.op {
                 Op::Const(q) => s(<f64 as Ring>::from_rational(q).unwrap_or(f64::NAN)),
                 Op::Unknown(i) => s(unknowns[*i]),
+                Op::Recip(i) => s(1.0 / unknowns[*i]),
                 Op::Data(k) => s(data[*k]),
                 Op::Build(shape, e) => DMatrix::from_row_iterator(
                     shape.rows,
@@ -726,7 +903,18 @@ impl Problem {
         self.checked
             .equations
             .iter()
-            .map(|eq| vals[eq.node].as_ref().map_or(0.0, |m| m[(eq.row, eq.col)]))
+            .enumerate()
+            .map(|(k, eq)| {
+                let v = vals[eq.node].as_ref().map_or(0.0, |m| m[(eq.row, eq.col)]);
+                // The Laurent shift monomial (see `Laurent`).
+                let shift = self.laurent.shifts.get(k).map_or(1.0, |s| {
+                    s.iter()
+                        .zip(unknowns)
+                        .map(|(&e, x)| x.powi(i32::from(e)))
+                        .product()
+                });
+                v * shift
+            })
             .collect()
     }
 
@@ -750,6 +938,11 @@ impl Problem {
                 found: unknowns.len(),
             });
         }
+        if !self.laurent.inverted.is_empty() {
+            // A ring has no reciprocals: evaluate the shifted polynomials instead.
+            let polys = self.try_evaluate(data)?;
+            return Ok(polys.iter().map(|p| p.eval(unknowns)).collect());
+        }
         let vals = run_tape(
             &self.checked.nodes,
             &self.needed,
@@ -757,7 +950,7 @@ impl Problem {
             |op| {
                 Ok(match op {
                     Op::Const(q) => C::from_rational(q).ok_or(EvalError::Constant(q.clone()))?,
-                    Op::Unknown(i) => unknowns[*i].clone(),
+                    Op::Unknown(i) | Op::Recip(i) => unknowns[*i].clone(),
                     Op::Data(s) => data[*s].clone(),
                     _ => unreachable!("only leaves are passed to the leaf function"),
                 })

@@ -160,12 +160,15 @@ pub fn generate_with(
     for f in files {
         let plan = plan_file(f, &options)?;
         let source = emit_plan(&plan)?;
-        outputs.push((generated_path(root, &plan.problem.layout.name), source));
+        outputs.push((
+            generated_path(root, &plan.problem.layout.module_name()),
+            source,
+        ));
     }
     if with_mod_rs {
         let mut names = Vec::new();
         for f in problem_files(root)? {
-            names.push(Problem::from_file(&f)?.layout.name.clone());
+            names.push(Problem::from_file(&f)?.layout.module_name());
         }
         names.sort();
         outputs.push((

@@ -8,6 +8,10 @@
 //! - data scalars are numbered in declaration order, arrays element by element, and within
 //!   an element by its kind's slots (see [`DataKind::slots`]).
 
+/// Most scalar slots of one element of a data kind (`vecN`, `matRxC`): `vec4096` and
+/// `mat64x64` are accepted, `vec4097` is an error.
+pub const MAX_KIND_SLOTS: usize = 4096;
+
 /// The kind of a data symbol; decides its shape, its scalar slots and how random instances
 /// are drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -23,6 +27,11 @@ pub enum DataKind {
     Mat3,
     /// A 3x3 rotation matrix (9 slots, row-major); random instances are rotations.
     Rotation,
+    /// `vecN` for N other than 3 (`vec3` is [`DataKind::Vec3`]): an Nx1 vector, N slots.
+    Vector(usize),
+    /// `matRxC` other than 3x3 (`mat3` and `mat3x3` are [`DataKind::Mat3`]): an RxC
+    /// matrix, R*C slots row-major.
+    Matrix(usize, usize),
 }
 
 impl DataKind {
@@ -33,14 +42,70 @@ impl DataKind {
             DataKind::Vec3 => 3,
             DataKind::Point => 2,
             DataKind::Mat3 | DataKind::Rotation => 9,
+            DataKind::Vector(n) => n,
+            DataKind::Matrix(r, c) => r * c,
+        }
+    }
+    /// The shape `(rows, columns)` of one element's value (a point is 3x1).
+    pub fn shape(self) -> (usize, usize) {
+        match self {
+            DataKind::Scalar => (1, 1),
+            DataKind::Vec3 | DataKind::Point => (3, 1),
+            DataKind::Mat3 | DataKind::Rotation => (3, 3),
+            DataKind::Vector(n) => (n, 1),
+            DataKind::Matrix(r, c) => (r, c),
         }
     }
     /// The kind named by a problem-file keyword (`scalar`, `vec3`, `point`, `mat3`,
-    /// `rotation`).
+    /// `rotation`, `vecN`, `matRxC`), `None` if it names none or has more than
+    /// [`MAX_KIND_SLOTS`] slots.
     pub fn from_keyword(word: &str) -> Option<DataKind> {
-        DataKind::ALL.into_iter().find(|k| k.keyword() == word)
+        DataKind::parse(word).ok()
     }
-    /// All kinds.
+    /// [`DataKind::from_keyword`] with the reason for a refusal.
+    pub fn parse(word: &str) -> Result<DataKind, String> {
+        if let Some(k) = DataKind::ALL.into_iter().find(|k| k.keyword() == word) {
+            return Ok(k);
+        }
+        // A size: digits without a leading zero, at least 1 (saturating, so that a long
+        // run of digits is "too large", not an overflow).
+        let size = |s: &str| -> Option<usize> {
+            if s.is_empty() || s.starts_with('0') || !s.bytes().all(|b| b.is_ascii_digit()) {
+                return None;
+            }
+            Some(s.bytes().fold(0usize, |a, b| {
+                a.saturating_mul(10).saturating_add(usize::from(b - b'0'))
+            }))
+        };
+        let kind = if let Some(n) = word.strip_prefix("vec").and_then(size) {
+            DataKind::Vector(n)
+        } else if let Some((r, c)) = word
+            .strip_prefix("mat")
+            .and_then(|rc| rc.split_once('x'))
+            .and_then(|(r, c)| Some((size(r)?, size(c)?)))
+        {
+            DataKind::Matrix(r, c)
+        } else {
+            return Err(format!(
+                "unknown kind '{word}': expected scalar, point, rotation, vecN (vec3, vec4, ...) or matRxC (mat3, mat2x2, mat3x4, ...)"
+            ));
+        };
+        let slots = match kind {
+            DataKind::Matrix(r, c) => r.saturating_mul(c),
+            k => k.slots(),
+        };
+        if slots > MAX_KIND_SLOTS {
+            return Err(format!(
+                "kind '{word}' has too many entries ({slots}; at most {MAX_KIND_SLOTS})"
+            ));
+        }
+        Ok(match kind {
+            DataKind::Vector(3) => DataKind::Vec3,
+            DataKind::Matrix(3, 3) => DataKind::Mat3,
+            k => k,
+        })
+    }
+    /// The kinds with a fixed keyword (`vecN` and `matRxC` of other sizes come on top).
     pub const ALL: [DataKind; 5] = [
         DataKind::Scalar,
         DataKind::Vec3,
@@ -50,25 +115,32 @@ impl DataKind {
     ];
     /// Display names of the slots of one element, appended to the element's name:
     /// `[""]` for a scalar, `[".x", ".y", ".z"]` for a vec3, `[".x", ".y"]` for a point,
-    /// `["[0][0]", "[0][1]", ..., "[2][2]"]` (row-major) for a matrix.
+    /// `["[0]", ..., "[N-1]"]` for a `vecN`, `["[0][0]", "[0][1]", ...]` (row-major) for
+    /// a matrix.
     pub fn slot_suffixes(self) -> Vec<String> {
         match self {
             DataKind::Scalar => vec![String::new()],
             DataKind::Vec3 => vec![".x".into(), ".y".into(), ".z".into()],
             DataKind::Point => vec![".x".into(), ".y".into()],
-            DataKind::Mat3 | DataKind::Rotation => {
-                (0..9).map(|k| format!("[{}][{}]", k / 3, k % 3)).collect()
+            DataKind::Vector(n) => (0..n).map(|k| format!("[{k}]")).collect(),
+            DataKind::Mat3 | DataKind::Rotation | DataKind::Matrix(..) => {
+                let (r, c) = self.shape();
+                (0..r * c)
+                    .map(|k| format!("[{}][{}]", k / c, k % c))
+                    .collect()
             }
         }
     }
-    /// The keyword used in problem files.
-    pub fn keyword(self) -> &'static str {
+    /// The keyword used in problem files (`vec4`, `mat2x3` for the sized kinds).
+    pub fn keyword(self) -> String {
         match self {
-            DataKind::Scalar => "scalar",
-            DataKind::Vec3 => "vec3",
-            DataKind::Point => "point",
-            DataKind::Mat3 => "mat3",
-            DataKind::Rotation => "rotation",
+            DataKind::Scalar => "scalar".into(),
+            DataKind::Vec3 => "vec3".into(),
+            DataKind::Point => "point".into(),
+            DataKind::Mat3 => "mat3".into(),
+            DataKind::Rotation => "rotation".into(),
+            DataKind::Vector(n) => format!("vec{n}"),
+            DataKind::Matrix(r, c) => format!("mat{r}x{c}"),
         }
     }
 }
@@ -136,7 +208,8 @@ pub struct ProblemOptions {
 /// The symbols of a problem: what emitted solvers take as data and return as solutions.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ProblemLayout {
-    /// The problem's name (`problem NAME`), also the emitted module name.
+    /// The problem's name as written (`problem NAME`); the emitted module is
+    /// [`ProblemLayout::module_name`].
     pub name: String,
     /// Unknown symbols in declaration order.
     pub unknowns: Vec<UnknownSymbol>,
@@ -149,6 +222,11 @@ pub struct ProblemLayout {
 }
 
 impl ProblemLayout {
+    /// The Rust module and file stem of the emitted solver: the name lowercased, `p`
+    /// prepended when it starts with a digit ([`crate::lang::names::module_name`]).
+    pub fn module_name(&self) -> String {
+        crate::lang::names::module_name(&self.name)
+    }
     /// Names of the unknown scalars, e.g. `["a1", "a2", "a3", "t1", "t2", "t3"]`.
     pub fn unknown_names(&self) -> Vec<String> {
         let mut out = Vec::new();

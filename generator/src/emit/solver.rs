@@ -195,10 +195,11 @@ impl<'a> Plan<'a> {
 
 /// Emits the solver file for `spec` (see the module documentation of [`super`]).
 pub fn emit_solver(spec: &SolverSpec) -> Result<String, EmitError> {
-    if syn::parse_str::<Ident>(&spec.layout.name).is_err() {
+    if syn::parse_str::<Ident>(&spec.layout.module_name()).is_err() {
         return Err(EmitError::Unsupported(format!(
-            "problem name `{}` is not a Rust module name",
-            spec.layout.name
+            "problem name `{}` does not give a Rust module name (`{}`)",
+            spec.layout.name,
+            spec.layout.module_name()
         )));
     }
     let plan = Plan::new(spec)?;

@@ -59,33 +59,51 @@ fn naming(idents: &[Ident]) -> (TokenStream, &'static str) {
     }
 }
 
-pub(super) fn element_type(kind: DataKind) -> TokenStream {
+/// The element's Rust type (`scalar` → `T`, a vector kind → `[T; N]`, a matrix kind →
+/// `[[T; C]; R]`) for an entry type `scalar` (`f64`) or its zero (`0.0`).
+fn element_tokens(kind: DataKind, scalar: TokenStream) -> TokenStream {
+    let vector = |n: usize| {
+        let n = lit(n);
+        quote!([#scalar; #n])
+    };
     match kind {
-        DataKind::Scalar => quote!(f64),
-        DataKind::Vec3 => quote!([f64; 3]),
-        DataKind::Point => quote!([f64; 2]),
-        DataKind::Mat3 | DataKind::Rotation => quote!([[f64; 3]; 3]),
+        DataKind::Scalar => scalar,
+        DataKind::Point => vector(2),
+        DataKind::Vec3 => vector(3),
+        DataKind::Vector(n) => vector(n),
+        DataKind::Mat3 | DataKind::Rotation | DataKind::Matrix(..) => {
+            let (r, c) = kind.shape();
+            let (r, c) = (lit(r), lit(c));
+            quote!([[#scalar; #c]; #r])
+        }
     }
+}
+
+pub(super) fn element_type(kind: DataKind) -> TokenStream {
+    element_tokens(kind, quote!(f64))
 }
 
 pub(super) fn element_zero(kind: DataKind) -> TokenStream {
-    match kind {
-        DataKind::Scalar => quote!(0.0),
-        DataKind::Vec3 => quote!([0.0; 3]),
-        DataKind::Point => quote!([0.0; 2]),
-        DataKind::Mat3 | DataKind::Rotation => quote!([[0.0; 3]; 3]),
-    }
+    element_tokens(kind, quote!(0.0))
 }
 
-pub(super) fn kind_doc(kind: DataKind) -> &'static str {
+/// Whether the element's array type has a dimension above 32 (no `Default` to derive).
+fn element_is_big(kind: DataKind) -> bool {
+    let (r, c) = kind.shape();
+    r > 32 || c > 32
+}
+
+pub(super) fn kind_doc(kind: DataKind) -> String {
     match kind {
-        DataKind::Scalar => "a real number",
-        DataKind::Vec3 => "a 3-vector",
+        DataKind::Scalar => "a real number".into(),
+        DataKind::Vec3 => "a 3-vector".into(),
         DataKind::Point => {
-            "an image point in normalised coordinates `[x, y]`; the third coordinate is 1"
+            "an image point in normalised coordinates `[x, y]`; the third coordinate is 1".into()
         }
-        DataKind::Mat3 => "a 3x3 matrix, row-major (`[row][column]`)",
-        DataKind::Rotation => "a 3x3 rotation matrix, row-major (`[row][column]`)",
+        DataKind::Mat3 => "a 3x3 matrix, row-major (`[row][column]`)".into(),
+        DataKind::Rotation => "a 3x3 rotation matrix, row-major (`[row][column]`)".into(),
+        DataKind::Vector(n) => format!("a {n}-vector"),
+        DataKind::Matrix(r, c) => format!("a {r}x{c} matrix, row-major (`[row][column]`)"),
     }
 }
 
@@ -100,12 +118,13 @@ pub(super) fn slot_access(field: &Ident, ds: &DataSymbol, e: usize, k: usize) ->
     };
     match ds.kind {
         DataKind::Scalar => elem,
-        DataKind::Vec3 | DataKind::Point => {
+        DataKind::Vec3 | DataKind::Point | DataKind::Vector(_) => {
             let k = lit(k);
             quote!(#elem[#k])
         }
-        DataKind::Mat3 | DataKind::Rotation => {
-            let (r, c) = (lit(k / 3), lit(k % 3));
+        DataKind::Mat3 | DataKind::Rotation | DataKind::Matrix(..) => {
+            let cols = ds.kind.shape().1;
+            let (r, c) = (lit(k / cols), lit(k % cols));
             quote!(#elem[#r][#c])
         }
     }
@@ -132,6 +151,7 @@ pub(super) fn emit_data(layout: &ProblemLayout) -> Result<TokenStream, EmitError
     for (d, id) in layout.data.iter().zip(&idents) {
         let el = element_type(d.kind);
         let z = element_zero(d.kind);
+        big |= element_is_big(d.kind);
         let (ty, zero, what) = match d.len {
             Some(n) => {
                 big |= n > 32;
@@ -218,14 +238,15 @@ fn emit_data_slots(layout: &ProblemLayout, idents: &[Ident]) -> Result<TokenStre
             };
             elements.push(match ds.kind {
                 DataKind::Scalar => slot(0)?,
-                DataKind::Vec3 | DataKind::Point => {
+                DataKind::Vec3 | DataKind::Point | DataKind::Vector(_) => {
                     let xs = (0..per).map(&mut slot).collect::<Result<Vec<_>, _>>()?;
                     quote!([#(#xs),*])
                 }
-                DataKind::Mat3 | DataKind::Rotation => {
+                DataKind::Mat3 | DataKind::Rotation | DataKind::Matrix(..) => {
+                    let (nr, nc) = ds.kind.shape();
                     let mut rows = Vec::new();
-                    for r in 0..3 {
-                        let xs = (3 * r..3 * r + 3)
+                    for r in 0..nr {
+                        let xs = (nc * r..nc * r + nc)
                             .map(&mut slot)
                             .collect::<Result<Vec<_>, _>>()?;
                         rows.push(quote!([#(#xs),*]));

@@ -145,4 +145,8 @@ pub enum ExprKind {
     List(Vec<Expr>),
     /// `( e )`
     Paren(Box<Expr>),
+    /// `e^-n`: the reciprocal of `e` (`e^n` as a product), a monomial in the unknowns.
+    Recip(Box<Expr>),
+    /// `diff(e, x)`: the partial derivative of `e` by the unknown scalar `x`.
+    Diff(Box<Expr>, Box<Expr>),
 }

@@ -17,12 +17,15 @@ use crate::problem::{DataKind, DataSymbol, ProblemLayout, UnknownSymbol};
 use expr::q_int;
 use std::collections::HashMap;
 
+mod diff;
 mod expr;
 
 /// Names that cannot be declared: the identity and the built-in functions.
-pub const BUILTINS: [&str; 4] = ["I", "skew", "det", "trace"];
+pub const BUILTINS: [&str; 5] = ["I", "skew", "det", "trace", "diff"];
 
 const MAX_ARRAY_LEN: usize = 100_000;
+/// Most data slots of one declaration (array length times the kind's slots).
+const MAX_DECL_SLOTS: usize = 1_000_000;
 /// Most Gauss-Newton steps `option newton` may ask for (polishing converges in one or two
 /// from an eigenvector's solution; more only costs time).
 pub const MAX_NEWTON_STEPS: u32 = 8;
@@ -217,6 +220,12 @@ impl Checker {
                     return Err(self.err(
                         expr.pos,
                         "'nonzero' needs an expression in the unknowns, found a constant",
+                    ));
+                }
+                if diff::reaches(&self.tape, v, |op| matches!(op, Op::Recip(_))) {
+                    return Err(self.err(
+                        expr.pos,
+                        "'nonzero' needs a polynomial (no negative powers or division by unknowns)",
                     ));
                 }
                 self.nonzero.push((v, *pos));
@@ -430,15 +439,17 @@ impl Checker {
         let Some(k) = &d.kind else {
             return Err(self.err(d.name.pos, "missing kind"));
         };
-        let kind = DataKind::from_keyword(&k.name).ok_or_else(|| {
-            self.err(
-                k.pos,
+        let kind = DataKind::parse(&k.name).map_err(|m| self.err(k.pos, m))?;
+        let slots = kind.slots().saturating_mul(len.unwrap_or(1));
+        if slots > MAX_DECL_SLOTS {
+            return Err(self.err(
+                d.name.pos,
                 format!(
-                    "unknown kind '{}': expected scalar, vec3, point, mat3 or rotation",
-                    k.name
+                    "data '{}' has too many slots ({slots}; at most {MAX_DECL_SLOTS} per declaration)",
+                    d.name.name
                 ),
-            )
-        })?;
+            ));
+        }
         let first_slot = self.layout.data_slot_count();
         self.symbols
             .insert(d.name.name.clone(), Sym::Data(self.layout.data.len()));

@@ -14,7 +14,7 @@ pub const MAX_DEGREE: u32 = 255;
 /// Index of a node in [`Checked::nodes`].
 pub type NodeId = usize;
 
-/// A shape: 1x1 (scalar), 3x1 (column vector), 1x3 (row vector) or 3x3 (matrix).
+/// A shape: 1x1 (scalar), Nx1 (column vector), 1xN (row vector) or RxC (matrix).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Shape {
     /// Number of rows.
@@ -47,9 +47,8 @@ impl Shape {
     pub(crate) fn describe(self) -> String {
         match (self.rows, self.cols) {
             (1, 1) => "a scalar".into(),
-            (3, 1) => "a 3x1 column vector".into(),
-            (1, 3) => "a 1x3 row vector".into(),
-            (3, 3) => "a 3x3 matrix".into(),
+            (r, 1) => format!("a {r}x1 column vector"),
+            (1, c) => format!("a 1x{c} row vector"),
             (r, c) => format!("a {r}x{c} matrix"),
         }
     }
@@ -64,6 +63,10 @@ pub enum Op {
     Unknown(usize),
     /// Data slot number s (1x1).
     Data(usize),
+    /// The reciprocal `1 / x_i` of unknown scalar number i (1x1): a Laurent monomial. The
+    /// expansion multiplies each equation by the smallest monomial that clears the
+    /// negative exponents (`Problem::expand`).
+    Recip(usize),
     /// A matrix from 1x1 nodes, row-major.
     Build(Shape, Vec<NodeId>),
     /// The 3x3 identity.
@@ -80,9 +83,9 @@ pub enum Op {
     Transpose(NodeId),
     /// The cross-product matrix of a 3-vector.
     Skew(NodeId),
-    /// Determinant of a 3x3 matrix.
+    /// Determinant of a square matrix (at most 6x6).
     Det(NodeId),
-    /// Trace of a 3x3 matrix.
+    /// Trace of a square matrix.
     Trace(NodeId),
     /// Entry (row, col) of a node (1x1).
     Entry(NodeId, usize, usize),
@@ -200,11 +203,14 @@ impl Tape {
         let deg = |n: &NodeId| self.nodes.get(*n).map_or(0, |n| n.degree);
         let degree = match &op {
             Op::Const(_) | Op::Identity => 0,
-            Op::Unknown(_) | Op::Data(_) => 1,
+            Op::Unknown(_) | Op::Data(_) | Op::Recip(_) => 1,
             Op::Build(_, e) => e.iter().map(deg).max().unwrap_or(0),
             Op::Add(a, b) | Op::Sub(a, b) => deg(a).max(deg(b)),
             Op::Mul(a, b) => deg(a).saturating_add(deg(b)),
-            Op::Det(a) => deg(a).saturating_mul(3),
+            Op::Det(a) => {
+                let n = self.shape(*a).rows;
+                deg(a).saturating_mul(u32::try_from(n).unwrap_or(u32::MAX))
+            }
             Op::Neg(a) | Op::Transpose(a) | Op::Skew(a) | Op::Trace(a) | Op::Entry(a, _, _) => {
                 deg(a)
             }

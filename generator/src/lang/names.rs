@@ -1,6 +1,6 @@
 //! Declared names that the emitter turns into Rust identifiers, checked where they are
 //! declared so that a problem `inspect` accepts is one `generate` can emit: the problem
-//! name becomes a module name, data and unknown symbols become struct fields (lowercased,
+//! name becomes a module name ([`module_name`]), data and unknown symbols become struct fields (lowercased,
 //! except names that differ only in case, which keep their spelling). A name whose field
 //! could be a Rust keyword is an error at the declaration.
 
@@ -13,19 +13,52 @@ pub fn is_rust_ident(s: &str) -> bool {
     syn::parse_str::<proc_macro2::Ident>(s).is_ok()
 }
 
-/// The problem name must be a Rust module name.
-pub fn check_problem_name(name: &Name) -> Result<(), LangError> {
-    if is_rust_ident(&name.name) {
-        Ok(())
+/// The Rust module (and file stem) of a problem name: the name lowercased, with `p`
+/// prepended when it starts with a digit (`8ptF_radial` gives `p8ptf_radial`, `gs5pt`
+/// stays `gs5pt`). [`check_problem_name`] accepts only names whose module name is a
+/// snake-case Rust identifier.
+pub fn module_name(name: &str) -> String {
+    let lower = name.to_lowercase();
+    if lower.starts_with(|c: char| c.is_ascii_digit()) {
+        format!("p{lower}")
     } else {
-        Err(LangError::new(
+        lower
+    }
+}
+
+/// The problem name (letters, digits and `_`, possibly starting with a digit) must give a
+/// Rust module name ([`module_name`]) that is not a keyword and is snake case (no `__`
+/// between other characters, which rustc's `non_snake_case` lint rejects).
+pub fn check_problem_name(name: &Name) -> Result<(), LangError> {
+    let n = &name.name;
+    if n.is_empty() || !n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+        return Err(LangError::new(
+            name.pos,
+            format!("problem name '{n}' may contain only letters, digits and '_'"),
+        ));
+    }
+    let module = module_name(n);
+    if module.trim_matches('_').contains("__") {
+        return Err(LangError::new(
             name.pos,
             format!(
-                "problem name '{}' cannot be a Rust module name (it is a Rust keyword)",
-                name.name
+                "problem name '{n}' cannot be a Rust module name: '__' between other characters is not snake case"
             ),
-        ))
+        ));
     }
+    if !is_rust_ident(&module) {
+        return Err(LangError::new(
+            name.pos,
+            if module == *n {
+                format!("problem name '{n}' cannot be a Rust module name (it is a Rust keyword)")
+            } else {
+                format!(
+                    "problem name '{n}' cannot be a Rust module name ('{module}' is a Rust keyword)"
+                )
+            },
+        ));
+    }
+    Ok(())
 }
 
 /// The scalar unknown names taken so far; data and unknown names are checked one by one.

@@ -133,6 +133,36 @@ impl<'a> Parser<'a> {
             _ => Err(self.error_here(expected)),
         }
     }
+    /// A problem name: adjacent identifier and number tokens with nothing between them
+    /// (`8ptF_radial` lexes as `8` and `ptF_radial`), joined; the checker checks its
+    /// characters (`names::check_problem_name`).
+    fn problem_name(&mut self) -> Result<Name, LangError> {
+        let first = self.peek();
+        let mut text = match &first.tok {
+            Tok::Number(s) => s.clone(),
+            Tok::Ident(s) if !KEYWORDS.contains(&s.as_str()) => s.clone(),
+            _ => {
+                return Err(self.error_here("a problem name after 'problem'"));
+            }
+        };
+        self.bump();
+        loop {
+            let t = self.raw().clone();
+            let adjacent = t.pos.line == first.pos.line
+                && t.pos.column == first.pos.column + text.chars().count();
+            match &t.tok {
+                Tok::Number(s) | Tok::Ident(s) if adjacent => {
+                    text.push_str(s);
+                    self.bump();
+                }
+                _ => break,
+            }
+        }
+        Ok(Name {
+            name: text,
+            pos: first.pos,
+        })
+    }
     fn integer(&mut self, expected: &str) -> Result<(i64, Pos), LangError> {
         let t = self.peek();
         let negative = t.tok == Tok::Minus;
@@ -173,7 +203,7 @@ impl<'a> Parser<'a> {
         match word.as_str() {
             "problem" => {
                 self.bump();
-                let name = self.ident("a problem name after 'problem'")?;
+                let name = self.problem_name()?;
                 Ok(Stmt::Problem { pos: t.pos, name })
             }
             "unknown" => {
@@ -278,9 +308,9 @@ impl<'a> Parser<'a> {
             if with_kind {
                 self.expect(
                     Tok::Colon,
-                    "':' and a kind (scalar, vec3, point, mat3, rotation)",
+                    "':' and a kind (scalar, point, rotation, vecN, matRxC)",
                 )?;
-                kind = Some(self.ident("a kind (scalar, vec3, point, mat3, rotation)")?);
+                kind = Some(self.ident("a kind (scalar, point, rotation, vecN, matRxC)")?);
             } else if self.peek().tok == Tok::Colon {
                 return Err(LangError::new(
                     self.peek().pos,
@@ -488,6 +518,10 @@ impl<'a> Parser<'a> {
             return Ok(operand);
         }
         self.bump();
+        let negative = self.peek().tok == Tok::Minus;
+        if negative {
+            self.bump();
+        }
         let t = self.peek();
         let n = match &t.tok {
             Tok::Number(s) if !s.contains('.') => s.parse::<u32>().ok(),
@@ -496,19 +530,30 @@ impl<'a> Parser<'a> {
         let Some(n) = n.filter(|n| (1..=MAX_POWER).contains(n)) else {
             return Err(LangError::new(
                 t.pos,
-                format!("the exponent after '^' must be an integer from 1 to {MAX_POWER}"),
+                format!(
+                    "the exponent after '^' must be an integer from 1 to {MAX_POWER} or from -{MAX_POWER} to -1"
+                ),
             ));
         };
         self.bump();
-        if n == 1 {
-            return Ok(operand);
+        let pos = operand.pos;
+        let power = if n == 1 {
+            operand
+        } else {
+            let rest = (1..n)
+                .map(|_| (MulOp::Mul, caret.pos, operand.clone()))
+                .collect();
+            Expr {
+                pos,
+                kind: ExprKind::Product(Box::new(operand), rest),
+            }
+        };
+        if !negative {
+            return Ok(power);
         }
-        let rest = (1..n)
-            .map(|_| (MulOp::Mul, caret.pos, operand.clone()))
-            .collect();
         Ok(Expr {
-            pos: operand.pos,
-            kind: ExprKind::Product(Box::new(operand), rest),
+            pos,
+            kind: ExprKind::Recip(Box::new(power)),
         })
     }
 
@@ -531,6 +576,14 @@ impl<'a> Parser<'a> {
                 if self.raw().tok == Tok::LParen && (s == "cross" || s == "dot") {
                     let open = self.bump();
                     return self.vector_product(s, &t, &open);
+                }
+                if self.raw().tok == Tok::LParen && s == "diff" {
+                    let open = self.bump();
+                    let (e, x) = self.two_args(s, &open)?;
+                    return Ok(Expr {
+                        pos: t.pos,
+                        kind: ExprKind::Diff(Box::new(e), Box::new(x)),
+                    });
                 }
                 if self.raw().tok == Tok::LParen {
                     let open = self.bump();
@@ -580,21 +633,7 @@ impl<'a> Parser<'a> {
     /// `cross(a, b)` as `skew(a) * b` and `dot(a, b)` as `a' * b` (after the `(`), so that
     /// shapes are checked as for those forms.
     fn vector_product(&mut self, name: &str, at: &Token, open: &Token) -> Result<Expr, LangError> {
-        self.group += 1;
-        let args = self.expr().and_then(|a| {
-            self.expect(
-                Tok::Comma,
-                &format!("',' between the two arguments of {name}"),
-            )?;
-            let b = self.expr()?;
-            self.expect(
-                Tok::RParen,
-                &format!("')' to close '(' at {}:{}", open.pos.line, open.pos.column),
-            )?;
-            Ok((a, b))
-        });
-        self.group -= 1;
-        let (a, b) = args?;
+        let (a, b) = self.two_args(name, open)?;
         let left = if name == "cross" {
             Expr {
                 pos: at.pos,
@@ -619,6 +658,25 @@ impl<'a> Parser<'a> {
                 kind: ExprKind::Product(Box::new(left), vec![(MulOp::Mul, at.pos, b)]),
             })),
         })
+    }
+
+    /// The two arguments of `name(a, b)` after the `(`, and the closing `)`.
+    fn two_args(&mut self, name: &str, open: &Token) -> Result<(Expr, Expr), LangError> {
+        self.group += 1;
+        let args = self.expr().and_then(|a| {
+            self.expect(
+                Tok::Comma,
+                &format!("',' between the two arguments of {name}"),
+            )?;
+            let b = self.expr()?;
+            self.expect(
+                Tok::RParen,
+                &format!("')' to close '(' at {}:{}", open.pos.line, open.pos.column),
+            )?;
+            Ok((a, b))
+        });
+        self.group -= 1;
+        args
     }
 
     fn group_expr(&mut self, open: &Token, close: Tok, what: &str) -> Result<Expr, LangError> {

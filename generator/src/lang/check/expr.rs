@@ -12,6 +12,9 @@ use crate::problem::{DataKind, DataSymbol};
 use num_bigint::BigInt;
 use num_traits::{One, ToPrimitive, Zero};
 
+/// The largest matrix `det` expands (by cofactors: `n!` products).
+pub const MAX_DET: usize = 6;
+
 /// An integer as a rational constant.
 pub(super) fn q_int(n: i64) -> Q {
     Q::from_integer(BigInt::from(n))
@@ -87,20 +90,14 @@ impl Checker {
                     return Err(self.err(pos, "internal error: bad unknown symbol"));
                 };
                 match u.len {
-                    None => Ok(self.tape.mk(Op::Unknown(u.first_var), Shape::SCALAR)),
-                    Some(3) => {
-                        let e: Vec<NodeId> = (0..3)
+                    None | Some(1) => Ok(self.tape.mk(Op::Unknown(u.first_var), Shape::SCALAR)),
+                    Some(n) => {
+                        let e: Vec<NodeId> = (0..n)
                             .map(|k| self.tape.mk(Op::Unknown(u.first_var + k), Shape::SCALAR))
                             .collect();
-                        Ok(self.tape.mk(Op::Build(Shape::COL, e), Shape::COL))
+                        let s = Shape { rows: n, cols: 1 };
+                        Ok(self.tape.mk(Op::Build(s, e), s))
                     }
-                    Some(n) => Err(self.err(
-                        pos,
-                        format!(
-                            "unknown '{}' has {n} entries: only 3-entry unknowns are vectors; use its entries, as in {}[0]",
-                            u.name, u.name
-                        ),
-                    )),
                 }
             }
         }
@@ -109,20 +106,16 @@ impl Checker {
     fn data_element(&mut self, d: &DataSymbol, elem: usize) -> NodeId {
         let base = d.first_slot + elem * d.kind.slots();
         let slot = |c: &mut Checker, k: usize| c.tape.mk(Op::Data(base + k), Shape::SCALAR);
-        match d.kind {
-            DataKind::Scalar => slot(self, 0),
-            DataKind::Vec3 | DataKind::Point => {
-                let mut e: Vec<NodeId> = (0..d.kind.slots()).map(|k| slot(self, k)).collect();
-                if d.kind == DataKind::Point {
-                    e.push(self.tape.konst(Q::one()));
-                }
-                self.tape.mk(Op::Build(Shape::COL, e), Shape::COL)
-            }
-            DataKind::Mat3 | DataKind::Rotation => {
-                let e: Vec<NodeId> = (0..9).map(|k| slot(self, k)).collect();
-                self.tape.mk(Op::Build(Shape::MAT, e), Shape::MAT)
-            }
+        let (rows, cols) = d.kind.shape();
+        if rows * cols == 1 {
+            return slot(self, 0);
         }
+        let mut e: Vec<NodeId> = (0..d.kind.slots()).map(|k| slot(self, k)).collect();
+        if d.kind == DataKind::Point {
+            e.push(self.tape.konst(Q::one()));
+        }
+        let s = Shape { rows, cols };
+        self.tape.mk(Op::Build(s, e), s)
     }
 
     /// An index expression's value, checked against `len`.
@@ -231,16 +224,7 @@ impl Checker {
                             acc = self.tape.mk(Op::Mul(acc, n), s);
                         }
                         MulOp::Div => {
-                            let Some(q) = self.tape.constant(n).cloned() else {
-                                return Err(self.err(
-                                    t.pos,
-                                    "the divisor must be a constant (numbers and loop variables only)",
-                                ));
-                            };
-                            if q.is_zero() {
-                                return Err(self.err(t.pos, "division by zero"));
-                            }
-                            let inv = self.tape.konst(q.recip());
+                            let inv = self.reciprocal(n, t.pos)?;
                             acc = self.tape.mk(Op::Mul(acc, inv), a);
                         }
                     }
@@ -268,6 +252,97 @@ impl Checker {
                 Ok(v)
             }
             ExprKind::List(items) => self.list(items, e.pos),
+            ExprKind::Recip(inner) => {
+                let n = self.value(inner)?;
+                Ok(Val::Node(self.reciprocal(n, inner.pos)?))
+            }
+            ExprKind::Diff(inner, var) => {
+                let n = self.value(inner)?;
+                let x = self.value(var)?;
+                let Some(&Op::Unknown(v)) = self.tape.op(x) else {
+                    return Err(self.err(
+                        var.pos,
+                        "diff(EXPR, x) differentiates by an unknown scalar (such as x or q[0])",
+                    ));
+                };
+                let mut memo = std::collections::HashMap::new();
+                let d = super::diff::derivative(&mut self.tape, n, v, &mut memo);
+                let s = self.tape.shape(n);
+                let zero = self.tape.konst(q_int(0));
+                let out = match d {
+                    Some(d) => d,
+                    None if s.is_scalar() => zero,
+                    None => self.tape.mk(Op::Build(s, vec![zero; s.len()]), s),
+                };
+                self.budget(e.pos)?;
+                Ok(Val::Node(out))
+            }
+        }
+    }
+
+    /// The reciprocal of a divisor: a non-zero constant, or a monomial in the unknowns (a
+    /// product of unknowns, their reciprocals and a non-zero constant), whose reciprocal
+    /// is a Laurent monomial (`Op::Recip` leaves).
+    fn reciprocal(&mut self, n: NodeId, pos: Pos) -> Result<NodeId, LangError> {
+        let in_unknowns = super::diff::reaches(&self.tape, n, |op| {
+            matches!(op, Op::Unknown(_) | Op::Recip(_))
+        });
+        if !in_unknowns {
+            let Some(q) = self.tape.constant(n).cloned() else {
+                return Err(self.err(
+                    pos,
+                    "the divisor must be a constant (numbers and loop variables only)",
+                ));
+            };
+            if q.is_zero() {
+                return Err(self.err(pos, "division by zero"));
+            }
+            return Ok(self.tape.konst(q.recip()));
+        }
+        let s = self.tape.shape(n);
+        if !s.is_scalar() {
+            return Err(self.err(
+                pos,
+                format!(
+                    "the divisor must be a scalar monomial in the unknowns, found {}",
+                    s.describe()
+                ),
+            ));
+        }
+        self.monomial_reciprocal(n, pos, 0)
+    }
+
+    fn monomial_reciprocal(
+        &mut self,
+        n: NodeId,
+        pos: Pos,
+        depth: usize,
+    ) -> Result<NodeId, LangError> {
+        let not_monomial = |c: &Checker| {
+            c.err(
+                pos,
+                "the divisor must be a monomial in the unknowns (a product of unknowns and a non-zero constant, as in 2*x*y^2)",
+            )
+        };
+        if depth > 4 * crate::lang::parser::MAX_DEPTH {
+            return Err(not_monomial(self));
+        }
+        match self.tape.op(n).cloned() {
+            Some(Op::Unknown(i)) => Ok(self.tape.mk(Op::Recip(i), Shape::SCALAR)),
+            Some(Op::Recip(i)) => Ok(self.tape.mk(Op::Unknown(i), Shape::SCALAR)),
+            Some(Op::Const(q)) if !q.is_zero() => Ok(self.tape.konst(q.recip())),
+            Some(Op::Neg(a)) => {
+                let r = self.monomial_reciprocal(a, pos, depth + 1)?;
+                Ok(self.tape.mk(Op::Neg(r), Shape::SCALAR))
+            }
+            Some(Op::Mul(a, b))
+                if self.tape.shape(a).is_scalar() && self.tape.shape(b).is_scalar() =>
+            {
+                let ra = self.monomial_reciprocal(a, pos, depth + 1)?;
+                let rb = self.monomial_reciprocal(b, pos, depth + 1)?;
+                Ok(self.tape.mk(Op::Mul(ra, rb), Shape::SCALAR))
+            }
+            _ => Err(not_monomial(self)),
         }
     }
 
@@ -354,48 +429,57 @@ impl Checker {
             })
             .collect();
         if !rows.is_empty() {
-            if rows.len() != items.len() || rows.len() != 3 {
+            if rows.len() != items.len() {
                 return Err(self.err(
                     pos,
                     format!(
-                        "a matrix literal needs 3 rows, each a list [a, b, c]; found {} items",
+                        "a matrix literal needs rows only, each a list [a, b, ...]; found {} rows among {} items",
+                        rows.len(),
                         items.len()
                     ),
                 ));
             }
+            let cols = rows.first().map_or(0, |r| r.len());
             let mut entries = Vec::new();
             for (r, item) in rows.iter().zip(items) {
-                if r.len() != 3 {
+                if r.len() != cols {
                     return Err(self.err(
                         item.pos,
-                        format!("a matrix row needs 3 entries, found {}", r.len()),
+                        format!(
+                            "the rows of a matrix literal differ in length: {cols} entries in the first, {} in this one",
+                            r.len()
+                        ),
                     ));
                 }
                 entries.extend(self.scalar_items(r)?);
             }
-            return Ok(Val::Node(
-                self.tape.mk(Op::Build(Shape::MAT, entries), Shape::MAT),
-            ));
-        }
-        if items.len() != 3 {
-            return Err(self.err(
-                pos,
-                format!("a vector literal needs 3 entries, found {}", items.len()),
-            ));
+            let s = Shape {
+                rows: rows.len(),
+                cols,
+            };
+            if let [one] = entries[..] {
+                return Ok(Val::Node(one));
+            }
+            return Ok(Val::Node(self.tape.mk(Op::Build(s, entries), s)));
         }
         let e = self.scalar_items(items)?;
-        Ok(Val::Node(
-            self.tape.mk(Op::Build(Shape::COL, e), Shape::COL),
-        ))
+        if e.len() == 1 {
+            return Ok(Val::Node(e[0]));
+        }
+        let s = Shape {
+            rows: e.len(),
+            cols: 1,
+        };
+        Ok(Val::Node(self.tape.mk(Op::Build(s, e), s)))
     }
 
     fn call(&mut self, f: &Name, arg: &Expr) -> Result<Val, LangError> {
         let fname = f.name.as_str();
-        if !BUILTINS.contains(&fname) || fname == "I" {
+        if !BUILTINS.contains(&fname) || fname == "I" || fname == "diff" {
             let msg = if self.lookup(fname).is_some() {
                 format!("'{fname}' is not a function (write '*' for a product)")
             } else {
-                format!("unknown function '{fname}' (the functions are skew, det, trace, and cross and dot of two 3-vectors)")
+                format!("unknown function '{fname}' (the functions are skew, det, trace, diff(EXPR, x), and cross and dot of two vectors)")
             };
             return Err(self.err(f.pos, msg));
         }
@@ -412,10 +496,19 @@ impl Checker {
                 Ok(Val::Node(self.tape.mk(Op::Skew(n), Shape::MAT)))
             }
             _ => {
-                if s != Shape::MAT {
+                if s.rows != s.cols {
                     return Err(self.err(
                         arg.pos,
-                        format!("{fname}() takes a 3x3 matrix, found {}", s.describe()),
+                        format!("{fname}() takes a square matrix, found {}", s.describe()),
+                    ));
+                }
+                if fname == "det" && s.rows > MAX_DET {
+                    return Err(self.err(
+                        arg.pos,
+                        format!(
+                            "det() of {} is not supported (cofactor expansion up to {MAX_DET}x{MAX_DET})",
+                            s.describe()
+                        ),
                     ));
                 }
                 let op = if fname == "det" {

@@ -43,8 +43,9 @@ fn digit_leading_problem_name_emits_a_valid_module() {
     assert!(!parsed.items.is_empty());
     assert!(text.contains("const NAME: &'static str = \"3pra_st0\";"));
     // The module list of `generate --all` declares the module name.
-    let m = mingen::generate::generated_mod_rs(&["p3pra_st0".to_string()]);
+    let m = mingen::generate::generated_mod_rs(&["3pra_st0".to_string()]);
     syn::parse_file(&m).expect("mod.rs parses");
+    assert!(m.contains("pub mod p3pra_st0;") && m.contains("`templates/3pra_st0.mp`"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -12,7 +12,8 @@
 # separated unknown indices whose joint sign is free (an eliminated unit translation).
 # Arguments after `--` go to `mingen generate` (e.g. --code-form inline).
 # PROFILE=dev builds the solver's crate in the dev (debug) profile instead of release, as
-# a user's `cargo build` does: emitted code must build in any profile.
+# a user's `cargo build` does: emitted code must build in any profile. BUILD_ONLY=1 stops
+# after the build (INSTANCES is then not read).
 # Example (G-RSRP with unknown readout, 100 solutions):
 #   python3 tools/grsrp_readout_instances.py 200 2 --solutions /tmp/s.txt > /tmp/i.txt
 #   tools/emitted_solver/run.sh templates/large/grsrp_readout.mp /tmp/i.txt /tmp/s.txt 3,4,5
@@ -62,4 +63,5 @@ end=$(date +%s%N)
 lines=$(wc -l < "$work/src/solver.rs")
 ms=$(( (end - start) / 1000000 ))
 printf '%s: %d lines emitted, compiled in %d.%d s (%s)\n' "$name" "$lines" $((ms / 1000)) $((ms % 1000 / 100)) "$profile"
+[[ ${BUILD_ONLY:-0} == 1 ]] && exit 0
 "${CARGO_TARGET_DIR:-$work/target}/$dir/emitted-solver-$name" "${args[@]:1}"

@@ -1,0 +1,94 @@
+//! The template benchmark (`templates/benchmark/`, the minimal problems of Martyushev,
+//! Vrablikova, Bhayani and Pajdla): every file states the solution count it must have and
+//! the template size mingen reached (`# recorded: RxC`, written by
+//! `tools/benchmark_record.py`); planning it again must give that count and a template of
+//! at most that area. A regression guard on the template search, not a timing test.
+//! Problems recorded as planned within more than [`MAX_RECORDED_SECONDS`] are left to
+//! `python3 tools/benchmark_record.py --check`, which plans every one, so that the test
+//! suite stays short.
+
+use mingen::pipeline::plan_file;
+use mingen::template::TemplateOptions;
+use std::path::{Path, PathBuf};
+
+/// Problems whose recorded planning time is above this are not planned by the test.
+const MAX_RECORDED_SECONDS: f64 = 5.0;
+
+fn benchmark_files() -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../templates/benchmark");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "mp"))
+        .collect();
+    files.sort();
+    files
+}
+
+/// The value of the first `# KEY:` comment line.
+fn header(text: &str, key: &str) -> Option<String> {
+    text.lines().find_map(|l| {
+        let rest = l.trim_start().strip_prefix('#')?.trim_start();
+        Some(
+            rest.strip_prefix(key)?
+                .strip_prefix(':')?
+                .trim()
+                .to_string(),
+        )
+    })
+}
+
+/// `RxC` at the start of `text`, and the `within N s` figure after it.
+fn size(text: &str) -> Option<((usize, usize), f64)> {
+    let word = text.split_whitespace().next()?.trim_end_matches(',');
+    let (r, c) = word.split_once('x')?;
+    let seconds = text
+        .split_once("within ")
+        .and_then(|(_, rest)| rest.split_whitespace().next()?.parse().ok())
+        .unwrap_or(f64::INFINITY);
+    Some(((r.parse().ok()?, c.parse().ok()?), seconds))
+}
+
+#[test]
+fn benchmark_templates_keep_their_counts_and_do_not_grow() {
+    let files = benchmark_files();
+    assert!(files.len() >= 40, "the benchmark has {} files", files.len());
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for f in &files {
+        let text = std::fs::read_to_string(f).unwrap();
+        let name = f.file_stem().unwrap().to_string_lossy().into_owned();
+        let count: Option<usize> = header(&text, "Expected solution count")
+            .and_then(|v| v.split_whitespace().next().and_then(|n| n.parse().ok()));
+        let Some((recorded, seconds)) = header(&text, "recorded").and_then(|v| size(&v)) else {
+            // Files without a template (their reason is in the header) are not guarded.
+            continue;
+        };
+        if seconds > MAX_RECORDED_SECONDS {
+            continue;
+        }
+        checked += 1;
+        match plan_file(f, &TemplateOptions::default()) {
+            Ok(plan) => {
+                let (r, c) = plan.generated.built.template.eliminated_size();
+                if let Some(n) = count {
+                    if plan.generated.count != n {
+                        failures.push(format!(
+                            "{name}: {} solutions, expected {n}",
+                            plan.generated.count
+                        ));
+                    }
+                }
+                if r * c > recorded.0 * recorded.1 {
+                    failures.push(format!(
+                        "{name}: template {r}x{c} is larger than the recorded {}x{}",
+                        recorded.0, recorded.1
+                    ));
+                }
+            }
+            Err(e) => failures.push(format!("{name}: {e}")),
+        }
+    }
+    assert!(checked > 0, "no benchmark file has a recorded size");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

@@ -1,0 +1,110 @@
+#!/usr/bin/env python3
+"""Records the template benchmark: runs `mingen report templates/benchmark` once, writes
+each file's `# recorded: RxC` header line (the size the regression test
+generator/tests/benchmark_sizes.rs holds the search to; a file without a template gets no
+line) and the Markdown table of docs/BENCHMARK.md between its markers.
+
+    python3 tools/benchmark_record.py [--instances N] [--check]
+
+--check writes nothing and exits 1 if a recorded line would change (every problem is
+planned, also those the test skips for their planning time). Run from anywhere; builds mingen in release first.
+"""
+import argparse
+import json
+import pathlib
+import re
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+BENCH = ROOT / "templates" / "benchmark"
+DOC = ROOT / "docs" / "BENCHMARK.md"
+BEGIN, END = "<!-- benchmark table: begin -->", "<!-- benchmark table: end -->"
+
+
+def mingen(*args):
+    exe = ROOT / "target" / "release" / "mingen"
+    out = subprocess.run([str(exe), *args], capture_output=True, text=True)
+    if out.returncode != 0:
+        sys.exit(f"mingen {' '.join(args)} failed:\n{out.stderr}")
+    return out.stdout
+
+
+def markdown(rows):
+    """The table of `mingen report --markdown` (the same columns), from its JSON rows."""
+    def ratio(x):
+        return "—" if x is None else f"{x:.2f}"
+    head = ["problem", "unknowns", "solutions", "template", "published", "area / std",
+            "area / best", "audit: median / p99 log10 residual / failures", "seconds"]
+    out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for r in rows:
+        t = r["template"]
+        a = r["audit"]
+        unknowns = ", ".join(r["unknowns"])
+        if r["eliminated"]:
+            unknowns += f" ({', '.join(r['eliminated'])} eliminated)"
+        cells = [
+            f"`{r['problem']}`", unknowns or "—",
+            "—" if r["solutions"] is None else str(r["solutions"]),
+            f"{t['rows']}x{t['cols']}" if t else "none",
+            r["published"] or "—", ratio(r["area_over_std"]), ratio(r["area_over_best"]),
+            "—" if a is None else f"{a['median_log10_residual']:.2f} / {a['p99_log10_residual']:.2f} / {a['failures']} of {a['instances']}",
+            f"{r['seconds']:.2f}",
+        ]
+        out.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
+    out.append("")
+    for r in rows:
+        if r["error"]:
+            out.append(f"`{r['problem']}`: {r['error']}")
+            out.append("")
+    return "\n".join(out) + "\n"
+
+
+def with_recorded(text, size, seconds):
+    lines = [l for l in text.splitlines() if not l.startswith("# recorded:")]
+    if size is not None:
+        at = next((i + 1 for i, l in enumerate(lines) if l.startswith("# published:")), 0)
+        # The seconds are rounded up to a coarse step so that re-recording on a machine
+        # of another speed rarely changes the line.
+        step = next(s for s in (1, 5, 20, 60, 300, 10**9) if seconds <= s)
+        lines.insert(at, f"# recorded: {size}, planned within {step} s (mingen; tools/benchmark_record.py)")
+    return "\n".join(lines) + "\n"
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--instances", type=int, default=1000)
+    ap.add_argument("--check", action="store_true")
+    ap.add_argument("--max-seconds", type=float, default=None,
+                    help="planning budget per problem (default: mingen's)")
+    a = ap.parse_args()
+    subprocess.run(["cargo", "build", "--release", "-q", "-p", "mingen"], cwd=ROOT, check=True)
+    extra = ["--max-seconds", str(a.max_seconds)] if a.max_seconds else []
+    rows = json.loads(mingen("report", str(BENCH), "--json", "--instances", str(a.instances), *extra))
+    table = markdown(rows)
+    stale = []
+    for r in rows:
+        f = pathlib.Path(r["file"])
+        t = r["template"]
+        size = f"{t['rows']}x{t['cols']}" if t else None
+        old = f.read_text()
+        new = with_recorded(old, size, r["seconds"])
+        if new != old:
+            stale.append(f.name)
+            if not a.check:
+                f.write_text(new)
+    doc = DOC.read_text()
+    m = re.search(re.escape(BEGIN) + r"\n(.*?)" + re.escape(END), doc, re.S)
+    if m is None:
+        sys.exit(f"{DOC}: markers {BEGIN} / {END} missing")
+    new_doc = doc[: m.start(1)] + table + doc[m.end(1) :]
+    if a.check:
+        if stale:
+            sys.exit("recorded sizes differ: " + ", ".join(stale))
+        return
+    DOC.write_text(new_doc)
+    print(f"{len(rows)} problems; recorded sizes updated in {len(stale)} files; {DOC} written")
+
+
+if __name__ == "__main__":
+    main()

@@ -110,16 +110,13 @@ fn lower_equation_degrees<const P: u32>(blocks: &Blocks, best: &mut Excluded, wo
         .max()
         .unwrap_or(0);
     for eq in (0..n_eq).rev() {
-        loop {
-            let Some(top) = best
-                .pool
-                .iter()
-                .filter(|c| c.row.equation == eq)
-                .map(|c| c.degree)
-                .max()
-            else {
-                break;
-            };
+        while let Some(top) = best
+            .pool
+            .iter()
+            .filter(|c| c.row.equation == eq)
+            .map(|c| c.degree)
+            .max()
+        {
             let ncols = blocks.excess_of(best.pool.iter()).len() + blocks.reducible.len();
             *work = work.saturating_add(best.pool.len() as u64 * ncols as u64);
             if *work > MAX_WORK {

@@ -164,6 +164,7 @@ pub fn report_row(file: &Path, audit: &AuditOptions) -> ReportRow {
 pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOptions) -> ReportRow {
     let shown = file.display().to_string();
     let source = std::fs::read_to_string(file).unwrap_or_default();
+    let published = header_value(&source, "published");
     let mut row = ReportRow {
         file: shown.clone(),
         problem: file
@@ -176,10 +177,11 @@ pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOpti
         macaulay2: header_value(&source, "Macaulay2")
             .and_then(|v| v.split_whitespace().next().map(str::to_string)),
         template: None,
-        published: header_value(&source, "published"),
-        published_sizes: header_value(&source, "published")
-            .map(|t| PublishedSizes::parse(&t))
+        published_sizes: published
+            .as_deref()
+            .map(PublishedSizes::parse)
             .unwrap_or_default(),
+        published,
         action: None,
         audit: None,
         seconds: 0.0,

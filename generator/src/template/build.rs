@@ -8,7 +8,7 @@
 //! [`super::search`].
 
 use super::candidates::{candidate_bytes, candidates, Blocks, Candidate, ShrinkStep};
-use super::exclude::{exclude_monomials, Excluded};
+use super::exclude::exclude_and_shrink;
 use super::linalg::gauss_jordan;
 use super::select::{self, SelectedTemplate};
 use super::shrink::shrink;
@@ -108,37 +108,11 @@ pub(crate) fn build_template<const P: u32>(
                 cands.len(),
                 ne + blocks.reducible.len() + basis.len(),
             )];
-            let kept = shrink::<P>(&blocks, cands.clone(), &mut history);
-            let ex = if search.exclude {
-                exclude_monomials::<P>(&blocks, cands, kept, search.deadline)
-            } else {
-                Excluded {
-                    pool: Vec::new(),
-                    kept,
-                    excluded: 0,
-                }
-            };
-            let kept = if ex.excluded > 0 {
-                let kept = shrink::<P>(&blocks, ex.pool, &mut Vec::new());
-                let kept = if kept.len() <= ex.kept.len() {
-                    kept
-                } else {
-                    ex.kept
-                };
-                let cols =
-                    blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + basis.len();
-                history.push((
-                    format!(
-                        "greedy exclusion from the candidates ({} moves: equation degrees, excess monomials)",
-                        ex.excluded
-                    ),
-                    kept.len(),
-                    cols,
-                ));
-                kept
-            } else {
-                ex.kept
-            };
+            let pool = search.exclude.then(|| cands.clone());
+            let mut kept = shrink::<P>(&blocks, cands, &mut history);
+            if let Some(pool) = pool {
+                kept = exclude_and_shrink::<P>(&blocks, pool, kept, search.deadline, &mut history);
+            }
             let score = kept.len()
                 * (blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + basis.len());
             if best.as_ref().map_or(true, |b| score < b.0) {

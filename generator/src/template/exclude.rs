@@ -17,26 +17,26 @@
 //! passes repeat while one shrinks the template. Deterministic; stops when the budget
 //! runs out, keeping the best template found.
 
-use super::candidates::{Blocks, Candidate};
-use super::shrink::shrink_quick;
+use super::candidates::{Blocks, Candidate, ShrinkStep};
+use super::shrink::{shrink, shrink_quick};
 use crate::algebra::{Monomial, MonomialOrder};
 use crate::budget::Deadline;
 use std::collections::BTreeSet;
 
 /// Result of [`exclude_monomials`]: the pool the kept template came from, the template's
 /// rows and the number of monomials excluded.
-pub(crate) struct Excluded {
+struct Excluded {
     /// The candidate rows left in the pool.
-    pub(crate) pool: Vec<Candidate>,
+    pool: Vec<Candidate>,
     /// The shrunk rows of the best template.
-    pub(crate) kept: Vec<Candidate>,
+    kept: Vec<Candidate>,
     /// How many moves were kept (an equation's top degree or an excess monomial excluded).
-    pub(crate) excluded: usize,
+    excluded: usize,
 }
 
 /// The local search described in the module documentation, from the pool `pool` (which
 /// reduces) and its shrunk template `kept`. Never returns a larger template than `kept`.
-pub(crate) fn exclude_monomials<const P: u32>(
+fn exclude_monomials<const P: u32>(
     blocks: &Blocks,
     pool: Vec<Candidate>,
     kept: Vec<Candidate>,
@@ -97,6 +97,38 @@ pub(crate) fn exclude_monomials<const P: u32>(
         // A smaller template may make monomials tried before removable now.
         tried.clear();
     }
+}
+
+/// [`exclude_monomials`] from `pool` and its shrunk template `kept`, then the pool left is
+/// shrunk with every strategy ([`shrink`]); the smaller of the two is returned, and a step
+/// is appended to `history` when a move was kept.
+pub(crate) fn exclude_and_shrink<const P: u32>(
+    blocks: &Blocks,
+    pool: Vec<Candidate>,
+    kept: Vec<Candidate>,
+    deadline: Option<&Deadline>,
+    history: &mut Vec<ShrinkStep>,
+) -> Vec<Candidate> {
+    let ex = exclude_monomials::<P>(blocks, pool, kept, deadline);
+    if ex.excluded == 0 {
+        return ex.kept;
+    }
+    let full = shrink::<P>(blocks, ex.pool, &mut Vec::new());
+    let kept = if full.len() <= ex.kept.len() {
+        full
+    } else {
+        ex.kept
+    };
+    let cols = blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + blocks.basis.len();
+    history.push((
+        format!(
+            "greedy exclusion from the candidates ({} moves: equation degrees, excess monomials)",
+            ex.excluded
+        ),
+        kept.len(),
+        cols,
+    ));
+    kept
 }
 
 /// The first phase: per-equation candidate degrees (the multiplier sets of Martyushev et

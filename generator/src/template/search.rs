@@ -78,10 +78,6 @@ pub(crate) fn best_template_within(
     if opts.actions == ActionChoice::Auto && visible > 1 && !has_distinct {
         all.extend(search_actions(eqs, basis, gb, opts, deadline, &random()));
     }
-    let score = |b: &BuiltTemplate| {
-        let (r, c) = b.template.eliminated_size();
-        r * c
-    };
     if opts.alternative_bases {
         let bases = alternative_bases(eqs, basis, visible, deadline);
         try_alternative_bases(eqs, &bases, visible, opts, deadline, &mut all);
@@ -91,7 +87,7 @@ pub(crate) fn best_template_within(
             .enumerate()
             .filter_map(|(k, (_, r))| r.as_ref().ok().map(|b| (k, b)))
             .filter(|(_, b)| !need_distinct || b.distinct_eigenvalues)
-            .min_by_key(|(k, b)| (score(b), *k))
+            .min_by_key(|(k, b)| (area(b), *k))
             .map(|(_, b)| b.clone())
     };
     let best = if opts.require_distinct_eigenvalues {
@@ -273,6 +269,12 @@ fn alternative_bases<const P: u32>(
     out
 }
 
+/// The eliminated template's `rows x columns`, the size every choice minimises.
+fn area(b: &BuiltTemplate) -> usize {
+    let (r, c) = b.template.eliminated_size();
+    r * c
+}
+
 fn sorted(mut b: Vec<Monomial>) -> Vec<Monomial> {
     b.sort_by(|x, y| MonomialOrder::Grevlex.cmp(y, x));
     b
@@ -303,10 +305,6 @@ fn try_alternative_bases<const P: u32>(
             };
             let distinct = current.distinct_eigenvalues;
             if let Ok(t) = build_template(eqs, b, label, action, &search, distinct, opts) {
-                let area = |x: &BuiltTemplate| {
-                    let (r, c) = x.template.eliminated_size();
-                    r * c
-                };
                 if area(&t) < area(current) {
                     *result = Ok(t);
                 }

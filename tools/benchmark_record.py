@@ -1,15 +1,18 @@
 #!/usr/bin/env python3
-"""Records the template benchmark: runs `mingen report templates/benchmark` once, writes
-each file's `# recorded: RxC` header line (the size the regression test
-generator/tests/benchmark_sizes.rs holds the search to; a file without a template gets no
-line) and the Markdown table of docs/BENCHMARK.md between its markers.
+"""Records the template benchmark: runs `mingen report` on every file of
+templates/benchmark (--jobs at a time), writes each file's `# recorded: RxC` header line
+(`RxC + NxM reduction` when the solver row-reduces its equations first: the elimination
+area the regression test generator/tests/benchmark_sizes.rs holds the search to; a file
+without a template gets no line) and the Markdown table of docs/BENCHMARK.md between its
+markers.
 
-    python3 tools/benchmark_record.py [--instances N] [--check]
+    python3 tools/benchmark_record.py [--instances N] [--jobs J] [--check]
 
 --check writes nothing and exits 1 if a recorded line would change (every problem is
 planned, also those the test skips for their planning time). Run from anywhere; builds mingen in release first.
 """
 import argparse
+import concurrent.futures
 import json
 import pathlib
 import re
@@ -30,6 +33,16 @@ def mingen(*args):
     return out.stdout
 
 
+def size_text(r):
+    """The recorded size of a report row: `RxC`, `RxC + NxM reduction`, or None."""
+    t = r["template"]
+    if not t:
+        return None
+    red = r.get("equation_reduction")
+    extra = f" + {red['rows']}x{red['cols']} reduction" if red else ""
+    return f"{t['rows']}x{t['cols']}{extra}"
+
+
 def markdown(rows):
     """The table of `mingen report --markdown` (the same columns), from its JSON rows."""
     def ratio(x):
@@ -38,7 +51,6 @@ def markdown(rows):
             "area / best", "audit: median / p99 log10 residual / failures", "seconds"]
     out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for r in rows:
-        t = r["template"]
         a = r["audit"]
         unknowns = ", ".join(r["unknowns"])
         if r["eliminated"]:
@@ -46,7 +58,7 @@ def markdown(rows):
         cells = [
             f"`{r['problem']}`", unknowns or "—",
             "—" if r["solutions"] is None else str(r["solutions"]),
-            f"{t['rows']}x{t['cols']}" if t else "none",
+            size_text(r) or "none",
             r["published"] or "—", ratio(r["area_over_std"]), ratio(r["area_over_best"]),
             "—" if a is None else f"{a['median_log10_residual']:.2f} / {a['p99_log10_residual']:.2f} / {a['failures']} of {a['instances']}",
             f"{r['seconds']:.2f}",
@@ -77,16 +89,22 @@ def main():
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--max-seconds", type=float, default=None,
                     help="planning budget per problem (default: mingen's)")
+    ap.add_argument("--jobs", type=int, default=2, help="problems planned at a time")
     a = ap.parse_args()
     subprocess.run(["cargo", "build", "--release", "-q", "-p", "mingen"], cwd=ROOT, check=True)
     extra = ["--max-seconds", str(a.max_seconds)] if a.max_seconds else []
-    rows = json.loads(mingen("report", str(BENCH), "--json", "--instances", str(a.instances), *extra))
+    files = sorted(BENCH.glob("*.mp"))
+
+    def one(f):
+        return json.loads(mingen("report", str(f), "--json", "--instances", str(a.instances), *extra))
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as pool:
+        rows = [row for rs in pool.map(one, files) for row in rs]
     table = markdown(rows)
     stale = []
     for r in rows:
         f = pathlib.Path(r["file"])
-        t = r["template"]
-        size = f"{t['rows']}x{t['cols']}" if t else None
+        size = size_text(r)
         old = f.read_text()
         new = with_recorded(old, size, r["seconds"])
         if new != old:

@@ -62,6 +62,10 @@ pub enum InterpretError {
         /// Template row.
         row: usize,
     },
+    /// The equations cannot be row-reduced as the template's
+    /// [`EliminationTemplate::reduction`] plans (degenerate data for the reduction).
+    #[error("equation reduction: {0}")]
+    Reduction(#[from] crate::template::ReductionError),
     /// The elimination found no pivot above [`mingen_runtime::PIVOT_TOL`] for some column:
     /// the template is singular on this instance (an emitted solver returns nothing).
     #[error("the elimination template is singular on this instance (no usable pivot)")]
@@ -111,6 +115,14 @@ pub fn fill_template(
     equations: &[Poly<f64>],
 ) -> Result<Vec<f64>, InterpretError> {
     check_template(template)?;
+    let reduced;
+    let equations = match &template.reduction {
+        Some(r) => {
+            reduced = r.reduce_f64(equations)?;
+            &reduced[..]
+        }
+        None => equations,
+    };
     let col: HashMap<&Monomial, usize> = template
         .columns
         .iter()
@@ -495,6 +507,7 @@ mod tests {
             basis: vec![mono(&[1, 0]), mono(&[0, 1]), mono(&[0, 0])],
             action: crate::template::Action::var(2, 0),
             sparse: None,
+            reduction: None,
         };
         (template, vec![e0, e1])
     }

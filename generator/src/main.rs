@@ -141,6 +141,11 @@ struct SearchArgs {
     /// `option auto_eliminate`.
     #[arg(long, value_name = "yes|no", value_parser = ["yes", "no"])]
     auto_eliminate: Option<String>,
+    /// Also build templates from the equations row-reduced on their data and keep the
+    /// smaller (`yes`, the default), or use the equations as written only (`no`); default:
+    /// the file's `option reduce_equations`.
+    #[arg(long, value_name = "yes|no", value_parser = ["yes", "no"])]
+    reduce_equations: Option<String>,
 }
 
 impl SearchArgs {
@@ -159,6 +164,7 @@ impl SearchArgs {
                 basis: self.basis.clone(),
                 newton: self.newton,
                 auto_eliminate: self.auto_eliminate.as_deref().map(|v| v == "yes"),
+                reduce_equations: self.reduce_equations.as_deref().map(|v| v == "yes"),
             },
             ..TemplateOptions::default()
         })
@@ -460,6 +466,19 @@ fn print_plan(out: &mut String, plan: &mingen::pipeline::SolverPlan) {
             .join(" ")
     );
     outln!(out, "action: {}", t.action.display_with(&names));
+    if let Some(r) = &t.reduction {
+        outln!(
+            out,
+            "equations: row-reduced on the data first ({} x {} coefficient matrix), pivots {}",
+            r.len(),
+            r.monomials.len(),
+            r.pivots
+                .iter()
+                .map(|&p| r.monomials[p].display_with(&names))
+                .collect::<Vec<_>>()
+                .join(" ")
+        );
+    }
     let (rows, cols) = t.eliminated_size();
     outln!(
         out,

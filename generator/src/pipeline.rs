@@ -289,6 +289,9 @@ pub fn resolve_options(problem: &Problem, options: &TemplateOptions) -> Template
         out.basis_selection = b != "standard";
         out.alternative_bases = b != "standard";
     }
+    if let Some(r) = o.reduce_equations.or(file.reduce_equations) {
+        out.reduce_equations = r;
+    }
     out
 }
 
@@ -374,7 +377,11 @@ pub fn plan(
             }
         })?;
     let supports = equation_supports(&problem, options.seed);
-    order_for_sparse_elimination(&mut generated.built.template, &supports);
+    let template_supports = match &generated.built.template.reduction {
+        Some(r) => r.reduced_supports(),
+        None => supports.clone(),
+    };
+    order_for_sparse_elimination(&mut generated.built.template, &template_supports);
     Ok(SolverPlan {
         problem,
         file: file.to_string(),
@@ -467,7 +474,8 @@ impl SolverPlan {
     /// The `inspect --json` keys computed by the algebra (the `inspect --json` contract in the README): `solutions`, `basis`,
     /// `action`, `template` `{rows, cols}` (as eliminated by the emitted solver),
     /// `eliminated`, `seconds`, plus `dependent_columns` (excess columns left out of the
-    /// elimination) and `per_action`.
+    /// elimination), `equation_reduction` (`{rows, cols}` of the equations' coefficient
+    /// matrix the solver row-reduces first, or null) and `per_action`.
     pub fn summary_json(&self) -> Value {
         let names = self.variable_names();
         let t = &self.generated.built.template;
@@ -478,6 +486,7 @@ impl SolverPlan {
             "basis": t.basis.iter().map(|m| m.display_with(&names)).collect::<Vec<_>>(),
             "action": t.action.display_with(&names),
             "template": { "rows": rows, "cols": cols },
+            "equation_reduction": t.reduction_size().map(|(r, c)| json!({"rows": r, "cols": c})),
             "eliminated": self.eliminated_names(),
             "seconds": self.seconds,
             "per_action": self.generated.per_action.iter().map(|(v, s)| json!({

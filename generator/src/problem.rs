@@ -203,6 +203,10 @@ pub struct ProblemOptions {
     /// `eliminate` would, the unknowns that every equation has only in terms of degree one
     /// with data coefficients (a translation, say); see `rewrite.rs`.
     pub auto_eliminate: Option<bool>,
+    /// `option reduce_equations = yes|no` (default yes): whether the template search also
+    /// builds templates from the equations row-reduced on their data (each reduced equation
+    /// has a pivot monomial no other has; see `template/reduction.rs`) and keeps the smaller.
+    pub reduce_equations: Option<bool>,
 }
 
 /// The symbols of a problem: what emitted solvers take as data and return as solutions.

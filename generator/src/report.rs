@@ -50,6 +50,9 @@ pub struct ReportRow {
     pub macaulay2: Option<String>,
     /// Template size as eliminated by the solver (rows, columns).
     pub template: Option<(usize, usize)>,
+    /// Size (equations, monomials) of the equations' coefficient matrix the solver
+    /// row-reduces before filling the template, if it does.
+    pub reduction: Option<(usize, usize)>,
     /// The `# published:` header line.
     pub published: Option<String>,
     /// The template sizes read from the `# published:` line.
@@ -177,6 +180,7 @@ pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOpti
         macaulay2: header_value(&source, "Macaulay2")
             .and_then(|v| v.split_whitespace().next().map(str::to_string)),
         template: None,
+        reduction: None,
         published_sizes: published
             .as_deref()
             .map(PublishedSizes::parse)
@@ -208,6 +212,7 @@ pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOpti
             row.eliminated = p.eliminated_names();
             row.solutions = Some(p.generated.count);
             row.template = Some(t.eliminated_size());
+            row.reduction = t.reduction_size();
             row.action = Some(t.action.display_with(&names));
             row.audit = Some(audit_plan(&p, audit));
         }
@@ -247,6 +252,7 @@ impl ReportRow {
             "solutions": self.solutions,
             "macaulay2": self.macaulay2,
             "template": self.template.map(|(r, c)| json!({"rows": r, "cols": c})),
+            "equation_reduction": self.reduction.map(|(r, c)| json!({"rows": r, "cols": c})),
             "published": self.published,
             "area_over_std": self.area_ratio(self.published_sizes.std.map(|(r, c)| r * c)),
             "area_over_best": self.area_ratio(self.published_sizes.best_area()),
@@ -262,10 +268,13 @@ impl ReportRow {
         })
     }
 
-    /// Our template's area over `area`, when both are known.
+    /// Our elimination area (the template's `rows x cols`, plus the equations'
+    /// coefficient matrix's when they are row-reduced first) over `area`, when both are
+    /// known.
     pub fn area_ratio(&self, area: Option<usize>) -> Option<f64> {
         let (r, c) = self.template?;
-        area.filter(|&a| a > 0).map(|a| (r * c) as f64 / a as f64)
+        let ours = r * c + self.reduction.map_or(0, |(n, m)| n * m);
+        area.filter(|&a| a > 0).map(|a| ours as f64 / a as f64)
     }
 
     fn markdown_cells(&self) -> Vec<String> {
@@ -284,7 +293,10 @@ impl ReportRow {
             self.solutions.map_or_else(dash, |n| n.to_string()),
             self.macaulay2.clone().unwrap_or_else(dash),
             match (self.template, &self.error) {
-                (Some((r, c)), _) => format!("{r}x{c}"),
+                (Some((r, c)), _) => match self.reduction {
+                    Some((n, m)) => format!("{r}x{c} + {n}x{m} reduction"),
+                    None => format!("{r}x{c}"),
+                },
                 (None, Some(_)) => "none".to_string(),
                 (None, None) => dash(),
             },

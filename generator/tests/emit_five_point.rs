@@ -138,6 +138,7 @@ fn five_point_template() -> EliminationTemplate {
         basis,
         action: mingen::template::Action::var(3, 0),
         sparse: None,
+        reduction: None,
     }
 }
 
@@ -453,6 +454,7 @@ fn elimination_emission_parses() {
         basis: vec![s.clone(), one.clone()],
         action: mingen::template::Action::var(1, 0),
         sparse: None,
+        reduction: None,
     };
     let cst = |c: Traced| Poly::constant(1, c);
     let sv = Poly::<Traced>::var(1, 0);

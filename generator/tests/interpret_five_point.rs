@@ -56,6 +56,7 @@ fn five_point_template() -> EliminationTemplate {
         basis,
         action: mingen::template::Action::var(3, 0),
         sparse: None,
+        reduction: None,
     }
 }
 
@@ -275,6 +276,7 @@ fn audit_with_eliminated_unknowns() {
         basis: vec![m2([1, 0]), m2([0, 1]), m2([0, 0])],
         action: mingen::template::Action::var(2, 0),
         sparse: None,
+        reduction: None,
     };
     let widen = |p: &P| {
         Poly::from_terms(

@@ -323,17 +323,17 @@ const CASES: &[(&str, &str, usize, usize, &str)] = &[
     ),
     (
         "rust_keyword_data",
-        "problem p\nunknown x\ndata a: scalar, fn: scalar\nx - fn = 0\n",
+        "problem p\nunknown x\ndata a: scalar, self: scalar\nx - self = 0\n",
         3,
         17,
-        "data name 'fn' cannot be emitted: its field name 'fn' is a Rust keyword",
+        "data name 'self' cannot be emitted: its field name 'self' is a Rust keyword",
     ),
     (
         "rust_keyword_after_lowercasing",
-        "problem p\nunknown Type\nType = 0\n",
+        "problem p\nunknown Crate\nCrate = 0\n",
         2,
         9,
-        "field name 'type' is a Rust keyword",
+        "field name 'crate' is a Rust keyword",
     ),
     (
         "scalar_name_clash",

@@ -20,7 +20,7 @@ fn sparse_plan_matches_the_dense_lu() {
     let e = t
         .sparse
         .as_ref()
-        .expect("a 90 x 102 template gets a sparse plan");
+        .expect("the grsrp_gravity template gets a sparse plan");
     assert!(e.sparse_updates < e.dense_updates);
     let lu = e.as_plan(t);
     let (rows, cols) = t.eliminated_size();

@@ -325,7 +325,8 @@ pub enum GravitySolver {
     /// Default.
     #[default]
     Six,
-    /// `grsrp_gravity`: 5 unknowns, 12 solutions (±t), a 90 x 102 template.
+    /// `grsrp_gravity`: 5 unknowns, 12 solutions (±t), an 85 x 97 template after its
+    /// equations are row-reduced on the data.
     Twelve,
 }
 

@@ -12,7 +12,8 @@
 # separated unknown indices whose joint sign is free (an eliminated unit translation).
 # Arguments after `--` go to `mingen generate` (e.g. --code-form inline).
 # PROFILE=dev builds the solver's crate in the dev (debug) profile instead of release, as
-# a user's `cargo build` does: emitted code must build in any profile. BUILD_ONLY=1 stops
+# a user's `cargo build` does: emitted code must build in any profile. EDITION (default
+# 2024) is the crate's edition: it must build in any. BUILD_ONLY=1 stops
 # after the build (INSTANCES is then not read).
 # Example (G-RSRP with unknown readout, 100 solutions):
 #   python3 tools/grsrp_readout_instances.py 200 2 --solutions /tmp/s.txt > /tmp/i.txt
@@ -43,7 +44,7 @@ cat > "$work/Cargo.toml" <<TOML
 [package]
 name = "emitted-solver-$name"
 version = "0.0.0"
-edition = "2021"
+edition = "${EDITION:-2024}"
 publish = false
 
 [dependencies]

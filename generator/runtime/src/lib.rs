@@ -29,6 +29,8 @@
 //!   then inverse iteration, when its residual is not at rounding level); hands the matrix to [`real_eigenpairs_hqr`] when a root is not
 //!   confirmed (residual or eigenvalue disagreement: spurious real roots of ±λ spectra) or
 //!   the Sturm sequence degenerates. The emitted solvers use it at every shipped size.
+//! - [`reduce_equations`]: the equations row-reduced on their data to the pivot monomials
+//!   the generator chose, before the template is filled (smaller templates).
 //! - [`fill_template`], [`zeroed_coefficients`]: the table form of large solvers (the
 //!   template filled from a coefficient array through a constant table).
 //! - [`Stages`]: observer of an emitted solver's stages (`solve_staged`), for timings.
@@ -51,6 +53,7 @@ mod coefficient_table;
 mod dynamic;
 mod eigen;
 mod elim;
+mod equation_reduction;
 mod hessenberg;
 mod hqr;
 mod newton;
@@ -68,6 +71,7 @@ pub use coefficient_table::{fill_template, zeroed_coefficients};
 pub use dynamic::{real_eigenpairs_dyn, DynEigenpair, MAX_DYNAMIC_BASIS, STURM_MAX_BASIS};
 pub use eigen::{real_eigenpairs, NEAR_REAL_TOL};
 pub use elim::{gauss_jordan, lu_solve_template, lu_solve_template_fixed, PIVOT_TOL};
+pub use equation_reduction::reduce_equations;
 pub use hqr::real_eigenpairs_hqr;
 pub use newton::{newton_polish, NewtonTerm, MAX_NEWTON_UNKNOWNS};
 pub use null::{null_vector3, null_vector3_rows};

@@ -22,9 +22,11 @@ mod action;
 pub mod coefficients;
 mod files;
 mod polish;
+mod reduction;
 mod runtime_api;
 mod solver;
 mod structs;
+mod table_form;
 mod tokens;
 pub mod traced;
 

@@ -109,3 +109,8 @@ pub(crate) fn fill_template() -> TokenStream {
 pub(crate) fn zeroed_coefficients() -> TokenStream {
     quote!(mingen_runtime::zeroed_coefficients)
 }
+
+/// `mingen_runtime::reduce_equations`.
+pub(crate) fn reduce_equations() -> TokenStream {
+    quote!(mingen_runtime::reduce_equations)
+}

@@ -7,6 +7,7 @@ use super::runtime_api as rt;
 use super::structs::{
     data_field_idents, emit_data, emit_solution, slot_access, solution_field_idents,
 };
+use super::table_form::{table_form_tokens, FillTarget};
 use super::tokens::{doc, lit};
 use super::traced::Traced;
 use super::{CodeForm, EmitError, SolverSpec};
@@ -24,9 +25,6 @@ pub const SMALL_TEMPLATE_ROWS: usize = 40;
 /// function makes the compiler's time grow faster than linearly, and its recursion deep
 /// enough to overflow rustc's default stack in a debug build.
 pub const TABLE_FORM_MIN_SIZE: usize = 2048;
-
-/// Coefficient statements per function in table form.
-const STATEMENTS_PER_FUNCTION: usize = 512;
 
 /// Everything `solve` needs, validated and indexed.
 struct Plan<'a> {
@@ -61,6 +59,16 @@ fn validate_template(
         .enumerate()
         .map(|(i, m)| (m.clone(), i))
         .collect();
+    let reduced = t.reduction.as_ref().map(|r| r.reduced_supports());
+    if let Some(red) = &t.reduction {
+        if red.len() != equations.len() {
+            return bad(format!(
+                "{} equations but the equation reduction has {}",
+                equations.len(),
+                red.len()
+            ));
+        }
+    }
     for (i, row) in t.rows.iter().enumerate() {
         let eq = equations.get(row.equation).ok_or_else(|| {
             EmitError::Invalid(format!(
@@ -75,7 +83,11 @@ fn validate_template(
                 t.nvars
             ));
         }
-        for (m, _) in eq.terms() {
+        let monomials: Vec<&Monomial> = match &reduced {
+            Some(r) => r[row.equation].iter().collect(),
+            None => eq.terms().map(|(m, _)| m).collect(),
+        };
+        for m in monomials {
             let p = row.multiplier.mul(m);
             if !column_of.contains_key(&p) {
                 return bad(format!("row {i}: monomial {p:?} is not a template column"));
@@ -265,6 +277,15 @@ pub fn emit_solver(spec: &SolverSpec) -> Result<String, EmitError> {
             stats.ops, stats.stmts
         ),
     ];
+    if let Some((n, m)) = t.reduction_size() {
+        module_doc.insert(
+            4,
+            format!(
+                "Its rows are multiples of the equations row-reduced on the data first (a \
+                 {n} x {m} coefficient matrix)."
+            ),
+        );
+    }
     if let Some(el) = &spec.elimination {
         let names = layout.unknown_names();
         let listed = el
@@ -390,78 +411,6 @@ fn entry_tokens(terms: &[(Monomial, Expr)], style: VarStyle) -> TokenStream {
     out
 }
 
-/// The table form's items (the coefficient functions and the fill table) and the code in
-/// `solve` that computes the coefficients and fills the template `m` (allocated by
-/// `alloc`).
-fn table_form_tokens(
-    program: &mut Program,
-    fill_pos: &[usize],
-    n_slots: usize,
-    template_len: usize,
-    alloc: &TokenStream,
-) -> Result<(TokenStream, TokenStream), EmitError> {
-    let too_large = |coefficients: usize| {
-        EmitError::Unsupported(format!(
-            "a template of {template_len} entries or {coefficients} coefficients does not fit \
-             the fill table's 32-bit indices"
-        ))
-    };
-    if u32::try_from(template_len).is_err() {
-        return Err(too_large(program.stmts.len()));
-    }
-    let refs = program.bind_outputs(0..fill_pos.len());
-    let mut table = Vec::with_capacity(fill_pos.len());
-    for (&p, &(k, neg)) in fill_pos.iter().zip(&refs) {
-        let code = u32::try_from(2 * k + usize::from(neg)).map_err(|_| too_large(k))?;
-        table.push((p as u32, code));
-    }
-    table.sort_unstable();
-    let entries = table.iter().map(|&(p, code)| {
-        let (p, code) = (Literal::u32_unsuffixed(p), Literal::u32_unsuffixed(code));
-        quote!([#p, #code])
-    });
-    let n_fill = lit(table.len());
-    let nc = lit(program.stmts.len());
-    let n_slots_l = lit(n_slots);
-    let stmts = program.stmt_tokens_array();
-    let mut fns = Vec::new();
-    let mut calls = Vec::new();
-    for (i, chunk) in stmts.chunks(STATEMENTS_PER_FUNCTION).enumerate() {
-        let name = format_ident!("coefficients_{}", i);
-        let doc = doc(format!(
-            "Coefficient statements {} to {} (table form).",
-            i * STATEMENTS_PER_FUNCTION,
-            i * STATEMENTS_PER_FUNCTION + chunk.len() - 1
-        ));
-        fns.push(quote! {
-            #doc
-            #[inline(never)]
-            #[rustfmt::skip]
-            #[allow(unused_variables, clippy::too_many_lines)]
-            fn #name(d: &[f64; #n_slots_l], c: &mut [f64; #nc]) {
-                #(#chunk)*
-            }
-        });
-        calls.push(quote!(#name(&d, &mut c);));
-    }
-    let (zeroed, fill) = (rt::zeroed_coefficients(), rt::fill_template());
-    Ok((
-        quote! {
-            #(#fns)*
-            /// The template's nonzero entries: `[entry, 2 k + negated]`, the entry (row-major)
-            /// and the coefficient `c[k]` it holds (negated if the low bit is set).
-            #[rustfmt::skip]
-            static TEMPLATE_FILL: [[u32; 2]; #n_fill] = [#(#entries),*];
-        },
-        quote! {
-            let mut c = #zeroed::<#nc>();
-            #(#calls)*
-            #alloc
-            #fill(&mut m, &c[..], &TEMPLATE_FILL);
-        },
-    ))
-}
-
 fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let spec = plan.spec;
     let t = &spec.template;
@@ -495,20 +444,28 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         .map(|x| x.expect("all slots covered"))
         .collect();
 
-    // Coefficients: template entries (inlinable), then elimination matrix coefficients
+    // Coefficients: template entries (inlinable) or, when the equations are reduced first,
+    // the entries of their coefficient matrix; then elimination matrix coefficients
     // (bound before the solution loop).
-    let mut fill_pos: Vec<usize> = Vec::new();
-    let mut fill_vals: Vec<Traced> = Vec::new();
-    for (i, row) in t.rows.iter().enumerate() {
-        for (m, c) in spec.equations[row.equation].terms() {
-            // Dependent excess columns are not part of the eliminated matrix.
-            let Some(col) = t.eliminated_column(plan.column_of[&row.multiplier.mul(m)]) else {
-                continue;
-            };
-            fill_pos.push(i * cols + col);
-            fill_vals.push(c.clone());
+    let (fill_pos, fill_vals) = match &t.reduction {
+        Some(red) => super::reduction::equation_entries(red, &spec.equations)?,
+        None => {
+            let mut fill_pos: Vec<usize> = Vec::new();
+            let mut fill_vals: Vec<Traced> = Vec::new();
+            for (i, row) in t.rows.iter().enumerate() {
+                for (m, c) in spec.equations[row.equation].terms() {
+                    // Dependent excess columns are not part of the eliminated matrix.
+                    let Some(col) = t.eliminated_column(plan.column_of[&row.multiplier.mul(m)])
+                    else {
+                        continue;
+                    };
+                    fill_pos.push(i * cols + col);
+                    fill_vals.push(c.clone());
+                }
+            }
+            (fill_pos, fill_vals)
         }
-    }
+    };
     // Each template entry is written once: two terms of one row never share a column
     // because the equation's monomials are distinct.
     let mut elim_terms: Vec<Vec<Vec<Monomial>>> = Vec::new();
@@ -556,8 +513,18 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     } else {
         VarStyle::Locals
     };
-    let (coefficient_fns, coefficients_and_fill) = if table_form {
-        table_form_tokens(&mut program, &fill_pos, n_slots, rows * cols, &alloc)?
+    let target = match &t.reduction {
+        Some(red) => super::reduction::equation_matrix_target(red),
+        None => FillTarget {
+            name: format_ident!("m"),
+            table: format_ident!("TEMPLATE_FILL"),
+            alloc: alloc.clone(),
+            len: rows * cols,
+            what: "template",
+        },
+    };
+    let (mut coefficient_fns, mut coefficients_and_fill) = if table_form {
+        table_form_tokens(&mut program, &fill_pos, n_slots, &target)?
     } else {
         let coeff_stmts = program.stmt_tokens();
         let mut fill_order: Vec<(usize, &Expr)> = fill_pos
@@ -566,23 +533,31 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
             .zip(&program.outputs[..fill_vals.len()])
             .collect();
         fill_order.sort_by_key(|(p, _)| *p);
+        let name = &target.name;
         let fills: Vec<TokenStream> = fill_order
             .into_iter()
             .map(|(p, e)| {
                 let p = lit(p);
                 let e = e.to_tokens();
-                quote!(m[#p] = #e;)
+                quote!(#name[#p] = #e;)
             })
             .collect();
+        let target_alloc = &target.alloc;
         (
             quote!(),
             quote! {
                 #(#coeff_stmts)*
-                #alloc
+                #target_alloc
                 #(#fills)*
             },
         )
     };
+    if let Some(red) = &t.reduction {
+        let (items, code) =
+            super::reduction::reduce_and_fill_tokens(t, red, &plan.column_of, cols, &alloc)?;
+        coefficient_fns.extend(items);
+        coefficients_and_fill.extend(code);
+    }
 
     let (units, from_template_loop) = action_matrix_tokens(t, &plan.column_of, cols, pivots, nb);
 
@@ -800,6 +775,19 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         ),
         String::new(),
     ];
+    if let Some(red) = &t.reduction {
+        let pivots: Vec<String> = red
+            .pivots
+            .iter()
+            .map(|&p| plan.mono(&red.monomials[p]))
+            .collect();
+        docs.push(format!(
+            "The template's rows are multiples of the equations row-reduced on the data \
+             (`mingen_runtime::reduce_equations`) to the pivot monomials [{}].",
+            pivots.join(", ")
+        ));
+        docs.push(String::new());
+    }
     if let Some(p) = &spec.polish {
         docs.push(format!(
             "Then polishes each solution by up to {} Gauss-Newton steps on the problem's \

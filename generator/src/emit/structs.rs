@@ -4,6 +4,7 @@
 use super::runtime_api as rt;
 use super::tokens::{doc, lit};
 use super::EmitError;
+use crate::lang::names::is_raw_keyword;
 use crate::problem::{DataKind, DataSymbol, ProblemLayout};
 use proc_macro2::{Ident, TokenStream};
 use quote::quote;
@@ -11,8 +12,8 @@ use std::collections::BTreeSet;
 
 /// The Rust field identifiers of one struct's symbols, in order: each name lowercased,
 /// except names that lowercase to the same word (`x` and `X`), which keep their spelling
-/// (the struct then allows non-snake-case fields). The rule depends on the set of names,
-/// not their order, and never maps two names to one field.
+/// (the struct then allows non-snake-case fields), keywords as raw identifiers. The rule
+/// depends on the set of names, not their order, and never maps two names to one field.
 pub(super) fn field_idents<'a>(
     names: impl Iterator<Item = &'a str>,
     what: &str,
@@ -25,6 +26,9 @@ pub(super) fn field_idents<'a>(
         .map(|(name, l)| {
             let shared = lower.iter().filter(|m| *m == l).count() > 1;
             let field = if shared { name } else { l.as_str() };
+            if is_raw_keyword(field) {
+                return Ok(Ident::new_raw(field, proc_macro2::Span::call_site()));
+            }
             syn::parse_str::<Ident>(field).map_err(|_| {
                 EmitError::Unsupported(format!(
                     "{what} `{name}` does not give a Rust field name (`{field}` is not an identifier or is a keyword)"

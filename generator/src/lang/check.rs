@@ -379,11 +379,20 @@ impl Checker {
                         ))
                     }
                 },
+                "reduce_equations" => match v.as_str() {
+                    "yes" => o.reduce_equations.replace(true).is_some(),
+                    "no" => o.reduce_equations.replace(false).is_some(),
+                    _ => {
+                        return bad(&format!(
+                            "option reduce_equations: expected 'yes' or 'no', found '{v}'"
+                        ))
+                    }
+                },
                 other => {
                     return Err(LangError::new(
                         name.pos,
                         format!(
-                            "unknown option '{other}' (the options are action, extra_degree, basis, newton, auto_eliminate)"
+                            "unknown option '{other}' (the options are action, extra_degree, basis, newton, auto_eliminate, reduce_equations)"
                         ),
                     ))
                 }

@@ -1,16 +1,35 @@
 //! Declared names that the emitter turns into Rust identifiers, checked where they are
 //! declared so that a problem `inspect` accepts is one `generate` can emit: the problem
 //! name becomes a module name ([`module_name`]), data and unknown symbols become struct fields (lowercased,
-//! except names that differ only in case, which keep their spelling). A name whose field
-//! could be a Rust keyword is an error at the declaration.
+//! except names that differ only in case, which keep their spelling; keywords that can be
+//! raw identifiers are written `r#name`). A name that cannot be emitted (`self`, a problem
+//! name that is a keyword) is an error at the declaration.
 
 use super::ast::Name;
 use super::LangError;
 use std::collections::HashMap;
 
-/// Whether `s` is a Rust identifier that is not a keyword (the emitter's own test).
+/// Whether `s` is a Rust identifier that is not a keyword of any edition (the emitter's
+/// own test, plus `gen`, reserved since edition 2024).
 pub fn is_rust_ident(s: &str) -> bool {
-    syn::parse_str::<proc_macro2::Ident>(s).is_ok()
+    syn::parse_str::<proc_macro2::Ident>(s).is_ok() && !is_raw_keyword(s)
+}
+
+/// Keywords of some Rust edition (strict, reserved, and `gen` of edition 2024) that can be
+/// raw identifiers. A data or unknown symbol whose field would be one is emitted as
+/// `r#name`, so the code builds in a crate of any edition; `self`, `Self`, `super` and
+/// `crate` cannot be raw, and a problem (module) name is never escaped.
+const RAW_KEYWORDS: &[&str] = &[
+    "abstract", "as", "async", "await", "become", "box", "break", "const", "continue", "do", "dyn",
+    "else", "enum", "extern", "false", "final", "fn", "for", "gen", "if", "impl", "in", "let",
+    "loop", "macro", "match", "mod", "move", "mut", "override", "priv", "pub", "ref", "return",
+    "static", "struct", "trait", "true", "try", "type", "typeof", "unsafe", "unsized", "use",
+    "virtual", "where", "while", "yield",
+];
+
+/// Whether `s` is a keyword that the emitter writes as a raw identifier (`r#s`).
+pub fn is_raw_keyword(s: &str) -> bool {
+    RAW_KEYWORDS.contains(&s)
 }
 
 /// The Rust module (and file stem) of a problem name: the name lowercased, with `p`
@@ -103,11 +122,11 @@ fn field(name: &Name, what: &str) -> Result<(), LangError> {
     // struct lowercases alike (`emit::structs::field_idents`): both must be identifiers.
     let lower = name.name.to_lowercase();
     for field in [&lower, &name.name] {
-        if !is_rust_ident(field) {
+        if !is_rust_ident(field) && !is_raw_keyword(field) {
             return Err(LangError::new(
                 name.pos,
                 format!(
-                    "{what} name '{}' cannot be emitted: its field name '{field}' is a Rust keyword",
+                    "{what} name '{}' cannot be emitted: its field name '{field}' is a Rust keyword that cannot be a raw identifier",
                     name.name
                 ),
             ));

@@ -13,7 +13,7 @@ use super::linalg::gauss_jordan;
 use super::select::{self, SelectedTemplate};
 use super::shrink::shrink;
 use super::{Action, EliminationTemplate, TemplateError, TemplateOptions};
-use crate::algebra::{Fp, Monomial, MonomialOrder, Poly, Ring};
+use crate::algebra::{Field, Fp, Monomial, MonomialOrder, Poly};
 use crate::budget::Deadline;
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -239,22 +239,33 @@ pub(crate) fn assemble<const P: u32>(
         n_hidden,
         action: action.clone(),
         sparse: None,
+        reduction: None,
     }
 }
 
 impl EliminationTemplate {
     /// The template matrix (rows x columns, see the module convention) of the instance
-    /// with equations `eqs`, over any ring: row i holds the coefficients of
-    /// `rows[i].multiplier * eqs[rows[i].equation]`.
+    /// with equations `eqs`, over any field: row i holds the coefficients of
+    /// `rows[i].multiplier * eqs[rows[i].equation]`, after the template's
+    /// [`EliminationTemplate::reduction`] if it has one (exactly, over the field).
     ///
     /// Errors with [`TemplateError::MissingColumn`] if a product has a monomial that is not
-    /// a column (the instance is not of the family the template was built for).
+    /// a column, or [`TemplateError::Reduction`] if the equations cannot be reduced as
+    /// planned (the instance is not of the family the template was built for).
     /// `names` renders the unknowns in the error (template variables in order).
-    pub fn fill<C: Ring>(
+    pub fn fill<C: Field>(
         &self,
         eqs: &[Poly<C>],
         names: &[String],
     ) -> Result<Vec<Vec<C>>, TemplateError> {
+        let reduced;
+        let eqs = match &self.reduction {
+            Some(r) => {
+                reduced = r.reduce(eqs)?;
+                &reduced[..]
+            }
+            None => eqs,
+        };
         let idx: BTreeMap<&Monomial, usize> = self
             .columns
             .iter()

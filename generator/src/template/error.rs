@@ -1,6 +1,7 @@
 //! The error of every template stage (search, build, validation, fill), in a module of
 //! its own so that each stage can return it without depending on another.
 
+use super::reduction::ReductionError;
 use super::ShapeError;
 use crate::budget::Exhausted;
 use crate::groebner::GroebnerError;
@@ -69,6 +70,10 @@ pub enum TemplateError {
         /// Instance number.
         instance: usize,
     },
+    /// An instance's equations cannot be row-reduced as the template's
+    /// [`super::EquationReduction`] plans.
+    #[error("equation reduction: {0}")]
+    Reduction(#[from] ReductionError),
     /// No action variable was given or none works.
     #[error("no usable action variable: {0}")]
     NoAction(String),

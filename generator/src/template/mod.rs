@@ -4,7 +4,9 @@
 //! ## Convention (shared by the interpreter and the emitted solvers)
 //! A template is a matrix whose row `i` holds the coefficients of the polynomial
 //! `rows[i].multiplier * equations[rows[i].equation]`, one column per monomial of
-//! `columns`. Columns are ordered `excess | reducible | basis`:
+//! `columns`; `equations` are the problem's equations as given, or, when the template has
+//! a [`EliminationTemplate::reduction`], their reduced row echelon form on the instance's
+//! data (see [`reduction`]). Columns are ordered `excess | reducible | basis`:
 //! - `basis` (the last `basis.len()` columns) is the quotient-ring basis B, in the order of
 //!   [`EliminationTemplate::basis`];
 //! - `reducible` (the `n_reducible` columns before) are the monomials `action * b`, b in B,
@@ -37,6 +39,8 @@
 //! - `exclude`: greedy exclusion of excess monomials from the candidate pool (a local
 //!   search over the independent sets shrinking chooses among);
 //! - [`select`]: quotient bases chosen among a template's columns;
+//! - [`reduction`]: the equations row-reduced on their data, which templates may be built
+//!   from;
 //! - [`explore`]: size tables over orders for developers (not used by the pipeline);
 //! - [`validate`](mod@validate): the template against Gröbner normal forms on fresh instances;
 //! - [`build`]: the template of one action;
@@ -52,6 +56,7 @@ mod exclude;
 pub mod explore;
 pub(crate) mod linalg;
 mod options;
+pub mod reduction;
 pub mod search;
 pub mod select;
 mod shape;
@@ -63,6 +68,7 @@ pub use action::Action;
 pub use candidates::ShrinkStep;
 pub use error::TemplateError;
 pub use options::{ActionChoice, TemplateOptions};
+pub use reduction::{EquationReduction, ReductionError};
 pub use shape::ShapeError;
 pub use sparse_order::{
     order_for_sparse_elimination, SparseElimination, SPARSE_MIN_GAIN, SPARSE_MIN_PIVOTS,
@@ -77,7 +83,8 @@ pub use validate::{
 /// One template row: `multiplier * equations[equation]`.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct TemplateRow {
-    /// Index into the problem's (possibly eliminated) equation list.
+    /// Index into the problem's (possibly eliminated) equation list, or, when the template
+    /// has an [`EliminationTemplate::reduction`], into the reduced equations.
     pub equation: usize,
     /// Monomial in the unknowns that multiplies the equation.
     pub multiplier: Monomial,
@@ -115,6 +122,9 @@ pub struct EliminationTemplate {
     /// [`order_for_sparse_elimination`], which also orders the rows and columns for it);
     /// `None`: the dense LU with partial pivoting.
     pub sparse: Option<SparseElimination>,
+    /// The row reduction of the equations on their data the rows refer to (see
+    /// [`reduction`]); `None`: the rows are multiples of the equations as given.
+    pub reduction: Option<EquationReduction>,
 }
 
 /// The unknowns (the first `visible` variables) that are not in `basis`, in variable
@@ -142,5 +152,20 @@ impl EliminationTemplate {
     /// Template size as (rows, columns).
     pub fn size(&self) -> (usize, usize) {
         (self.rows.len(), self.columns.len())
+    }
+    /// Size (equations, monomials) of the equations' coefficient matrix the solver
+    /// row-reduces before filling the template, if it does ([`Self::reduction`]).
+    pub fn reduction_size(&self) -> Option<(usize, usize)> {
+        self.reduction
+            .as_ref()
+            .map(|r| (r.len(), r.monomials.len()))
+    }
+    /// Entries of every matrix the solver eliminates: the eliminated template's
+    /// `rows x cols` plus, when the equations are row-reduced first, their coefficient
+    /// matrix's. Templates are compared by it, so a reduction is chosen only when it pays
+    /// for itself.
+    pub fn elimination_area(&self) -> usize {
+        let (r, c) = self.eliminated_size();
+        r * c + self.reduction_size().map_or(0, |(n, m)| n * m)
     }
 }

@@ -42,6 +42,10 @@ pub struct TemplateOptions {
     /// Rebuild the chosen template with the greedy exclusion of candidate rows
     /// ([`super::exclude`]) and keep it when it has fewer rows. On by default.
     pub exclude_monomials: bool,
+    /// Also build templates from the equations row-reduced on their data (see
+    /// [`super::reduction`]; every action and basis again) and keep the smaller. On by
+    /// default.
+    pub reduce_equations: bool,
     /// Seed of all random choices (instances).
     pub seed: u64,
     /// Options that override those of the problem file (`option NAME = VALUE`) when the
@@ -68,6 +72,7 @@ impl Default for TemplateOptions {
             basis_selection: true,
             alternative_bases: true,
             exclude_monomials: true,
+            reduce_equations: true,
             seed: 2024,
             hidden_vars: 0,
             overrides: ProblemOptions::default(),

@@ -14,9 +14,9 @@ use super::candidates::start_degree;
 use super::linalg::is_squarefree;
 use super::select::{basis_orders, BasisOrder};
 use super::validate::nf_action_charpoly;
-use super::{Action, ActionChoice, TemplateError, TemplateOptions};
+use super::{Action, ActionChoice, EquationReduction, TemplateError, TemplateOptions};
 use crate::algebra::MonomialOrder;
-use crate::algebra::{Fp, Monomial, Poly};
+use crate::algebra::{Fp, Monomial, Poly, P1};
 use crate::budget::Deadline;
 use crate::groebner::GroebnerBasis;
 use crate::groebner::{groebner_with, GroebnerOptions};
@@ -27,6 +27,9 @@ pub type PerAction = Vec<(Action, Result<BuiltTemplate, TemplateError>)>;
 
 /// How the grevlex standard basis of the analysis is described.
 const STANDARD: &str = "standard monomials (grevlex)";
+
+/// Appended to the description of a template built from the row-reduced equations.
+const REDUCED: &str = ", equations row-reduced on the data";
 
 /// Seed offset of the random linear-combination action.
 const RANDOM_ACTION_SEED: u64 = 0xAC71_0000;
@@ -71,33 +74,98 @@ pub(crate) fn best_template_within(
         ActionChoice::Unknowns(vs) => vs.iter().map(|&v| Action::var(nvars, v)).collect(),
         ActionChoice::Random => random(),
     };
-    let mut all = search_actions(eqs, basis, gb, opts, deadline, &first);
-    let has_distinct = all
-        .iter()
-        .any(|(_, r)| r.as_ref().is_ok_and(|b| b.distinct_eigenvalues));
-    if opts.actions == ActionChoice::Auto && visible > 1 && !has_distinct {
-        all.extend(search_actions(eqs, basis, gb, opts, deadline, &random()));
-    }
-    if opts.alternative_bases {
-        let bases = alternative_bases(eqs, basis, visible, deadline);
-        try_alternative_bases(eqs, &bases, visible, opts, deadline, &mut all);
-    }
-    let pick = |need_distinct: bool| {
-        all.iter()
-            .enumerate()
-            .filter_map(|(k, (_, r))| r.as_ref().ok().map(|b| (k, b)))
-            .filter(|(_, b)| !need_distinct || b.distinct_eigenvalues)
-            .min_by_key(|(k, b)| (area(b), *k))
-            .map(|(_, b)| b.clone())
-    };
-    let best = if opts.require_distinct_eigenvalues {
-        pick(true).or_else(|| pick(false))
+    // The equations as given, then (when it changes their monomials) their row reduction
+    // on the instance's data: the same ideal, so the same bases and Gröbner basis.
+    let reduction = opts
+        .reduce_equations
+        .then(|| EquationReduction::of(eqs))
+        .flatten();
+    let bases = if opts.alternative_bases {
+        alternative_bases(eqs, basis, visible, deadline)
     } else {
-        pick(false)
+        Vec::new()
     };
+    let search_all = |eqs: &[Poly<Fp<P1>>]| {
+        let mut all = search_actions(eqs, basis, gb, opts, deadline, &first);
+        let has_distinct = all
+            .iter()
+            .any(|(_, r)| r.as_ref().is_ok_and(|b| b.distinct_eigenvalues));
+        if opts.actions == ActionChoice::Auto && visible > 1 && !has_distinct {
+            all.extend(search_actions(eqs, basis, gb, opts, deadline, &random()));
+        }
+        try_alternative_bases(eqs, &bases, visible, opts, deadline, &mut all);
+        all
+    };
+    let mut all = search_all(eqs);
+    let mut reduced_all: PerAction = Vec::new();
+    if let Some((red, reduced)) = &reduction {
+        reduced_all = search_all(reduced);
+        for (_, r) in &mut reduced_all {
+            if let Ok(b) = r {
+                b.template.reduction = Some(red.clone());
+                b.basis_choice.push_str(REDUCED);
+            }
+        }
+    }
+    // The best of each equation set is refined, then the smaller kept (ties: the
+    // equations as given): refinement can reorder them.
+    let mut finalists = Vec::new();
+    if let Some(b) = choose(&all, opts) {
+        finalists.push(refine(eqs, b, visible, opts, deadline));
+    }
+    if let (Some((red, reduced)), Some(b)) = (&reduction, choose(&reduced_all, opts)) {
+        let mut r = refine(reduced, b, visible, opts, deadline);
+        r.template.reduction = Some(red.clone());
+        finalists.push(r);
+    }
+    merge_per_action(&mut all, reduced_all);
+    let best = finalists
+        .into_iter()
+        .enumerate()
+        .min_by_key(|(k, b)| (preference(b, opts), *k))
+        .map(|(_, b)| b);
     match best {
-        Some(b) => Ok((refine(eqs, b, visible, opts, deadline), all)),
+        Some(b) => Ok((b, all)),
         None => Err(no_action(&all, opts)),
+    }
+}
+
+/// The order templates are chosen in: those with distinct eigenvalues first when
+/// `opts.require_distinct_eigenvalues`, then by [`area`].
+fn preference(b: &BuiltTemplate, opts: &TemplateOptions) -> (bool, usize) {
+    (
+        opts.require_distinct_eigenvalues && !b.distinct_eigenvalues,
+        area(b),
+    )
+}
+
+/// The preferred template of a search (see [`preference`]; ties to the action tried
+/// first).
+fn choose(all: &PerAction, opts: &TemplateOptions) -> Option<BuiltTemplate> {
+    all.iter()
+        .enumerate()
+        .filter_map(|(k, (_, r))| r.as_ref().ok().map(|b| (k, b)))
+        .min_by_key(|(k, b)| (preference(b, opts), *k))
+        .map(|(_, b)| b.clone())
+}
+
+/// Each action of `more` keeps, in `all`, the smaller of its two templates (ties: the one
+/// already there); actions new to `all` are appended.
+fn merge_per_action(all: &mut PerAction, more: PerAction) {
+    for (action, r) in more {
+        match all.iter_mut().find(|(a, _)| *a == action) {
+            Some((_, current)) => {
+                let better = match (&r, &*current) {
+                    (Ok(new), Ok(old)) => area(new) < area(old),
+                    (Ok(_), Err(_)) => true,
+                    _ => false,
+                };
+                if better {
+                    *current = r;
+                }
+            }
+            None => all.push((action, r)),
+        }
     }
 }
 
@@ -269,10 +337,9 @@ fn alternative_bases<const P: u32>(
     out
 }
 
-/// The eliminated template's `rows x columns`, the size every choice minimises.
+/// The size every choice minimises: [`super::EliminationTemplate::elimination_area`].
 fn area(b: &BuiltTemplate) -> usize {
-    let (r, c) = b.template.eliminated_size();
-    r * c
+    b.template.elimination_area()
 }
 
 fn sorted(mut b: Vec<Monomial>) -> Vec<Monomial> {

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Check the README's claim that the library defaults are at least as accurate as the
-paper preset: for every level of the four paper sweeps and the methods `rectified`,
-`grsrp`, `grsrp+`, the mean of the paired differences (same trial, default minus paper) of
+"""Check the claim of docs/EXPERIMENTS.md and docs/LIBRARY.md that the library defaults
+are at least as accurate as the paper preset: for every level of the four paper sweeps
+and the methods `rectified`, `grsrp`, `grsrp+`, the mean of the paired differences (same trial, default minus paper) of
 the rotation and translation errors, with its 95 % confidence interval. A row is marked
 WORSE when the whole interval is above zero (the default is worse beyond noise) and
 BETTER when it is below.

@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
-"""Print the README's experiment tables (mean rotation / translation error, degrees) from
-the summary CSVs of `rspose experiment`. Usage: python3 tools/readme_tables.py [RESULTS_DIR]
-(default `results`). `solver/tests/results_fresh.rs` checks the README holds these rows.
-`python3 tools/readme_tables.py --gravity` prints the README's `grsrp-gravity` against
-`grsrp+` table from `results/default` and `results` (mean errors and median times of the
-same runs)."""
+"""Print the experiment tables of docs/EXPERIMENTS.md (mean rotation / translation error,
+degrees) from the summary CSVs of `rspose experiment`. Usage: python3 tools/readme_tables.py
+[RESULTS_DIR] (default `results`; `results` gives the paper preset's tables,
+`results/default` the library defaults'); paste the output into docs/EXPERIMENTS.md after
+re-running a sweep. `solver/tests/results_fresh.rs` checks docs/EXPERIMENTS.md holds these
+rows. `python3 tools/readme_tables.py --gravity` prints docs/EXPERIMENTS.md's
+`grsrp-gravity` against `grsrp+` table from `results/default` and `results` (mean errors
+and median times of the same runs)."""
 import csv
 import sys
 

@@ -5,8 +5,8 @@ Matches the frame pairs of `solver/tests/data/cc9pro/pairs.txt` in the Xiaomi Mi
 recording (OpenCV SIFT, ratio test, mutual best matches, the dashboard rows masked: the
 matcher of `tools/match_frames.py`, imported from there), cuts each pair's gyro samples from
 the recording's log as `rspose make-pair` does (`rspose.GyroLog.excerpt`), estimates every
-method on all pairs at once (`rspose.estimate_many`, all cores), and prints the table of the
-README's real-data section: each method's median / max rotation difference to the
+method on all pairs at once (`rspose.estimate_many`, all cores), and prints the table of
+docs/REAL_DATA.md: each method's median / max rotation difference to the
 gyro-integrated rotation between the frames, and its median inlier ratio.
 
 Usage:

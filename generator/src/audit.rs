@@ -25,11 +25,16 @@ pub const LOG10_CEIL: f64 = 20.0;
 /// Audit settings.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct AuditOptions {
-    /// Number of random instances (default 1000).
+    /// Number of random instances (default 1000; at most [`MAX_INSTANCES`], more are
+    /// clamped to it).
     pub instances: usize,
     /// Seed of the `ChaCha8Rng` handed to the instance generator (default 1).
     pub seed: u64,
 }
+
+/// The largest number of random instances an audit runs (its per-instance figures are
+/// kept in memory).
+pub const MAX_INSTANCES: usize = 10_000_000;
 
 impl Default for AuditOptions {
     fn default() -> Self {
@@ -256,7 +261,8 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
     })
 }
 
-/// Runs `opts.instances` instances through the interpreted template.
+/// Runs `opts.instances` instances (at most [`MAX_INSTANCES`]) through the interpreted
+/// template.
 ///
 /// `make_instance` draws one instance from the shared generator (seeded with
 /// `opts.seed`). Per real solution `s` (eliminated unknowns recovered and merged back into
@@ -275,11 +281,12 @@ pub fn audit(
     mut make_instance: impl FnMut(&mut ChaCha8Rng) -> AuditInstance,
 ) -> AuditReport {
     let mut rng = ChaCha8Rng::seed_from_u64(opts.seed);
-    let mut logs = Vec::with_capacity(opts.instances);
+    let instances = opts.instances.min(MAX_INSTANCES);
+    let mut logs = Vec::with_capacity(instances);
     let (mut failures, mut solve_errors, mut missed, mut no_real) = (0, 0, 0, 0);
     let (mut real_total, mut solved) = (0usize, 0usize);
     let mut planted_logs = Vec::new();
-    for _ in 0..opts.instances {
+    for _ in 0..instances {
         let inst = make_instance(&mut rng);
         let has_planted = inst.planted.is_some();
         match run_instance(template, &inst) {
@@ -326,7 +333,7 @@ pub fn audit(
         p99_log10_error: quantile(&planted_logs, 0.99),
     });
     AuditReport {
-        instances: opts.instances,
+        instances,
         median_log10_residual: median(&logs),
         p99_log10_residual: quantile(&logs, 0.99),
         failures,

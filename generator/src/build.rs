@@ -28,7 +28,7 @@
 //! reruns when a problem file changes and not otherwise.
 
 use crate::emit::CodeForm;
-use crate::emit::{is_fresh, write_atomic};
+use crate::emit::{is_fresh, write_output};
 use crate::generate::GenerateError;
 use crate::pipeline::{emit_plan_in, plan_file};
 use crate::template::TemplateOptions;
@@ -194,7 +194,7 @@ impl Config {
             let unchanged = is_fresh(&path, &source).map_err(io)?;
             if !unchanged {
                 std::fs::create_dir_all(&out_dir).map_err(io)?;
-                write_atomic(&path, &source).map_err(io)?;
+                write_output(&path, source.as_bytes(), &[]).map_err(io)?;
             }
             compiled.push(Compiled {
                 name,

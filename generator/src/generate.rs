@@ -6,7 +6,7 @@
 //! tells whether the checked-in solvers are stale.
 
 use crate::emit::CodeForm;
-use crate::emit::{generated_path, is_fresh, write_atomic};
+use crate::emit::{generated_path, is_fresh, write_output};
 use crate::pipeline::{emit_plan, emit_plan_in, plan_file, PipelineError};
 use crate::template::TemplateOptions;
 use crate::{Problem, ProblemError};
@@ -102,7 +102,7 @@ pub fn generate_to_with(
     };
     let fresh = is_fresh(out, &source).map_err(io)?;
     if !check && !fresh {
-        write_atomic(out, &source).map_err(io)?;
+        write_output(out, source.as_bytes(), &[problem]).map_err(io)?;
     }
     Ok(GeneratedFile {
         path: out.to_path_buf(),
@@ -190,7 +190,7 @@ pub fn generate_with(
             if let Some(dir) = path.parent() {
                 std::fs::create_dir_all(dir).map_err(io)?;
             }
-            write_atomic(&path, &source).map_err(io)?;
+            write_output(&path, source.as_bytes(), &[]).map_err(io)?;
         }
         report.push(GeneratedFile { path, fresh });
     }

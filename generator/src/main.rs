@@ -37,8 +37,8 @@ enum Command {
     Audit {
         /// The problem file.
         file: PathBuf,
-        /// Number of random instances.
-        #[arg(long, default_value_t = 1000)]
+        /// Number of random instances (1 to 10,000,000).
+        #[arg(long, default_value_t = 1000, value_parser = instance_count)]
         instances: usize,
         /// Seed of the random instances.
         #[arg(long, default_value_t = 1)]
@@ -70,8 +70,8 @@ enum Command {
         /// Print one JSON array, one object per problem.
         #[arg(long)]
         json: bool,
-        /// Random instances of each audit.
-        #[arg(long, default_value_t = 1000)]
+        /// Random instances of each audit (1 to 10,000,000).
+        #[arg(long, default_value_t = 1000, value_parser = instance_count)]
         instances: usize,
         /// Seed of the audit instances.
         #[arg(long, default_value_t = 1)]
@@ -104,6 +104,16 @@ enum Command {
         #[command(flatten)]
         search: SearchArgs,
     },
+}
+
+/// `--instances`: a count from 1 to [`mingen::audit::MAX_INSTANCES`], checked before
+/// anything is allocated for it.
+fn instance_count(s: &str) -> Result<usize, String> {
+    let max = mingen::audit::MAX_INSTANCES;
+    match s.parse::<usize>() {
+        Ok(n) if (1..=max).contains(&n) => Ok(n),
+        _ => Err(format!("expected an integer from 1 to {max}, found '{s}'")),
+    }
 }
 
 /// Options of the algebra (count and template search), shared by every subcommand that

@@ -471,7 +471,7 @@ impl SolverPlan {
             .collect()
     }
 
-    /// The `inspect --json` keys computed by the algebra (the `inspect --json` contract in the README): `solutions`, `basis`,
+    /// The `inspect --json` keys computed by the algebra (the `inspect --json` contract of docs/GENERATOR.md): `solutions`, `basis`,
     /// `action`, `template` `{rows, cols}` (as eliminated by the emitted solver),
     /// `eliminated`, `seconds`, plus `dependent_columns` (excess columns left out of the
     /// elimination), `equation_reduction` (`{rows, cols}` of the equations' coefficient

@@ -32,15 +32,56 @@ pub fn generated_path(workspace_root: &Path, name: &str) -> PathBuf {
     workspace_root.join(generated_relative_path(name))
 }
 
-/// Writes `contents` to `path` atomically: a temporary file in the same directory is
-/// written, flushed to disk and renamed over `path`, so readers never see a partial file.
-/// The parent directory must exist. On error the temporary file is removed.
-pub fn write_atomic(path: &Path, contents: &str) -> io::Result<()> {
-    let dir = match path.parent() {
+/// Writes `contents` to the output `path` whole or not at all, and never destroys what
+/// is not a regular file:
+/// - a new path or a regular file: a temporary file in the same directory is written,
+///   flushed to disk and renamed over `path` (keeping an existing file's permissions), so
+///   readers never see a partial file; on error the temporary file is removed;
+/// - a symbolic link: resolved, and its target written as above (the link stays);
+/// - a device, FIFO or socket (`/dev/null`, `/dev/stdout`): written in place, never
+///   renamed over;
+/// - a directory, a read-only file (refused even where the user could replace it, e.g.
+///   as root) or one of `inputs` (the same file, by device and inode): an error naming why.
+///
+/// The parent directory must exist.
+pub fn write_output(path: &Path, contents: &[u8], inputs: &[&Path]) -> io::Result<()> {
+    let refuse = |kind, why: &str| Err(io::Error::new(kind, why.to_string()));
+    let target = match fs::symlink_metadata(path) {
+        Ok(m) if m.file_type().is_symlink() => match fs::canonicalize(path) {
+            Ok(t) => t,
+            Err(_) => return refuse(io::ErrorKind::NotFound, "is a dangling symbolic link"),
+        },
+        _ => path.to_path_buf(),
+    };
+    let meta = match fs::metadata(&target) {
+        Ok(m) => Some(m),
+        Err(e) if e.kind() == io::ErrorKind::NotFound => None,
+        Err(e) => return Err(e),
+    };
+    if let Some(m) = &meta {
+        if m.is_dir() {
+            return refuse(io::ErrorKind::InvalidInput, "is a directory");
+        }
+        if inputs.iter().any(|i| same_file(m, i)) {
+            return refuse(
+                io::ErrorKind::InvalidInput,
+                "is also an input of this command: refusing to overwrite it",
+            );
+        }
+        if !m.is_file() {
+            // A device, FIFO or socket: written in place.
+            let mut f = fs::OpenOptions::new().write(true).open(&target)?;
+            return f.write_all(contents).and_then(|()| f.flush());
+        }
+        if m.permissions().readonly() {
+            return refuse(io::ErrorKind::PermissionDenied, "is read-only");
+        }
+    }
+    let dir = match target.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
     };
-    let file_name = path
+    let file_name = target
         .file_name()
         .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "path has no file name"))?;
     let mut tmp_name = std::ffi::OsString::from(".");
@@ -49,10 +90,13 @@ pub fn write_atomic(path: &Path, contents: &str) -> io::Result<()> {
     let tmp = dir.join(tmp_name);
     let result = (|| {
         let mut f = fs::File::create(&tmp)?;
-        f.write_all(contents.as_bytes())?;
+        f.write_all(contents)?;
         f.sync_all()?;
         drop(f);
-        fs::rename(&tmp, path)
+        if let Some(m) = &meta {
+            fs::set_permissions(&tmp, m.permissions())?;
+        }
+        fs::rename(&tmp, &target)
     })();
     if result.is_err() {
         let _ = fs::remove_file(&tmp);
@@ -60,14 +104,35 @@ pub fn write_atomic(path: &Path, contents: &str) -> io::Result<()> {
     result
 }
 
-/// Whether the file at `path` exists and holds exactly `expected` (byte for byte).
-/// A missing file is stale (`Ok(false)`); other I/O errors are returned.
-pub fn is_fresh(path: &Path, expected: &str) -> io::Result<bool> {
-    match fs::read(path) {
-        Ok(bytes) => Ok(bytes == expected.as_bytes()),
-        Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(false),
-        Err(e) => Err(e),
+/// Whether `input` is the file `output` describes (same device and inode on Unix, same
+/// canonical path elsewhere); an input that cannot be read is not.
+fn same_file(output: &fs::Metadata, input: &Path) -> bool {
+    let Ok(m) = fs::metadata(input) else {
+        return false;
+    };
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        m.dev() == output.dev() && m.ino() == output.ino()
     }
+    #[cfg(not(unix))]
+    {
+        let _ = (m, output);
+        false
+    }
+}
+
+/// Whether the file at `path` exists and holds exactly `expected` (byte for byte).
+/// A missing file, and anything that is not a regular file (a device or FIFO, which is
+/// never read), is stale (`Ok(false)`); other I/O errors are returned.
+pub fn is_fresh(path: &Path, expected: &str) -> io::Result<bool> {
+    match fs::metadata(path) {
+        Ok(m) if !m.is_file() => return Ok(false),
+        Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(false),
+        Err(e) => return Err(e),
+        Ok(_) => {}
+    }
+    Ok(fs::read(path)? == expected.as_bytes())
 }
 
 #[cfg(test)]
@@ -93,10 +158,10 @@ mod tests {
         let p = dir.join("x.rs");
         let _ = fs::remove_file(&p);
         assert!(!is_fresh(&p, "a").unwrap());
-        write_atomic(&p, "hello\n").unwrap();
+        write_output(&p, b"hello\n", &[]).unwrap();
         assert!(is_fresh(&p, "hello\n").unwrap());
         assert!(!is_fresh(&p, "hello").unwrap());
-        write_atomic(&p, "again\n").unwrap();
+        write_output(&p, b"again\n", &[]).unwrap();
         assert_eq!(fs::read_to_string(&p).unwrap(), "again\n");
         let leftovers: Vec<_> = fs::read_dir(&dir)
             .unwrap()
@@ -104,6 +169,48 @@ mod tests {
             .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
             .collect();
         assert!(leftovers.is_empty());
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn outputs_that_are_not_regular_files_are_never_replaced() {
+        let dir = std::env::temp_dir().join(format!("mingen-outputs-{}", std::process::id()));
+        fs::create_dir_all(&dir).unwrap();
+        // A device is written in place, not renamed over.
+        write_output(Path::new("/dev/null"), b"x", &[]).unwrap();
+        assert!(!fs::metadata("/dev/null").unwrap().file_type().is_file());
+        // A symbolic link: its target is written, the link stays.
+        let target = dir.join("target.rs");
+        fs::write(&target, "old").unwrap();
+        let link = dir.join("link.rs");
+        let _ = fs::remove_file(&link);
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        write_output(&link, b"new", &[]).unwrap();
+        assert!(fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        assert_eq!(fs::read_to_string(&target).unwrap(), "new");
+        // An input of the command, through any name, is refused.
+        let e = write_output(&link, b"z", &[&target]).unwrap_err();
+        assert!(e.to_string().contains("input"), "{e}");
+        assert_eq!(fs::read_to_string(&target).unwrap(), "new");
+        // A read-only file and a directory are refused.
+        let ro = dir.join("ro.rs");
+        fs::write(&ro, "keep").unwrap();
+        let mut perm = fs::metadata(&ro).unwrap().permissions();
+        perm.set_readonly(true);
+        fs::set_permissions(&ro, perm).unwrap();
+        assert!(write_output(&ro, b"z", &[])
+            .unwrap_err()
+            .to_string()
+            .contains("read-only"));
+        assert_eq!(fs::read_to_string(&ro).unwrap(), "keep");
+        assert!(write_output(&dir, b"z", &[]).is_err());
+        let mut perm = fs::metadata(&ro).unwrap().permissions();
+        #[allow(clippy::permissions_set_readonly_false)]
+        perm.set_readonly(false);
+        fs::set_permissions(&ro, perm).unwrap();
         fs::remove_dir_all(&dir).unwrap();
     }
 }

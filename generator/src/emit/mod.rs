@@ -33,7 +33,7 @@ pub mod traced;
 pub use coefficients::Program;
 pub use files::{
     generated_header, generated_header_for_path, generated_path, generated_relative_path, is_fresh,
-    write_atomic,
+    write_output,
 };
 pub use solver::{emit_solver, SMALL_TEMPLATE_ROWS, TABLE_FORM_MIN_SIZE};
 pub use traced::{Traced, Tracer};

@@ -4,7 +4,7 @@
 
 use super::{check_output_dir, CliError};
 use clap::ValueEnum;
-use rspose::data::atomic_file::write_atomic;
+use rspose::data::atomic_file::write_output;
 use rspose::data::instances::{grsrp_instances, InstanceOptions};
 use rspose::data::simulate::SimulationOptions;
 use std::fmt::Write as _;
@@ -79,7 +79,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         let line: Vec<String> = inst.iter().map(|x| format!("{x:?}")).collect();
         let _ = writeln!(text, "{}", line.join(" "));
     }
-    write_atomic(&a.output, text.as_bytes())
+    write_output(&a.output, text.as_bytes(), &[])
         .map_err(|e| CliError::input(format!("{}: {e}", a.output.display())))?;
     eprintln!(
         "wrote {} ({} instances)",

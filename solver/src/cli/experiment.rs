@@ -4,7 +4,7 @@
 use super::{CliError, Preset, ALL_METHODS};
 use indicatif::{ProgressBar, ProgressStyle};
 use rspose::experiment::{
-    render_svg, run_sweep, scene_trial, to_csv, trials_csv, write_atomic, ExperimentOptions, Sweep,
+    render_svg, run_sweep, scene_trial, to_csv, trials_csv, write_output, ExperimentOptions, Sweep,
 };
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -85,11 +85,11 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let csv_path = a.out.join(format!("{}.csv", sweep.name()));
     let svg_path = a.out.join(format!("{}.svg", sweep.name()));
     let trials_path = a.out.join(format!("{}-trials.csv", sweep.name()));
-    write_atomic(&trials_path, trials_csv(&result).as_bytes())
+    write_output(&trials_path, trials_csv(&result).as_bytes(), &[])
         .map_err(|e| CliError::input(format!("{}: {e}", trials_path.display())))?;
-    write_atomic(&csv_path, csv.as_bytes())
+    write_output(&csv_path, csv.as_bytes(), &[])
         .map_err(|e| CliError::input(format!("{}: {e}", csv_path.display())))?;
-    write_atomic(&svg_path, svg.as_bytes())
+    write_output(&svg_path, svg.as_bytes(), &[])
         .map_err(|e| CliError::input(format!("{}: {e}", svg_path.display())))?;
     print!("{csv}");
     eprintln!("wrote {} and {}", csv_path.display(), svg_path.display());

@@ -2,7 +2,7 @@
 //! timestamps, a rig calibration and the matches of two frames.
 
 use super::{check_output_dir, CliError};
-use rspose::data::pair_file::{matrix_from_rows, GyroLogSpec, Match, PairFile};
+use rspose::data::pair_file::{matrix_from_rows, GyroLogSpec, Match, PairFile, PairFileError};
 use rspose::model::camera::Camera;
 use rspose::model::gyro_log::{parse_gyro_csv, GyroLog, GyroLogError};
 use serde::Deserialize;
@@ -254,8 +254,19 @@ pub fn run(a: Args) -> Result<(), CliError> {
         .map_err(|e| CliError::input(format!("{}: {e}", a.gyro.display())))?;
     // The mean rates beside the samples, for readers that take one rate per frame.
     pair.gyro = Some([v1.omega.into(), v2.omega.into()]);
-    pair.save_atomic_as(&a.output, true)
-        .map_err(|e| CliError::input(format!("{}: {e}", a.matches.display())))?;
+    let inputs = [
+        a.calibration.as_path(),
+        a.gyro.as_path(),
+        a.frame_times.as_path(),
+        a.matches.as_path(),
+    ];
+    pair.save_output(&a.output, true, &inputs)
+        .map_err(|e| match e {
+            // Writing failed: the message names the output.
+            PairFileError::Io { .. } => CliError::input(e.to_string()),
+            // The pair is invalid: its matches are what the user gave.
+            e => CliError::input(format!("{}: {e}", a.matches.display())),
+        })?;
     eprintln!(
         "wrote {} (frames {} and {}, {} matches, {} gyro samples)",
         a.output.display(),

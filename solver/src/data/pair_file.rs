@@ -56,6 +56,7 @@ pub type Match = [[f64; 2]; 2];
 
 /// Ground truth stored with a simulated pair (see the module documentation for conventions).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct GroundTruth {
     /// Relative rotation `R = R2 R1^T`, row-major rows.
     pub rotation: [[f64; 3]; 3],
@@ -86,6 +87,7 @@ impl GroundTruth {
 
 /// Gyro samples of a pair (see the module documentation).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct GyroLogSpec {
     /// `M` with `ω_cam = M ω_gyro`, row-major rows (default identity).
     #[serde(default = "identity_rows")]
@@ -149,7 +151,10 @@ impl GyroLogSpec {
 }
 
 /// A pair of rolling-shutter images with gyro readings and pixel matches (`PAIR.json`).
+/// Unknown keys, here and in the nested objects, are refused with their name: a misspelt
+/// optional key would otherwise silently take its default.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct PairFile {
     /// The camera (both images).
     pub camera: Camera,
@@ -460,7 +465,18 @@ impl PairFile {
         path: impl AsRef<Path>,
         compact: bool,
     ) -> Result<(), PairFileError> {
-        let path = path.as_ref();
+        self.save_output(path.as_ref(), compact, &[])
+    }
+
+    /// [`save_atomic_as`](Self::save_atomic_as) that refuses to overwrite any of `inputs`
+    /// (the files the pair was made from), through whatever name; see
+    /// [`crate::data::atomic_file::write_output`] for devices, links and read-only files.
+    pub fn save_output(
+        &self,
+        path: &Path,
+        compact: bool,
+        inputs: &[&Path],
+    ) -> Result<(), PairFileError> {
         self.validate()?;
         let io = |source| PairFileError::Io {
             path: path.to_path_buf(),
@@ -472,7 +488,7 @@ impl PairFile {
             self.to_json_string()
         };
         text.push('\n');
-        crate::data::atomic_file::write_atomic(path, text.as_bytes()).map_err(io)
+        crate::data::atomic_file::write_output(path, text.as_bytes(), inputs).map_err(io)
     }
 }
 
@@ -508,6 +524,36 @@ mod tests {
         let leftovers: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
         assert_eq!(leftovers.len(), 1);
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn unknown_keys_are_refused_with_their_name() {
+        // A misspelt key would otherwise silently take its default (identity, zero).
+        let p = Path::new("x.json");
+        let good = sample().to_json_string();
+        assert!(PairFile::from_json_str(&good, p).is_ok());
+        for (from, to) in [
+            ("\"gravity\"", "\"gravty\""),
+            ("\"fx\"", "\"focal\""),
+            ("\"inliers\"", "\"inlier\""),
+        ] {
+            let text = good.replacen(from, to, 1);
+            let e = PairFile::from_json_str(&text, p).unwrap_err().to_string();
+            let key = to.trim_matches('"');
+            assert!(e.contains(&format!("unknown field `{key}`")), "{e}");
+        }
+        let mut with_log = sample();
+        with_log.gyro_log = Some(GyroLogSpec {
+            camera_from_gyro: identity_rows(),
+            time_offset: 0.0,
+            frame_times: [0.0, 0.1],
+            samples: vec![[0.0, 0.0, 0.0, 0.0], [0.2, 0.0, 0.0, 0.0]],
+        });
+        let text = with_log
+            .to_json_string()
+            .replacen("camera_from_gyro", "camera_from_gyr", 1);
+        let e = PairFile::from_json_str(&text, p).unwrap_err().to_string();
+        assert!(e.contains("unknown field `camera_from_gyr`"), "{e}");
     }
 
     #[test]

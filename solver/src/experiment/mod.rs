@@ -18,7 +18,7 @@ pub use stats::{median, summarize};
 pub use sweep::{Level, Sweep, UnknownSweep, READOUT_REFINED_LABEL};
 
 /// Output files are written whole or not at all (see [`crate::data::atomic_file`]).
-pub use crate::data::atomic_file::write_atomic;
+pub use crate::data::atomic_file::write_output;
 
 use crate::data::pair_file::PairFile;
 use crate::data::simulate::{simulate, SimulationOptions};

@@ -92,7 +92,7 @@ pub fn render_svg(sweep: Sweep, rows: &[SummaryRow]) -> Result<String, String> {
 /// Renders and writes the figure atomically.
 pub fn write_svg(path: &Path, sweep: Sweep, rows: &[SummaryRow]) -> std::io::Result<()> {
     let svg = render_svg(sweep, rows).map_err(std::io::Error::other)?;
-    super::write_atomic(path, svg.as_bytes())
+    super::write_output(path, svg.as_bytes(), &[])
 }
 
 #[cfg(test)]

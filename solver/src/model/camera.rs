@@ -73,6 +73,7 @@ pub enum CameraError {
 /// Pinhole rolling-shutter camera: intrinsics `fx, fy, cx, cy` (pixels), image size
 /// `width x height` (pixels) and readout time per row `readout = λ` (s/row).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Camera {
     /// Focal length along u, pixels.
     pub fx: f64,

@@ -173,14 +173,26 @@ fn nan_values_name_the_line() {
 }
 
 #[test]
-fn a_gap_longer_than_the_readout_names_the_line() {
+fn a_gap_too_long_to_interpolate_names_the_line_and_the_times() {
     let r = Recording::new("gap");
-    // Frames 5 and 6 are read from 100.132 s to 100.192 s: remove 40 ms of samples there.
+    // Frames 5 and 6 are read from 100.132 s to 100.192 s: remove 65 ms of samples there.
+    r.write_gyro(|l| {
+        l.drain(60..86);
+    });
+    r.assert_rejected(&gyro_line("gyro.csv", 61));
+    r.assert_rejected("the rate is interpolated across gaps of at most 0.05 s");
+}
+
+#[test]
+fn a_phone_rate_gap_is_interpolated() {
+    let r = Recording::new("phone-gap");
+    // 40 ms without samples (a 25 Hz stretch) inside frames 5 and 6: bridged.
     r.write_gyro(|l| {
         l.drain(60..76);
     });
-    r.assert_rejected(&gyro_line("gyro.csv", 61));
-    r.assert_rejected("exceeds the frame readout time");
+    let o = r.make_pair();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(r.path("pair.json").exists());
 }
 
 #[test]

@@ -4,7 +4,7 @@
 use super::{check_output_dir, CliError};
 use rspose::data::pair_file::{matrix_from_rows, GyroLogSpec, Match, PairFile, PairFileError};
 use rspose::model::camera::Camera;
-use rspose::model::gyro_log::{parse_gyro_csv, GyroLog, GyroLogError};
+use rspose::model::gyro_log::{parse_gyro_csv, GyroLog, GyroLogError, MAX_SAMPLE_GAP};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -240,13 +240,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     if let Some(spec) = &pair.gyro_log {
         let first = spec.samples.first().map_or(0, |s| csv.index_at(s[0]));
         spec.log()
-            .and_then(|log| {
-                if duration > 0.0 {
-                    log.check_gaps(duration)
-                } else {
-                    Ok(())
-                }
-            })
+            .and_then(|log| log.check_gaps(MAX_SAMPLE_GAP))
             .map_err(|e| csv.error(first, &e))?;
     }
     let (v1, v2) = pair

@@ -45,7 +45,7 @@
 //! `ground_truth.rotation`, ...).
 
 use crate::model::camera::{Camera, CameraError, View};
-use crate::model::gyro_log::{GyroLog, GyroLogError};
+use crate::model::gyro_log::{GyroLog, GyroLogError, MAX_SAMPLE_GAP};
 use nalgebra::{Matrix3, Vector3};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -296,10 +296,7 @@ impl PairFile {
         };
         let log = spec.log().map_err(log_error)?;
         let duration = self.camera.height * self.camera.readout;
-        // A global-shutter camera (readout 0) reads each frame at one instant.
-        if duration > 0.0 {
-            log.check_gaps(duration).map_err(log_error)?;
-        }
+        log.check_gaps(MAX_SAMPLE_GAP).map_err(log_error)?;
         let view = |k: usize| -> Result<View, PairFileError> {
             let t0 = spec.row0_time(k);
             log.check_covers(t0, t0 + duration, &format!("image {}'s readout", k + 1))

@@ -75,13 +75,17 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let c = calibrate(&pairs, &options).map_err(|e| {
         let msg = match &e {
             rspose::estimation::calibrate::CalibrationError::NoGyroLog(i)
-            | rspose::estimation::calibrate::CalibrationError::Log { pair: i, .. } => {
+            | rspose::estimation::calibrate::CalibrationError::Log { pair: i, .. }
+            | rspose::estimation::calibrate::CalibrationError::NotCovered { pair: i, .. } => {
                 format!("{}: {e}", paths[*i].display())
             }
             _ => e.to_string(),
         };
         CliError::input(msg)
     })?;
+    for d in &c.doubts {
+        eprintln!("warning: {d}");
+    }
     if a.json {
         println!("{}", serde_json::to_string(&c).unwrap_or_default());
         return Ok(());

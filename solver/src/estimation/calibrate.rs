@@ -37,7 +37,47 @@ pub enum CalibrationError {
     /// A grid is empty, reversed or not finite.
     #[error("invalid search grid `{0}`: needs finite min <= max and a positive step")]
     InvalidGrid(&'static str),
+    /// A pair's samples do not reach as far as the searched offsets and readouts need.
+    #[error("pair {pair}: {source}; make the pairs with `make-pair --margin` of at least {margin:.3} s, or search a narrower --offset-ms range")]
+    NotCovered {
+        /// Pair index.
+        pair: usize,
+        /// The margin the search needs around the frames, s.
+        margin: f64,
+        /// What is missing.
+        source: GyroLogError,
+    },
 }
+
+/// Why a calibration's optimum is in doubt (a warning beside the result, not an error).
+#[derive(Debug, Clone, PartialEq, Serialize, Error)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum CalibrationDoubt {
+    /// The best value is on the edge of its search range: the optimum may lie beyond it.
+    #[error("the best {parameter} ({value_ms:.2} ms) is on the edge of the searched range {min_ms:.2} to {max_ms:.2} ms: widen the range")]
+    OnEdge {
+        /// `readout` or `offset`.
+        parameter: &'static str,
+        /// The best value, ms.
+        value_ms: f64,
+        /// The range searched, ms.
+        min_ms: f64,
+        /// The range searched, ms.
+        max_ms: f64,
+    },
+    /// The cost hardly changes over the parameter's range: the pairs do not determine it
+    /// (too little rotation, or too few matches).
+    #[error("the cost varies by only {percent:.1} % over the searched {parameter} range: the pairs hardly determine it (more rotation or more matches needed)")]
+    Flat {
+        /// `readout` or `offset`.
+        parameter: &'static str,
+        /// (highest − lowest) / lowest of the parameter's cost profile, %.
+        percent: f64,
+    },
+}
+
+/// A cost profile whose relative range is below this is [`CalibrationDoubt::Flat`].
+pub const FLAT_RELATIVE_RANGE: f64 = 0.02;
 
 /// A search range `min..=max` in steps of `step` (seconds).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -115,6 +155,8 @@ pub struct Calibration {
     pub offsets: Vec<f64>,
     /// Mean robust cost per match over the coarse grid, `cost[i][j]` at `readouts[i]`, `offsets[j]`, px².
     pub grid: Vec<Vec<f64>>,
+    /// Why the optimum may be wrong (empty when it is well determined inside the grid).
+    pub doubts: Vec<CalibrationDoubt>,
 }
 
 impl Calibration {
@@ -253,12 +295,20 @@ pub fn calibrate(
             spec.frame_times[0].min(spec.frame_times[1]),
             spec.frame_times[0].max(spec.frame_times[1]),
         );
-        log.check_covers(
+        let (start, end) = (
             lo + options.offset.min,
             hi + options.offset.max + options.readout.max,
+        );
+        log.check_covers(
+            start,
+            end,
             "both frames over the searched offsets and readouts",
         )
-        .map_err(|source| CalibrationError::Log { pair: i, source })?;
+        .map_err(|source| CalibrationError::NotCovered {
+            pair: i,
+            margin: (lo - start).max(end - hi).max(0.0),
+            source,
+        })?;
         let cam = p.camera;
         data.push(PairData {
             log,
@@ -327,7 +377,7 @@ pub fn calibrate(
         }
     }
     let height = pairs[0].camera.height;
-    Ok(Calibration {
+    let mut c = Calibration {
         readout,
         readout_per_row: readout / height,
         offset,
@@ -335,7 +385,45 @@ pub fn calibrate(
         readouts,
         offsets,
         grid,
-    })
+        doubts: Vec::new(),
+    };
+    c.doubts = doubts(&c, options);
+    Ok(c)
+}
+
+/// The doubts about `c`'s optimum: on the edge of a range (a readout of 0 at the lower
+/// edge is a global-shutter camera, not a doubt), or a flat cost profile.
+fn doubts(c: &Calibration, options: &CalibrationOptions) -> Vec<CalibrationDoubt> {
+    let mut out = Vec::new();
+    let ms = 1e3;
+    for (parameter, value, range, profile) in [
+        ("readout", c.readout, options.readout, c.readout_profile()),
+        ("offset", c.offset, options.offset, c.offset_profile()),
+    ] {
+        let half = 0.5 * options.fine_step;
+        let at_min = value <= range.min + half && !(parameter == "readout" && range.min == 0.0);
+        let at_max = value >= range.max - half;
+        if (at_min || at_max) && range.max > range.min {
+            out.push(CalibrationDoubt::OnEdge {
+                parameter,
+                value_ms: value * ms,
+                min_ms: range.min * ms,
+                max_ms: range.max * ms,
+            });
+        }
+        let lo = profile.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+        let hi = profile
+            .iter()
+            .map(|p| p.1)
+            .fold(f64::NEG_INFINITY, f64::max);
+        if profile.len() > 1 && lo > 0.0 && hi.is_finite() && (hi - lo) / lo < FLAT_RELATIVE_RANGE {
+            out.push(CalibrationDoubt::Flat {
+                parameter,
+                percent: 100.0 * (hi - lo) / lo,
+            });
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -433,7 +521,46 @@ mod tests {
             matches,
             ground_truth: None,
         };
-        let c = calibrate(&[pair], &CalibrationOptions::default()).unwrap();
+        let c = calibrate(std::slice::from_ref(&pair), &CalibrationOptions::default()).unwrap();
+        assert!(c.doubts.is_empty(), "{:?}", c.doubts);
+        // A range that excludes the true offset: its best value is on the edge, in doubt.
+        let narrow = CalibrationOptions {
+            offset: Range {
+                min: 0.0,
+                max: 0.005,
+                step: 0.001,
+            },
+            ..CalibrationOptions::default()
+        };
+        let edge = calibrate(std::slice::from_ref(&pair), &narrow).unwrap();
+        assert!(
+            edge.doubts.iter().any(|d| matches!(
+                d,
+                CalibrationDoubt::OnEdge {
+                    parameter: "offset",
+                    ..
+                }
+            )),
+            "{:?}",
+            edge.doubts
+        );
+        // A camera that does not rotate: neither value is determined.
+        let mut still = pair.clone();
+        if let Some(spec) = &mut still.gyro_log {
+            for s in &mut spec.samples {
+                s[1..].fill(0.0);
+            }
+        }
+        let flat = calibrate(&[still], &CalibrationOptions::default()).unwrap();
+        for parameter in ["readout", "offset"] {
+            assert!(
+                flat.doubts.iter().any(
+                    |d| matches!(d, CalibrationDoubt::Flat { parameter: p, .. } if *p == parameter)
+                ),
+                "{parameter}: {:?}",
+                flat.doubts
+            );
+        }
         assert!(
             (c.readout - readout).abs() < 0.0015,
             "readout {}",

@@ -29,12 +29,17 @@ fn macaulay2_count(file: &Path) -> usize {
 #[test]
 fn report_on_the_corpus_has_one_row_per_file_with_the_independent_counts() {
     let dir = root().join("templates/classic");
+    // A short budget: the counts of every problem are checked, the templates of those that
+    // plan within it (the largest are planned by the example crate's build and by
+    // `generate`'s tests).
     let run = mingen(&[
         "report",
         dir.to_str().unwrap(),
         "--json",
         "--instances",
         "50",
+        "--max-seconds",
+        "8",
     ]);
     assert!(
         run.status.success(),
@@ -54,15 +59,22 @@ fn report_on_the_corpus_has_one_row_per_file_with_the_independent_counts() {
     files.sort();
     assert!(files.len() >= 12, "the corpus has at least 12 problems");
     assert_eq!(rows.len(), files.len());
+    let mut planned = 0;
     for (row, file) in rows.iter().zip(&files) {
         let stem = file.file_stem().unwrap().to_str().unwrap();
         assert_eq!(row["problem"], stem, "{row}");
         assert_eq!(row["solutions"], macaulay2_count(file), "{stem}");
-        assert!(row["error"].is_null(), "{stem}: {}", row["error"]);
-        assert!(row["template"]["rows"].as_u64().unwrap() >= 1, "{stem}");
         assert!(row["published"].is_string(), "{stem} has a published line");
-        assert_eq!(row["audit"]["instances"], 50, "{stem}");
+        if row["error"].is_null() {
+            assert!(row["template"]["rows"].as_u64().unwrap() >= 1, "{stem}");
+            assert_eq!(row["audit"]["instances"], 50, "{stem}");
+            planned += 1;
+        } else {
+            let e = row["error"].as_str().unwrap();
+            assert!(e.contains("budget of 8 s ran out"), "{stem}: {e}");
+        }
     }
+    assert!(planned * 4 >= files.len() * 3, "{planned} of {} planned", files.len());
 }
 
 /// A problem whose count is quick but whose template does not fit a 2 s budget: the

@@ -52,6 +52,9 @@ mingen-runtime = { path = "$root/generator/runtime" }
 
 [workspace]
 TOML
+# The workspace's lock file: the same dependency versions as the workspace, so that a
+# shared CARGO_TARGET_DIR reuses their builds (cargo drops the entries it does not need).
+[[ -f "$root/Cargo.lock" ]] && cp "$root/Cargo.lock" "$work/Cargo.lock"
 # Dependencies first, so that the figure below is the solver's own compile time.
 cargo build "${flag[@]}" -q --manifest-path "$work/Cargo.toml" -p mingen-runtime
 touch "$work/src/main.rs"

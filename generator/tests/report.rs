@@ -74,7 +74,11 @@ fn report_on_the_corpus_has_one_row_per_file_with_the_independent_counts() {
             assert!(e.contains("budget of 8 s ran out"), "{stem}: {e}");
         }
     }
-    assert!(planned * 4 >= files.len() * 3, "{planned} of {} planned", files.len());
+    assert!(
+        planned * 4 >= files.len() * 3,
+        "{planned} of {} planned",
+        files.len()
+    );
 }
 
 /// A problem whose count is quick but whose template does not fit a 2 s budget: the

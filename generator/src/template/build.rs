@@ -109,7 +109,10 @@ pub(crate) fn build_template<const P: u32>(
                 ne + blocks.reducible.len() + basis.len(),
             )];
             let pool = search.exclude.then(|| cands.clone());
-            let mut kept = shrink::<P>(&blocks, cands, &mut history);
+            let Some(mut kept) = shrink::<P>(&blocks, cands, &mut history, search.deadline) else {
+                exhausted = search.deadline.and_then(|d| d.check_time().err());
+                break 'degrees;
+            };
             if let Some(pool) = pool {
                 kept = exclude_and_shrink::<P>(&blocks, pool, kept, search.deadline, &mut history);
             }

@@ -113,11 +113,11 @@ pub(crate) fn exclude_and_shrink<const P: u32>(
     if ex.excluded == 0 {
         return ex.kept;
     }
-    let full = shrink::<P>(blocks, ex.pool, &mut Vec::new());
-    let kept = if full.len() <= ex.kept.len() {
-        full
-    } else {
-        ex.kept
+    // Out of budget, the exclusion's own shrunk template is kept.
+    let full = shrink::<P>(blocks, ex.pool, &mut Vec::new(), deadline);
+    let kept = match full {
+        Some(full) if full.len() <= ex.kept.len() => full,
+        _ => ex.kept,
     };
     let cols = blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + blocks.basis.len();
     history.push((

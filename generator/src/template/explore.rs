@@ -39,7 +39,7 @@ pub fn explore<const P: u32>(
                 continue;
             }
             let mut h = Vec::new();
-            let kept = shrink::<P>(&blocks, cands.clone(), &mut h);
+            let kept = shrink::<P>(&blocks, cands.clone(), &mut h, None).expect("no budget");
             let nc = blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + b.len();
             println!("action {av} {o:?}: {}x{} B {:?}", kept.len(), nc, b);
             seen.insert(b, (kept.len(), nc, 1));
@@ -79,7 +79,7 @@ pub fn explore_random_shrink<const P: u32>(
             rows.sort_by_key(|c| c.degree);
         }
         let mut h = Vec::new();
-        let kept = shrink_ordered::<P>(&blocks, rows, &mut h);
+        let kept = shrink_ordered::<P>(&blocks, rows, &mut h, None).expect("no budget");
         let nc = blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + count;
         *sizes.entry((kept.len(), nc)).or_insert(0) += 1;
     }

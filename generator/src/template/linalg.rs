@@ -165,8 +165,12 @@ impl<const P: u32> EchelonBasis<P> {
 }
 
 /// The support (row indices) of the left kernel of `m` (rows x `ncols`): the rows that
-/// take part in some linear dependency among the rows.
-pub(crate) fn left_kernel_support<const P: u32>(m: &[Vec<u32>], ncols: usize) -> Vec<bool> {
+/// take part in some linear dependency among the rows; `None` once `deadline` runs out.
+pub(crate) fn left_kernel_support<const P: u32>(
+    m: &[Vec<u32>],
+    ncols: usize,
+    deadline: Option<&Deadline>,
+) -> Option<Vec<bool>> {
     let nrows = m.len();
     let mut aug: Vec<Vec<u32>> = m
         .iter()
@@ -179,7 +183,7 @@ pub(crate) fn left_kernel_support<const P: u32>(m: &[Vec<u32>], ncols: usize) ->
             v
         })
         .collect();
-    let piv = gauss_jordan::<P>(&mut aug, ncols, false);
+    let piv = gauss_jordan_within::<P>(&mut aug, ncols, false, deadline).ok()?;
     let rank = piv.len();
     let mut supp = vec![false; nrows];
     for row in &aug[rank..] {
@@ -189,7 +193,7 @@ pub(crate) fn left_kernel_support<const P: u32>(m: &[Vec<u32>], ncols: usize) ->
             }
         }
     }
-    supp
+    Some(supp)
 }
 
 /// Characteristic polynomial det(t I - M) of a square matrix, coefficients from the constant
@@ -324,10 +328,13 @@ mod tests {
     #[test]
     fn kernel_support_and_echelon() {
         let m = vec![vec![1, 0], vec![0, 1], vec![1, 1], vec![0, 0]];
-        let s = left_kernel_support::<P1>(&m, 2);
+        let s = left_kernel_support::<P1>(&m, 2, None).unwrap();
         assert_eq!(s, vec![true, true, true, true]);
         let m = vec![vec![1, 0], vec![0, 1], vec![2, 0]];
-        assert_eq!(left_kernel_support::<P1>(&m, 2), vec![true, false, true]);
+        assert_eq!(
+            left_kernel_support::<P1>(&m, 2, None).unwrap(),
+            vec![true, false, true]
+        );
         let mut e = EchelonBasis::<P1>::new(2);
         assert!(e.insert(vec![1, 1]));
         assert!(!e.insert(vec![2, 2]));

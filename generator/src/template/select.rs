@@ -229,7 +229,7 @@ pub(crate) fn best_selected<const P: u32>(
                 cands.len(),
                 ne + blocks.reducible.len() + count,
             )];
-            let kept = shrink::<P>(&blocks, cands, &mut history);
+            let kept = shrink::<P>(&blocks, cands, &mut history, deadline)?;
             let score =
                 kept.len() * (blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + count);
             return Some(SelectedTemplate {

@@ -18,8 +18,9 @@
 //! so step 2 also removes every "row + private excess column" pair.
 
 use super::candidates::{Blocks, Candidate, ShrinkStep};
-use super::linalg::{gauss_jordan, left_kernel_support, EchelonBasis};
+use super::linalg::{gauss_jordan_within, left_kernel_support, EchelonBasis};
 use crate::algebra::MonomialOrder;
+use crate::budget::Deadline;
 use std::cmp::Ordering;
 
 /// Removal priority: rows removed first come last in this order (higher total degree,
@@ -34,37 +35,68 @@ fn ncols(blocks: &Blocks, rows: &[Candidate]) -> usize {
     blocks.excess_of(rows.iter()).len() + blocks.reducible.len() + blocks.basis.len()
 }
 
-/// Drops linearly dependent rows, keeping rows early in `order` (matroid greedy).
-fn independent_rows<const P: u32>(blocks: &Blocks, rows: Vec<Candidate>) -> Vec<Candidate> {
+/// Whether the budget has run out (checked every 64 rows of an elimination).
+fn out_of_time(deadline: Option<&Deadline>) -> bool {
+    deadline.is_some_and(|d| d.check_time().is_err())
+}
+
+/// Drops linearly dependent rows, keeping rows early in `order` (matroid greedy); `None`
+/// once `deadline` runs out.
+fn independent_rows<const P: u32>(
+    blocks: &Blocks,
+    rows: Vec<Candidate>,
+    deadline: Option<&Deadline>,
+) -> Option<Vec<Candidate>> {
     let excess = blocks.excess_of(rows.iter());
     let refs: Vec<&Candidate> = rows.iter().collect();
     let dense = blocks.dense_er(&refs, &excess);
     let mut ech = EchelonBasis::<P>::new(excess.len() + blocks.reducible.len());
-    let keep: Vec<bool> = dense.into_iter().map(|v| ech.insert(v)).collect();
-    rows.into_iter()
-        .zip(keep)
-        .filter_map(|(r, k)| k.then_some(r))
-        .collect()
+    let mut keep = Vec::with_capacity(dense.len());
+    for (i, v) in dense.into_iter().enumerate() {
+        if i % 64 == 63 && out_of_time(deadline) {
+            return None;
+        }
+        keep.push(ech.insert(v));
+    }
+    Some(
+        rows.into_iter()
+            .zip(keep)
+            .filter_map(|(r, k)| k.then_some(r))
+            .collect(),
+    )
 }
 
-/// Keeps only the rows in the support of the left kernel of the excess block.
-fn kernel_rows<const P: u32>(blocks: &Blocks, rows: Vec<Candidate>) -> Vec<Candidate> {
+/// Keeps only the rows in the support of the left kernel of the excess block; `None`
+/// once `deadline` runs out.
+fn kernel_rows<const P: u32>(
+    blocks: &Blocks,
+    rows: Vec<Candidate>,
+    deadline: Option<&Deadline>,
+) -> Option<Vec<Candidate>> {
     let excess = blocks.excess_of(rows.iter());
     let refs: Vec<&Candidate> = rows.iter().collect();
     let dense = blocks.dense_er(&refs, &excess);
-    let supp = left_kernel_support::<P>(&dense, excess.len());
-    rows.into_iter()
-        .zip(supp)
-        .filter_map(|(r, k)| k.then_some(r))
-        .collect()
+    let supp = left_kernel_support::<P>(&dense, excess.len(), deadline)?;
+    Some(
+        rows.into_iter()
+            .zip(supp)
+            .filter_map(|(r, k)| k.then_some(r))
+            .collect(),
+    )
 }
 
-/// Rank of the excess block.
-fn excess_rank<const P: u32>(blocks: &Blocks, rows: &[Candidate]) -> usize {
+/// Rank of the excess block; `None` once `deadline` runs out.
+fn excess_rank<const P: u32>(
+    blocks: &Blocks,
+    rows: &[Candidate],
+    deadline: Option<&Deadline>,
+) -> Option<usize> {
     let excess = blocks.excess_of(rows.iter());
     let refs: Vec<&Candidate> = rows.iter().collect();
     let mut dense = blocks.dense_er(&refs, &excess);
-    gauss_jordan::<P>(&mut dense, excess.len(), false).len()
+    gauss_jordan_within::<P>(&mut dense, excess.len(), false, deadline)
+        .ok()
+        .map(|p| p.len())
 }
 
 /// A removal-priority strategy: rows are kept preferentially in increasing key order.
@@ -111,31 +143,39 @@ fn order_rows(blocks: &Blocks, rows: &mut [Candidate], s: Strategy) {
 }
 
 /// Shrinks a reducing candidate set with each removal strategy and keeps the smallest
-/// result (fewest rows * cols; ties to the earlier strategy); appends its history.
+/// result (fewest rows * cols; ties to the earlier strategy); appends its history. Once
+/// `deadline` has run out, the strategies not yet tried are skipped (the first always
+/// runs to its end unless the budget runs out during it, and then there is no result:
+/// `None`).
 pub(crate) fn shrink<const P: u32>(
     blocks: &Blocks,
     cands: Vec<Candidate>,
     history: &mut Vec<ShrinkStep>,
-) -> Vec<Candidate> {
+    deadline: Option<&Deadline>,
+) -> Option<Vec<Candidate>> {
     let strategies = [Strategy::Degree, Strategy::DegreeExcess, Strategy::Excess];
     let mut best: Option<(usize, Vec<Candidate>, Vec<ShrinkStep>, &str)> = None;
     for s in strategies {
+        if best.is_some() && out_of_time(deadline) {
+            break;
+        }
         let mut rows = cands.clone();
         order_rows(blocks, &mut rows, s);
         let mut h = Vec::new();
-        let rows = shrink_ordered::<P>(blocks, rows, &mut h);
+        let Some(rows) = shrink_ordered::<P>(blocks, rows, &mut h, deadline) else {
+            break;
+        };
         let score = rows.len() * ncols(blocks, &rows);
         if best.as_ref().map_or(true, |b| score < b.0) {
             best = Some((score, rows, h, s.name()));
         }
     }
-    let (_, rows, h, name) = best.expect("at least one strategy");
-    let mut h = h;
+    let (_, rows, mut h, name) = best?;
     if let Some(first) = h.first_mut() {
         first.0 = format!("drop linearly dependent rows (removal order: {name})");
     }
     history.extend(h);
-    rows
+    Some(rows)
 }
 
 /// A cheaper [`shrink`] for screening: one removal strategy (highest degree first).
@@ -144,17 +184,19 @@ pub(crate) fn shrink_quick<const P: u32>(
     mut cands: Vec<Candidate>,
 ) -> Vec<Candidate> {
     order_rows(blocks, &mut cands, Strategy::Degree);
-    shrink_ordered::<P>(blocks, cands, &mut Vec::new())
+    shrink_ordered::<P>(blocks, cands, &mut Vec::new(), None).expect("no budget")
 }
 
-/// Shrinks with the rows already in keep-preference order.
+/// Shrinks with the rows already in keep-preference order; `None` once `deadline` runs
+/// out.
 pub(crate) fn shrink_ordered<const P: u32>(
     blocks: &Blocks,
     cands: Vec<Candidate>,
     history: &mut Vec<ShrinkStep>,
-) -> Vec<Candidate> {
+    deadline: Option<&Deadline>,
+) -> Option<Vec<Candidate>> {
     let cols0 = ncols(blocks, &cands);
-    let rows = independent_rows::<P>(blocks, cands);
+    let rows = independent_rows::<P>(blocks, cands, deadline)?;
     history.push((
         "drop linearly dependent rows (highest degree first)".into(),
         rows.len(),
@@ -164,7 +206,7 @@ pub(crate) fn shrink_ordered<const P: u32>(
     if cols1 != cols0 {
         history.push(("drop unused columns".into(), rows.len(), cols1));
     }
-    let rows = kernel_rows::<P>(blocks, rows);
+    let rows = kernel_rows::<P>(blocks, rows, deadline)?;
     history.push((
         "drop rows not needed to reduce (outside the excess left kernel)".into(),
         rows.len(),
@@ -172,7 +214,7 @@ pub(crate) fn shrink_ordered<const P: u32>(
     ));
     let cols2 = ncols(blocks, &rows);
     history.push(("drop unused columns".into(), rows.len(), cols2));
-    let rank_e = excess_rank::<P>(blocks, &rows);
+    let rank_e = excess_rank::<P>(blocks, &rows, deadline)?;
     let ne = blocks.excess_of(rows.iter()).len();
     if rank_e != ne {
         history.push((
@@ -183,5 +225,5 @@ pub(crate) fn shrink_ordered<const P: u32>(
             cols2,
         ));
     }
-    rows
+    Some(rows)
 }

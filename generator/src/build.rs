@@ -30,10 +30,11 @@
 use crate::emit::CodeForm;
 use crate::emit::{is_fresh, write_output};
 use crate::generate::GenerateError;
-use crate::pipeline::{emit_plan_in, plan_file};
+use crate::pipeline::{emit_plan_in, plan_file, PipelineError, SolverPlan};
 use crate::template::TemplateOptions;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex, OnceLock};
 use thiserror::Error;
 
 /// Why [`Config::compile`] failed.
@@ -175,7 +176,7 @@ impl Config {
                 file: file.clone(),
                 source,
             };
-            let plan = plan_file(file, &self.options).map_err(|e| generate(e.into()))?;
+            let plan = cached_plan(file, &self.options).map_err(|e| generate(e.into()))?;
             let name = plan.problem.layout.module_name();
             if let Some(first) = seen.insert(name.clone(), file.clone()) {
                 return Err(BuildError::DuplicateName {
@@ -205,6 +206,28 @@ impl Config {
         }
         Ok(compiled)
     }
+}
+
+/// The plan of `file` with `options`, made once per process for the same file contents and
+/// options: a build script that emits a problem in several code forms (one [`Config`] per
+/// form) plans it once. Planning is deterministic, so a cached plan is the plan.
+fn cached_plan(file: &Path, options: &TemplateOptions) -> Result<Arc<SolverPlan>, PipelineError> {
+    type Key = (PathBuf, String, String);
+    static PLANS: OnceLock<Mutex<HashMap<Key, Arc<SolverPlan>>>> = OnceLock::new();
+    let plans = PLANS.get_or_init(Default::default);
+    let key = std::fs::read_to_string(file)
+        .ok()
+        .map(|text| (file.to_path_buf(), text, format!("{options:?}")));
+    if let Some(k) = &key {
+        if let Some(p) = plans.lock().ok().and_then(|m| m.get(k).cloned()) {
+            return Ok(p);
+        }
+    }
+    let plan = Arc::new(plan_file(file, options)?);
+    if let (Some(k), Ok(mut m)) = (key, plans.lock()) {
+        m.insert(k, plan.clone());
+    }
+    Ok(plan)
 }
 
 #[cfg(test)]

@@ -101,49 +101,29 @@ impl EquationReduction {
                 row
             })
             .collect();
+        // Which monomials each equation has, as column indices (increasing).
+        let supports_of = |q: &[Vec<Fp<P>>]| -> Vec<Vec<usize>> {
+            q.iter()
+                .map(|row| (0..row.len()).filter(|&j| row[j].0 != 0).collect())
+                .collect()
+        };
+        let mut before = supports_of(&q);
         let pivots = row_echelon(&mut q)?;
-        let supports: Vec<Vec<usize>> = q
-            .iter()
-            .map(|row| (0..row.len()).filter(|&j| row[j].0 != 0).collect())
-            .collect();
-        let shape = |s: &mut Vec<Vec<Monomial>>| s.sort();
-        let mut before: Vec<Vec<Monomial>> = eqs
-            .iter()
-            .map(|e| e.terms().map(|(m, _)| m.clone()).collect())
-            .collect();
-        let mut after: Vec<Vec<Monomial>> = supports
-            .iter()
-            .map(|s| {
-                let mut v: Vec<Monomial> = s.iter().map(|&j| monomials[j].clone()).collect();
-                v.sort();
-                v
-            })
-            .collect();
-        shape(&mut before);
-        shape(&mut after);
+        let supports = supports_of(&q);
+        let mut after = supports.clone();
+        before.sort();
+        after.sort();
         if before == after {
             return None;
         }
-        let reduced = q
-            .iter()
-            .map(|row| {
-                Poly::from_terms(
-                    nvars,
-                    row.iter()
-                        .enumerate()
-                        .filter(|(_, c)| c.0 != 0)
-                        .map(|(j, c)| (monomials[j].clone(), *c)),
-                )
-            })
-            .collect();
-        Some((
-            EquationReduction {
-                monomials,
-                pivots,
-                supports,
-            },
-            reduced,
-        ))
+        let red = EquationReduction {
+            monomials,
+            pivots,
+            supports,
+        };
+        let flat: Vec<Fp<P>> = q.into_iter().flatten().collect();
+        let reduced = red.polys(nvars, &flat, false).ok()?;
+        Some((red, reduced))
     }
 
     /// Number of equations (reduced and original).
@@ -166,10 +146,7 @@ impl EquationReduction {
 
     /// The coefficient matrix `Q` of an instance's equations (row-major, `len() x
     /// monomials.len()`).
-    fn matrix<C: Clone + crate::algebra::Ring>(
-        &self,
-        eqs: &[Poly<C>],
-    ) -> Result<Vec<C>, ReductionError> {
+    fn matrix<C: crate::algebra::Ring>(&self, eqs: &[Poly<C>]) -> Result<Vec<C>, ReductionError> {
         if eqs.len() != self.len() {
             return Err(ReductionError::EquationCount {
                 found: eqs.len(),
@@ -239,7 +216,6 @@ impl EquationReduction {
         let n = self.monomials.len();
         let q = self.matrix(eqs)?;
         let mut rows: Vec<Vec<F>> = q.chunks(n.max(1)).map(<[F]>::to_vec).collect();
-        rows.truncate(self.len());
         let pivots = row_echelon(&mut rows).ok_or(ReductionError::Singular)?;
         if pivots != self.pivots {
             return Err(ReductionError::Singular);

@@ -71,6 +71,14 @@ pub enum GroebnerError {
         /// Milliseconds spent on this basis.
         millis: u64,
     },
+    /// The weights of a weighted order are not one positive weight per variable.
+    #[error("weights {got:?} for {nvars} variables: one positive weight per variable")]
+    Weights {
+        /// The weights given.
+        got: Vec<u32>,
+        /// The number of variables.
+        nvars: usize,
+    },
     /// A polynomial has a different number of variables than announced.
     #[error("polynomial {index} has {got} variables, expected {expected}")]
     VariableCount {
@@ -90,6 +98,8 @@ pub enum GroebnerError {
 /// A packed monomial (see the module documentation).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub(crate) struct Mon {
+    /// Weighted degree under the order's weights (the total degree when unweighted).
+    wdeg: u32,
     key: u128,
     exps: u128,
 }
@@ -98,6 +108,10 @@ const HIGH_BITS: u128 = 0x8080_8080_8080_8080_8080_8080_8080_8080;
 
 impl Mon {
     pub(crate) fn from_exps(e: &[u32]) -> Mon {
+        Mon::from_exps_weighted(e, &[])
+    }
+    /// The packed monomial of exponents `e` under the weights `weights` (empty: all 1).
+    pub(crate) fn from_exps_weighted(e: &[u32], weights: &[u32]) -> Mon {
         let n = e.len();
         let mut exps = 0u128;
         for (i, &x) in e.iter().enumerate() {
@@ -115,7 +129,11 @@ impl Mon {
         for j in 1..n {
             key |= (prefix[n - j] as u128) << (8 * (15 - j));
         }
-        Mon { key, exps }
+        Mon {
+            wdeg: weighted_degree(e, weights),
+            key,
+            exps,
+        }
     }
     #[inline]
     pub(crate) fn exp(&self, i: usize) -> u32 {
@@ -128,6 +146,7 @@ impl Mon {
     #[inline]
     pub(crate) fn mul(&self, o: &Mon) -> Mon {
         Mon {
+            wdeg: self.wdeg + o.wdeg,
             key: self.key + o.key,
             exps: self.exps + o.exps,
         }
@@ -141,24 +160,28 @@ impl Mon {
     #[inline]
     pub(crate) fn div_into(&self, o: &Mon) -> Mon {
         Mon {
+            wdeg: o.wdeg - self.wdeg,
             key: o.key - self.key,
             exps: o.exps - self.exps,
         }
     }
-    pub(crate) fn lcm(&self, o: &Mon, n: usize) -> Mon {
+    pub(crate) fn lcm(&self, o: &Mon, n: usize, weights: &[u32]) -> Mon {
         let e: Vec<u32> = (0..n).map(|i| self.exp(i).max(o.exp(i))).collect();
-        Mon::from_exps(&e)
+        Mon::from_exps_weighted(&e, weights)
     }
     #[inline]
     pub(crate) fn coprime(&self, o: &Mon, n: usize) -> bool {
         (0..n).all(|i| self.exp(i) == 0 || o.exp(i) == 0)
     }
-    pub(crate) fn from_monomial(m: &Monomial) -> Result<Mon, GroebnerError> {
+    pub(crate) fn from_monomial_weighted(
+        m: &Monomial,
+        weights: &[u32],
+    ) -> Result<Mon, GroebnerError> {
         let e: Vec<u32> = m.0.iter().map(|&x| x as u32).collect();
         if e.iter().any(|&x| x > MAX_EXPONENT) || e.iter().sum::<u32>() > MAX_TOTAL_DEGREE {
             return Err(GroebnerError::DegreeTooLarge(MAX_TOTAL_DEGREE));
         }
-        Ok(Mon::from_exps(&e))
+        Ok(Mon::from_exps_weighted(&e, weights))
     }
     pub(crate) fn to_monomial(self, n: usize) -> Monomial {
         Monomial((0..n).map(|i| self.exp(i) as u16).collect())
@@ -171,9 +194,18 @@ impl PartialOrd for Mon {
     }
 }
 impl Ord for Mon {
-    /// Grevlex.
+    /// Weighted degree, then grevlex (plain grevlex when unweighted).
     fn cmp(&self, other: &Self) -> Ordering {
-        self.key.cmp(&other.key)
+        (self.wdeg, self.key).cmp(&(other.wdeg, other.key))
+    }
+}
+
+/// `sum_i weights[i] * e[i]`; empty weights are all 1 (the total degree).
+fn weighted_degree(e: &[u32], weights: &[u32]) -> u32 {
+    if weights.is_empty() {
+        e.iter().sum()
+    } else {
+        e.iter().zip(weights).map(|(&x, &w)| x * w).sum()
     }
 }
 
@@ -201,10 +233,13 @@ fn invmod<const P: u32>(a: u32) -> u32 {
 /// A polynomial as terms sorted by decreasing grevlex, coefficients in `1..P`.
 pub(crate) type SPoly = Vec<(Mon, u32)>;
 
-pub(crate) fn to_spoly<const P: u32>(p: &Poly<Fp<P>>) -> Result<SPoly, GroebnerError> {
+pub(crate) fn to_spoly<const P: u32>(
+    p: &Poly<Fp<P>>,
+    weights: &[u32],
+) -> Result<SPoly, GroebnerError> {
     let mut v: SPoly = Vec::with_capacity(p.len());
     for (m, c) in p.terms() {
-        v.push((Mon::from_monomial(m)?, c.0));
+        v.push((Mon::from_monomial_weighted(m, weights)?, c.0));
     }
     v.sort_by_key(|t| std::cmp::Reverse(t.0));
     Ok(v)
@@ -308,12 +343,14 @@ struct Pair {
 #[derive(Clone, Debug)]
 pub struct GroebnerBasis<const P: u32> {
     nvars: usize,
+    /// The weights of the order (empty: grevlex).
+    weights: Vec<u32>,
     /// Internal form, sorted by increasing leading monomial.
     polys: Vec<SPoly>,
 }
 
 /// Options bounding a Gröbner basis computation.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct GroebnerOptions {
     /// Largest sugar degree of a pair before giving up with [`GroebnerError::DegreeTooLarge`];
     /// by default the packing limit [`MAX_TOTAL_DEGREE`], so that only the budget stops a
@@ -321,6 +358,9 @@ pub struct GroebnerOptions {
     pub max_degree: u32,
     /// Time and memory budget ([`GroebnerError::Budget`] when it runs out); none by default.
     pub deadline: Option<Deadline>,
+    /// Positive weights of the variables for a weighted order: monomials compared by
+    /// `sum_i w_i e_i` first, ties by grevlex. Empty (the default): grevlex.
+    pub weights: Vec<u32>,
 }
 
 impl Default for GroebnerOptions {
@@ -328,6 +368,7 @@ impl Default for GroebnerOptions {
         GroebnerOptions {
             max_degree: MAX_TOTAL_DEGREE,
             deadline: None,
+            weights: Vec::new(),
         }
     }
 }
@@ -358,6 +399,17 @@ pub fn groebner_with<const P: u32>(
     if nvars > MAX_VARS {
         return Err(GroebnerError::TooManyVariables(nvars));
     }
+    let weights: &[u32] = if opts.weights.iter().all(|&w| w == 1) {
+        &[]
+    } else {
+        &opts.weights
+    };
+    if !weights.is_empty() && (weights.len() != nvars || weights.contains(&0)) {
+        return Err(GroebnerError::Weights {
+            got: weights.to_vec(),
+            nvars,
+        });
+    }
     let mut input: Vec<(SPoly, u32)> = Vec::new();
     for (index, p) in polys.iter().enumerate() {
         if p.nvars() != nvars && !p.is_zero() {
@@ -367,7 +419,7 @@ pub fn groebner_with<const P: u32>(
                 expected: nvars,
             });
         }
-        let mut s = to_spoly::<P>(p)?;
+        let mut s = to_spoly::<P>(p, weights)?;
         if s.is_empty() {
             continue;
         }
@@ -405,7 +457,7 @@ pub fn groebner_with<const P: u32>(
         let cand: Vec<Pair> = active
             .iter()
             .map(|&k| {
-                let lcm = g[k][0].0.lcm(&hlm, nvars);
+                let lcm = g[k][0].0.lcm(&hlm, nvars, weights);
                 let s = (g_sugar[k] - g[k][0].0.degree()).max(sugar - hdeg) + lcm.degree();
                 Pair {
                     i: k,
@@ -447,8 +499,8 @@ pub fn groebner_with<const P: u32>(
         // Old pairs: drop (i,j) if lm(h) divides lcm(i,j) strictly on both sides.
         pairs.retain(|p| {
             !(hlm.divides(&p.lcm)
-                && g[p.i][0].0.lcm(&hlm, nvars) != p.lcm
-                && g[p.j][0].0.lcm(&hlm, nvars) != p.lcm)
+                && g[p.i][0].0.lcm(&hlm, nvars, weights) != p.lcm
+                && g[p.j][0].0.lcm(&hlm, nvars, weights) != p.lcm)
         });
         for (a, c) in cand.into_iter().enumerate() {
             if keep[a] {
@@ -534,6 +586,7 @@ pub fn groebner_with<const P: u32>(
     }
     Ok(GroebnerBasis {
         nvars,
+        weights: weights.to_vec(),
         polys: basis,
     })
 }
@@ -596,7 +649,7 @@ impl<const P: u32> GroebnerBasis<P> {
     ///
     /// Panics if `p` has a different variable count or exceeds the packed degree bounds.
     pub fn normal_form(&self, p: &Poly<Fp<P>>) -> Poly<Fp<P>> {
-        let s = to_spoly::<P>(p).expect("polynomial within the degree bounds");
+        let s = to_spoly::<P>(p, &self.weights).expect("polynomial within the degree bounds");
         let idx: Vec<usize> = (0..self.polys.len()).collect();
         let r = normal_form_raw::<P>(s, &self.polys, &idx);
         from_spoly::<P>(&r, self.nvars)
@@ -648,13 +701,13 @@ mod tests {
         for a in &all {
             for b in &all {
                 let (pa, pb) = (
-                    Mon::from_monomial(a).unwrap(),
-                    Mon::from_monomial(b).unwrap(),
+                    Mon::from_monomial_weighted(a, &[]).unwrap(),
+                    Mon::from_monomial_weighted(b, &[]).unwrap(),
                 );
                 assert_eq!(pa.cmp(&pb), MonomialOrder::Grevlex.cmp(a, b));
                 assert_eq!(pa.divides(&pb), a.divides(b));
                 assert_eq!(pa.mul(&pb).to_monomial(4), a.mul(b));
-                assert_eq!(pa.lcm(&pb, 4).to_monomial(4), a.lcm(b));
+                assert_eq!(pa.lcm(&pb, 4, &[]).to_monomial(4), a.lcm(b));
             }
         }
     }
@@ -741,6 +794,58 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    #[test]
+    fn weighted_order_changes_leading_monomials_not_the_ideal() {
+        // y - x^2 and x^3 - 2: under grevlex the leading monomials are x^2 and x*y (3
+        // solutions, standard monomials 1, x, y); with weights (1, 3), y outweighs x^2, so y
+        // leads the first and the basis is 1, x, x^2.
+        let n = 2;
+        let (x, y) = (var(n, 0), var(n, 1));
+        let f1 = y.sub(&x.mul(&x));
+        let f2 = x.mul(&x).mul(&x).sub(&c(n, 2));
+        let opts = GroebnerOptions {
+            weights: vec![1, 3],
+            ..GroebnerOptions::default()
+        };
+        let weighted = groebner_with(n, &[f1.clone(), f2.clone()], &opts).unwrap();
+        let plain = groebner(n, &[f1.clone(), f2.clone()]).unwrap();
+        let standard = |gb: &GroebnerBasis<P1>| {
+            let mut b = crate::quotient::standard_monomials(gb).unwrap();
+            b.sort();
+            b
+        };
+        assert_eq!(
+            standard(&weighted),
+            vec![
+                Monomial(vec![0, 0]),
+                Monomial(vec![1, 0]),
+                Monomial(vec![2, 0])
+            ]
+        );
+        assert_eq!(standard(&plain).len(), 3);
+        assert_ne!(standard(&plain), standard(&weighted));
+        for f in [&f1, &f2] {
+            assert!(weighted.contains(f) && plain.contains(f));
+        }
+        // The normal form is taken in the weighted order: y reduces to x^2.
+        assert_eq!(weighted.normal_form(&y), x.mul(&x));
+        // All-one weights are grevlex; a zero weight or a wrong length is refused.
+        let ones = GroebnerOptions {
+            weights: vec![1, 1],
+            ..GroebnerOptions::default()
+        };
+        let g1 = groebner_with(n, &[f1.clone(), f2.clone()], &ones).unwrap();
+        assert_eq!(g1.leading_monomials(), plain.leading_monomials());
+        for bad in [vec![1, 0], vec![1, 2, 3]] {
+            let o = GroebnerOptions {
+                weights: bad,
+                ..GroebnerOptions::default()
+            };
+            let e = groebner_with(n, &[f1.clone(), f2.clone()], &o).unwrap_err();
+            assert!(matches!(e, GroebnerError::Weights { .. }), "{e}");
         }
     }
 }

@@ -156,6 +156,11 @@ struct SearchArgs {
     /// the file's `option reduce_equations`.
     #[arg(long, value_name = "yes|no", value_parser = ["yes", "no"])]
     reduce_equations: Option<String>,
+    /// How many weighted monomial orders to sample for other quotient bases (0 to 1024;
+    /// default: the file's `option weighted_orders`, else 0; 32 is a good start); more may find smaller
+    /// templates and take longer.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(0..=1024))]
+    weighted_orders: Option<u64>,
 }
 
 impl SearchArgs {
@@ -175,6 +180,7 @@ impl SearchArgs {
                 newton: self.newton,
                 auto_eliminate: self.auto_eliminate.as_deref().map(|v| v == "yes"),
                 reduce_equations: self.reduce_equations.as_deref().map(|v| v == "yes"),
+                weighted_orders: self.weighted_orders.map(|n| n as usize),
             },
             ..TemplateOptions::default()
         })

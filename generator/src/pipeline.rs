@@ -292,6 +292,9 @@ pub fn resolve_options(problem: &Problem, options: &TemplateOptions) -> Template
     if let Some(r) = o.reduce_equations.or(file.reduce_equations) {
         out.reduce_equations = r;
     }
+    if let Some(n) = o.weighted_orders.or(file.weighted_orders) {
+        out.weighted_orders = n;
+    }
     out
 }
 

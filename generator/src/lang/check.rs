@@ -13,7 +13,7 @@ pub use super::ir::{Checked, Node, NodeId, Op, ScalarEquation, Shape, MAX_DEGREE
 use super::lexer::Pos;
 use super::names::{check_problem_name, FieldNames};
 use super::LangError;
-use crate::problem::{DataKind, DataSymbol, ProblemLayout, UnknownSymbol};
+use crate::problem::{DataKind, DataSymbol, ProblemLayout, UnknownSymbol, MAX_WEIGHTED_ORDERS};
 use expr::q_int;
 use std::collections::HashMap;
 
@@ -388,11 +388,19 @@ impl Checker {
                         ))
                     }
                 },
+                "weighted_orders" => match v.parse::<usize>() {
+                    Ok(n) if n <= MAX_WEIGHTED_ORDERS => o.weighted_orders.replace(n).is_some(),
+                    _ => {
+                        return bad(&format!(
+                            "option weighted_orders: expected an integer from 0 to {MAX_WEIGHTED_ORDERS}, found '{v}'"
+                        ))
+                    }
+                },
                 other => {
                     return Err(LangError::new(
                         name.pos,
                         format!(
-                            "unknown option '{other}' (the options are action, extra_degree, basis, newton, auto_eliminate, reduce_equations)"
+                            "unknown option '{other}' (the options are action, extra_degree, basis, newton, auto_eliminate, reduce_equations, weighted_orders)"
                         ),
                     ))
                 }

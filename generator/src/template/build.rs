@@ -7,7 +7,7 @@
 //! instance over any ring. The search over actions and degrees that builds templates is
 //! [`super::search`].
 
-use super::candidates::{candidate_bytes, candidates, Blocks, Candidate, ShrinkStep};
+use super::candidates::{candidate_bytes, candidates, pool_size, Blocks, Candidate, ShrinkStep};
 use super::exclude::exclude_and_shrink;
 use super::linalg::gauss_jordan;
 use super::select::{self, SelectedTemplate};
@@ -29,6 +29,8 @@ pub struct BuiltTemplate {
     /// How the basis was obtained: `"standard monomials (grevlex)"` or the column order of
     /// the basis selection.
     pub basis_choice: String,
+    /// The weights grading its candidate pool (empty: total degree).
+    pub pool_weights: Vec<u32>,
 }
 
 /// The candidate degrees [`build_template`] tries, and its limits.
@@ -41,6 +43,11 @@ pub(crate) struct DegreeSearch<'a> {
     pub(crate) deadline: Option<&'a Deadline>,
     /// Whether to run the greedy exclusion ([`super::exclude`]) on the shrunk template.
     pub(crate) exclude: bool,
+    /// The weights grading the candidate pools and `degrees` (empty: total degree).
+    pub(crate) weights: &'a [u32],
+    /// The most candidate rows a pool may have: larger degrees are not tried (none:
+    /// unbounded but for the budget).
+    pub(crate) max_pool: Option<u64>,
 }
 
 /// The shrunk elimination template for `action` from the equations of one random instance
@@ -71,16 +78,30 @@ pub(crate) fn build_template<const P: u32>(
     let mut full_ok = false;
     let mut exhausted = None;
     let mut reached = *search.degrees.start();
+    let weights = search.weights;
+    // A weighted grading raises the pool by steps much smaller than a whole degree: a
+    // degree is tried once its pool is half again as large as the last one tried.
+    let mut previous_pool = None;
     'degrees: for d in search.degrees.clone() {
         if let Some(dl) = search.deadline {
-            if let Err(e) = dl.check(candidate_bytes(eqs, d)) {
+            if let Err(e) = dl.check(candidate_bytes(eqs, d, weights)) {
                 exhausted = Some(e);
                 break;
             }
         }
+        let size = pool_size(eqs, d, weights);
+        if search.max_pool.is_some_and(|m| size > m) {
+            break;
+        }
         reached = d;
+        if !weights.is_empty() {
+            if previous_pool.is_some_and(|p| 2 * size < 3 * p) {
+                continue;
+            }
+            previous_pool = Some(size);
+        }
         for cap in (maxdeg.max(1)..=d).rev().take(opts.exponent_caps + 1) {
-            let cands: Vec<Candidate> = candidates(eqs, d)
+            let cands: Vec<Candidate> = candidates(eqs, d, weights)
                 .into_iter()
                 .filter(|c| {
                     c.terms
@@ -100,7 +121,9 @@ pub(crate) fn build_template<const P: u32>(
             full_ok = true;
             let ne = blocks.excess_of(cands.iter()).len();
             let mut history = vec![(
-                if cap < d {
+                if !weights.is_empty() {
+                    format!("all multiples up to weighted degree {d} (weights {weights:?})")
+                } else if cap < d {
                     format!("all multiples up to degree {d}, exponents <= {cap}")
                 } else {
                     format!("all multiples up to degree {d}")
@@ -175,6 +198,7 @@ pub(crate) fn build_template<const P: u32>(
         history,
         distinct_eigenvalues: distinct,
         basis_choice,
+        pool_weights: weights.to_vec(),
     })
 }
 

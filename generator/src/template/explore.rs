@@ -20,7 +20,7 @@ pub fn explore<const P: u32>(
     orders: &[BasisOrder],
     d: u32,
 ) {
-    let cands = candidates(eqs, d);
+    let cands = candidates(eqs, d, &[]);
     for &av in actions {
         let action = Action::var(nvars, av);
         let mut seen: BTreeMap<Vec<Monomial>, (usize, usize, usize)> = BTreeMap::new();
@@ -67,7 +67,7 @@ pub fn explore_random_shrink<const P: u32>(
     use rand::seq::SliceRandom;
     use rand::SeedableRng;
     let action = Action::var(nvars, action_var);
-    let cands = candidates(eqs, d);
+    let cands = candidates(eqs, d, &[]);
     let b = select_basis::<P>(&cands, nvars, &action, count, order).expect("basis");
     let blocks = Blocks::new(&b, &action, nvars);
     let mut sizes = BTreeMap::new();

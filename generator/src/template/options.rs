@@ -39,6 +39,10 @@ pub struct TemplateOptions {
     /// keeping, for each action, the smallest template. On by default; off with
     /// `basis = standard`.
     pub alternative_bases: bool,
+    /// How many weighted monomial orders to also try (their standard bases, with candidate
+    /// pools graded by the same weights; see [`super::search`]); 0, the default, turns
+    /// them off (32 is what `docs/GENERATOR.md` measures).
+    pub weighted_orders: usize,
     /// Rebuild the chosen template with the greedy exclusion of candidate rows
     /// ([`super::exclude`]) and keep it when it has fewer rows. On by default.
     pub exclude_monomials: bool,
@@ -71,6 +75,7 @@ impl Default for TemplateOptions {
             exponent_caps: 0,
             basis_selection: true,
             alternative_bases: true,
+            weighted_orders: 0,
             exclude_monomials: true,
             reduce_equations: true,
             seed: 2024,

@@ -81,7 +81,7 @@ pub(crate) fn best_template_within(
         .then(|| EquationReduction::of(eqs))
         .flatten();
     let bases = if opts.alternative_bases {
-        alternative_bases(eqs, basis, visible, deadline)
+        alternative_bases(eqs, basis, visible, opts, deadline)
     } else {
         Vec::new()
     };
@@ -93,7 +93,11 @@ pub(crate) fn best_template_within(
         if opts.actions == ActionChoice::Auto && visible > 1 && !has_distinct {
             all.extend(search_actions(eqs, basis, gb, opts, deadline, &random()));
         }
-        try_alternative_bases(eqs, &bases, visible, opts, deadline, &mut all);
+        let mut work = 0u64;
+        try_alternative_bases(eqs, &bases, visible, opts, deadline, &mut work, &mut all);
+        climb_weights(
+            eqs, basis, &bases, visible, opts, deadline, &mut work, &mut all,
+        );
         all
     };
     let mut all = search_all(eqs);
@@ -191,7 +195,7 @@ fn search_actions<const P: u32>(
         .iter()
         .map(|a| {
             let nvars = basis.first().map_or(0, Monomial::nvars);
-            start_degree(eqs, basis, a, nvars - opts.hidden_vars.min(nvars))
+            start_degree(eqs, basis, a, nvars - opts.hidden_vars.min(nvars), &[])
         })
         .collect();
     let mut all: PerAction = monomials
@@ -203,6 +207,8 @@ fn search_actions<const P: u32>(
                 basis_selection: opts.basis_selection && (!skip_selection || distinct[k]),
                 deadline: Some(deadline),
                 exclude: false,
+                weights: &[],
+                max_pool: None,
             };
             let r = build_template(eqs, basis, STANDARD, v, &search, distinct[k], opts);
             (v.clone(), r)
@@ -257,6 +263,8 @@ fn raise_degree<const P: u32>(
                 basis_selection: false,
                 deadline: Some(deadline),
                 exclude: false,
+                weights: &[],
+                max_pool: None,
             };
             let r = build_template(eqs, basis, STANDARD, a, &search, distinct[k], opts);
             let stop = matches!(
@@ -279,26 +287,51 @@ fn raise_degree<const P: u32>(
     }
 }
 
-/// The standard bases of grevlex under the variable orders of
+/// A quotient basis other than the analysis's: the standard monomials of another
+/// monomial order, with the grading its candidate pools use.
+struct AlternativeBasis {
+    /// How it was obtained, for `inspect`.
+    label: String,
+    /// The standard monomials, descending grevlex.
+    basis: Vec<Monomial>,
+    /// The weights of its order (empty for grevlex under a variable order); its candidate
+    /// pools are graded by the same weights.
+    weights: Vec<u32>,
+}
+
+/// The standard bases of other monomial orders, each from a Gröbner basis of the
+/// equations on the analysis instance: grevlex under the variable orders of
 /// [`super::select::basis_orders`] other than the identity (the visible variables permuted,
-/// hidden ones last), each from a Gröbner basis of the equations with the variables
-/// renamed; bases equal to `basis` or to an earlier one, or of another size, are left out.
-/// Stops when the budget runs out. Each comes with its description.
+/// hidden ones last), then the weighted orders of [`weight_vectors`]. Bases equal to
+/// `basis` or to an earlier one, or of another size, are left out. Stops when the budget
+/// runs out.
 fn alternative_bases<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     basis: &[Monomial],
     visible: usize,
+    opts: &TemplateOptions,
     deadline: &Deadline,
-) -> Vec<(String, Vec<Monomial>)> {
+) -> Vec<AlternativeBasis> {
     let nvars = basis.first().map_or(0, Monomial::nvars);
     let mut seen: Vec<Vec<Monomial>> = vec![sorted(basis.to_vec())];
     let mut out = Vec::new();
+    let mut keep = |label: String, b: Vec<Monomial>, weights: Vec<u32>| {
+        let b = sorted(b);
+        if b.len() == basis.len() && !seen.contains(&b) {
+            seen.push(b.clone());
+            out.push(AlternativeBasis {
+                label,
+                basis: b,
+                weights,
+            });
+        }
+    };
     for order in basis_orders(visible).into_iter().skip(1) {
         let BasisOrder::Grevlex(perm) = &order else {
             continue;
         };
         if deadline.check_time().is_err() {
-            break;
+            return out;
         }
         // y_k = x_perm[k]: the k-th largest variable of the new order.
         let perm: Vec<usize> = perm.iter().copied().chain(visible..nvars).collect();
@@ -327,12 +360,63 @@ fn alternative_bases<const P: u32>(
                 Monomial(e)
             })
             .collect();
-        let b = sorted(b);
-        if b.len() != basis.len() || seen.contains(&b) {
+        keep(
+            format!("standard monomials ({})", order.describe(&[])),
+            b,
+            Vec::new(),
+        );
+    }
+    for weights in weight_vectors(nvars, opts.weighted_orders, opts.seed) {
+        if deadline.check_time().is_err() {
+            break;
+        }
+        let gopts = GroebnerOptions {
+            deadline: Some(*deadline),
+            weights: weights.clone(),
+            ..GroebnerOptions::default()
+        };
+        let Ok(gb) = groebner_with(nvars, eqs, &gopts) else {
+            continue;
+        };
+        let Ok(b) = standard_monomials(&gb) else {
+            continue;
+        };
+        let label = format!("standard monomials (weighted order, weights {weights:?})");
+        keep(label, b, weights);
+    }
+    out
+}
+
+/// Seed offset of the weight vectors of [`weight_vectors`].
+const WEIGHTS_SEED: u64 = 0x3E16_0000;
+
+/// The largest weights of [`weight_vectors`], in turn.
+const WEIGHT_TOPS: [u32; 4] = [3, 5, 8, 12];
+
+/// `count` distinct weight vectors for `nvars` variables, not all equal (that order is
+/// grevlex), with entries uniform in `1..=MAX_WEIGHT`, from a generator seeded by `seed`:
+/// a sample of the Gröbner fan's cones, whose orders the weighted templates of Martyushev
+/// et al. come from.
+fn weight_vectors(nvars: usize, count: usize, seed: u64) -> Vec<Vec<u32>> {
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed ^ WEIGHTS_SEED);
+    let mut out: Vec<Vec<u32>> = Vec::new();
+    if nvars < 2 {
+        return out;
+    }
+    // Enough draws for `count` distinct vectors where that many exist.
+    for _ in 0..count.saturating_mul(4) {
+        if out.len() == count {
+            break;
+        }
+        // Small weights first: their cones lie near grevlex's, and ties keep grevlex's
+        // tie-breaking on some variables.
+        let top = WEIGHT_TOPS[out.len() % WEIGHT_TOPS.len()];
+        let w: Vec<u32> = (0..nvars).map(|_| rng.gen_range(1..=top)).collect();
+        if w.iter().all(|&x| x == w[0]) || out.contains(&w) {
             continue;
         }
-        seen.push(b.clone());
-        out.push((format!("standard monomials ({})", order.describe(&[])), b));
+        out.push(w);
     }
     out
 }
@@ -351,32 +435,196 @@ fn sorted(mut b: Vec<Monomial>) -> Vec<Monomial> {
 /// basis, where that is smaller (actions without a template keep their error).
 fn try_alternative_bases<const P: u32>(
     eqs: &[Poly<Fp<P>>],
-    bases: &[(String, Vec<Monomial>)],
+    bases: &[AlternativeBasis],
     visible: usize,
     opts: &TemplateOptions,
     deadline: &Deadline,
+    work: &mut u64,
     all: &mut PerAction,
 ) {
-    for (label, b) in bases {
+    for alt in bases {
         for (action, result) in all.iter_mut() {
             let Ok(current) = result else { continue };
             if deadline.check_time().is_err() {
                 return;
             }
-            let start = start_degree(eqs, b, action, visible);
+            if !alt.weights.is_empty() && !take_work(work, current) {
+                continue;
+            }
+            // A pool many times the template to beat rarely shrinks below it.
+            let max_pool = (POOL_FACTOR * current.template.eliminated_size().0) as u64;
             let search = DegreeSearch {
-                degrees: start..=start + opts.max_extra_degree,
-                basis_selection: false,
-                deadline: Some(deadline),
-                exclude: false,
+                max_pool: Some(max_pool),
+                ..degree_window(
+                    eqs,
+                    &alt.basis,
+                    action,
+                    visible,
+                    opts,
+                    deadline,
+                    &alt.weights,
+                )
             };
             let distinct = current.distinct_eigenvalues;
-            if let Ok(t) = build_template(eqs, b, label, action, &search, distinct, opts) {
+            let r = build_template(eqs, &alt.basis, &alt.label, action, &search, distinct, opts);
+            if let Ok(t) = r {
                 if area(&t) < area(current) {
                     *result = Ok(t);
                 }
             }
         }
+    }
+}
+
+/// The work all templates on weighted orders of one equation set may take, in units of
+/// the squared rows of the template each must beat (see [`take_work`]): a count, not a
+/// time, so that the search stays deterministic, and small templates, cheap to build, get
+/// many orders where large ones get few.
+const WEIGHTED_WORK: u64 = 30_000_000;
+
+/// Charges one template on a weighted order against `work`: the squared rows of `current`,
+/// the template it must beat (its pools are bounded by [`POOL_FACTOR`] times those rows).
+/// False, and nothing charged, when that would pass [`WEIGHTED_WORK`].
+fn take_work(work: &mut u64, current: &BuiltTemplate) -> bool {
+    let rows = current.template.eliminated_size().0 as u64;
+    let cost = rows.saturating_mul(rows).max(1);
+    if work.saturating_add(cost) > WEIGHTED_WORK {
+        return false;
+    }
+    *work += cost;
+    true
+}
+
+/// Most moves of [`climb_weights`].
+const CLIMB_MOVES: usize = 6;
+
+/// A local search around the weighted order of the best template, when it has one: the
+/// weight vectors one step away ([`neighbours`]) give other standard bases, and a move is
+/// kept when its template, for the same action, is smaller; at most [`CLIMB_MOVES`] moves,
+/// each to the first smaller neighbour. Sampling finds the region of good orders, the climb
+/// the best cone near it.
+#[allow(clippy::too_many_arguments)]
+fn climb_weights<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    basis: &[Monomial],
+    bases: &[AlternativeBasis],
+    visible: usize,
+    opts: &TemplateOptions,
+    deadline: &Deadline,
+    work: &mut u64,
+    all: &mut PerAction,
+) {
+    let Some(k) = all
+        .iter()
+        .enumerate()
+        .filter_map(|(k, (_, r))| r.as_ref().ok().map(|b| (k, b)))
+        .min_by_key(|(k, b)| (preference(b, opts), *k))
+        .map(|(k, _)| k)
+    else {
+        return;
+    };
+    let nvars = basis.first().map_or(0, Monomial::nvars);
+    let mut seen: Vec<Vec<Monomial>> = std::iter::once(sorted(basis.to_vec()))
+        .chain(bases.iter().map(|b| b.basis.clone()))
+        .collect();
+    'moves: for _ in 0..CLIMB_MOVES {
+        let Ok(current) = &all[k].1 else { return };
+        if current.pool_weights.is_empty() {
+            return;
+        }
+        let action = all[k].0.clone();
+        for weights in neighbours(&current.pool_weights) {
+            if deadline.check_time().is_err() {
+                return;
+            }
+            let gopts = GroebnerOptions {
+                deadline: Some(*deadline),
+                weights: weights.clone(),
+                ..GroebnerOptions::default()
+            };
+            let Ok(gb) = groebner_with(nvars, eqs, &gopts) else {
+                continue;
+            };
+            let Ok(b) = standard_monomials(&gb) else {
+                continue;
+            };
+            let b = sorted(b);
+            if b.len() != basis.len() || seen.contains(&b) {
+                continue;
+            }
+            seen.push(b.clone());
+            if !take_work(work, current) {
+                return;
+            }
+            let label = format!("standard monomials (weighted order, weights {weights:?})");
+            let max_pool = (POOL_FACTOR * current.template.eliminated_size().0) as u64;
+            let search = DegreeSearch {
+                max_pool: Some(max_pool),
+                ..degree_window(eqs, &b, &action, visible, opts, deadline, &weights)
+            };
+            let distinct = current.distinct_eigenvalues;
+            if let Ok(t) = build_template(eqs, &b, &label, &action, &search, distinct, opts) {
+                if area(&t) < area(current) {
+                    all[k].1 = Ok(t);
+                    continue 'moves;
+                }
+            }
+        }
+        return;
+    }
+}
+
+/// The weight vectors one step from `w`: each weight one up or one down (staying
+/// positive), then, on the doubled vector, each weight one up or down (the finer cones
+/// between).
+fn neighbours(w: &[u32]) -> Vec<Vec<u32>> {
+    let mut out: Vec<Vec<u32>> = Vec::new();
+    let doubled: Vec<u32> = w.iter().map(|x| 2 * x).collect();
+    for base in [w.to_vec(), doubled] {
+        for i in 0..base.len() {
+            for up in [true, false] {
+                let mut v = base.clone();
+                if up {
+                    v[i] += 1;
+                } else if v[i] > 1 {
+                    v[i] -= 1;
+                } else {
+                    continue;
+                }
+                if !out.contains(&v) && v.iter().any(|&x| x != v[0]) {
+                    out.push(v);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// How many times the rows of the template to beat a candidate pool of an alternative basis
+/// may have.
+const POOL_FACTOR: usize = 6;
+
+/// The candidate degrees an alternative basis (or a refinement) is built at: from the
+/// start degree, `opts.max_extra_degree` degrees up (in a weighted grading, that many times
+/// its largest weight), neither exclusion nor basis selection.
+fn degree_window<'a, const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    basis: &[Monomial],
+    action: &Action,
+    visible: usize,
+    opts: &TemplateOptions,
+    deadline: &'a Deadline,
+    weights: &'a [u32],
+) -> DegreeSearch<'a> {
+    let start = start_degree(eqs, basis, action, visible, weights);
+    let step = weights.iter().copied().max().unwrap_or(1);
+    DegreeSearch {
+        degrees: start..=start + opts.max_extra_degree * step,
+        basis_selection: false,
+        deadline: Some(deadline),
+        exclude: false,
+        weights,
+        max_pool: None,
     }
 }
 
@@ -393,12 +641,10 @@ fn refine<const P: u32>(
         return best;
     }
     let t = &best.template;
-    let start = start_degree(eqs, &t.basis, &t.action, visible);
+    let weights = best.pool_weights.clone();
     let search = DegreeSearch {
-        degrees: start..=start + opts.max_extra_degree,
-        basis_selection: false,
-        deadline: Some(deadline),
         exclude: true,
+        ..degree_window(eqs, &t.basis, &t.action, visible, opts, deadline, &weights)
     };
     let label = best.basis_choice.clone();
     match build_template(

@@ -193,10 +193,10 @@ pub(crate) fn best_selected<const P: u32>(
     let orders = basis_orders(nvars);
     let out_of_budget = |bytes| deadline.is_some_and(|dl| dl.check(bytes).is_err());
     for d in maxeq + 1..=maxeq + 3 {
-        if out_of_budget(candidate_bytes(eqs, d)) {
+        if out_of_budget(candidate_bytes(eqs, d, &[])) {
             return None;
         }
-        let cands = candidates(eqs, d);
+        let cands = candidates(eqs, d, &[]);
         let refs: Vec<&Candidate> = cands.iter().collect();
         let mut seen: BTreeSet<Vec<Monomial>> = BTreeSet::new();
         let mut screened: Option<(usize, Blocks, &BasisOrder)> = None;

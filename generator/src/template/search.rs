@@ -370,21 +370,33 @@ fn alternative_bases<const P: u32>(
         if deadline.check_time().is_err() {
             break;
         }
-        let gopts = GroebnerOptions {
-            deadline: Some(*deadline),
-            weights: weights.clone(),
-            ..GroebnerOptions::default()
-        };
-        let Ok(gb) = groebner_with(nvars, eqs, &gopts) else {
-            continue;
-        };
-        let Ok(b) = standard_monomials(&gb) else {
-            continue;
-        };
-        let label = format!("standard monomials (weighted order, weights {weights:?})");
-        keep(label, b, weights);
+        if let Some(b) = weighted_basis(eqs, nvars, &weights, deadline) {
+            keep(weighted_label(&weights), b, weights);
+        }
     }
     out
+}
+
+/// The standard monomials (descending grevlex) of the weighted order `weights`, from a
+/// Gröbner basis of `eqs` in that order; none when it fails or the budget runs out.
+fn weighted_basis<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    nvars: usize,
+    weights: &[u32],
+    deadline: &Deadline,
+) -> Option<Vec<Monomial>> {
+    let gopts = GroebnerOptions {
+        deadline: Some(*deadline),
+        weights: weights.to_vec(),
+        ..GroebnerOptions::default()
+    };
+    let gb = groebner_with(nvars, eqs, &gopts).ok()?;
+    standard_monomials(&gb).ok().map(sorted)
+}
+
+/// How a basis of the weighted order `weights` is described.
+fn weighted_label(weights: &[u32]) -> String {
+    format!("standard monomials (weighted order, weights {weights:?})")
 }
 
 /// Seed offset of the weight vectors of [`weight_vectors`].
@@ -537,18 +549,9 @@ fn climb_weights<const P: u32>(
             if deadline.check_time().is_err() {
                 return;
             }
-            let gopts = GroebnerOptions {
-                deadline: Some(*deadline),
-                weights: weights.clone(),
-                ..GroebnerOptions::default()
-            };
-            let Ok(gb) = groebner_with(nvars, eqs, &gopts) else {
+            let Some(b) = weighted_basis(eqs, nvars, &weights, deadline) else {
                 continue;
             };
-            let Ok(b) = standard_monomials(&gb) else {
-                continue;
-            };
-            let b = sorted(b);
             if b.len() != basis.len() || seen.contains(&b) {
                 continue;
             }
@@ -556,7 +559,7 @@ fn climb_weights<const P: u32>(
             if !take_work(work, current) {
                 return;
             }
-            let label = format!("standard monomials (weighted order, weights {weights:?})");
+            let label = weighted_label(&weights);
             let max_pool = (POOL_FACTOR * current.template.eliminated_size().0) as u64;
             let search = DegreeSearch {
                 max_pool: Some(max_pool),

@@ -325,8 +325,8 @@ pub enum GravitySolver {
     /// Default.
     #[default]
     Six,
-    /// `grsrp_gravity`: 5 unknowns, 12 solutions (±t), an 85 x 97 template after its
-    /// equations are row-reduced on the data.
+    /// `grsrp_gravity`: 5 unknowns, 12 solutions (±t), a 70 x 82 template (a weighted
+    /// monomial order) after its equations are row-reduced on the data.
     Twelve,
 }
 

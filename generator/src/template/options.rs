@@ -40,8 +40,8 @@ pub struct TemplateOptions {
     /// `basis = standard`.
     pub alternative_bases: bool,
     /// How many weighted monomial orders to also try (their standard bases, with candidate
-    /// pools graded by the same weights; see [`super::search`]); 0, the default, turns
-    /// them off (32 is what `docs/GENERATOR.md` measures).
+    /// pools graded by the same weights; see [`super::search`]); 32 by default, 0 turns
+    /// them off.
     pub weighted_orders: usize,
     /// Rebuild the chosen template with the greedy exclusion of candidate rows
     /// ([`super::exclude`]) and keep it when it has fewer rows. On by default.
@@ -75,7 +75,7 @@ impl Default for TemplateOptions {
             exponent_caps: 0,
             basis_selection: true,
             alternative_bases: true,
-            weighted_orders: 0,
+            weighted_orders: 32,
             exclude_monomials: true,
             reduce_equations: true,
             seed: 2024,

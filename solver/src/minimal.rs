@@ -325,7 +325,7 @@ pub enum GravitySolver {
     /// Default.
     #[default]
     Six,
-    /// `grsrp_gravity`: 5 unknowns, 12 solutions (±t), a 70 x 82 template (a weighted
+    /// `grsrp_gravity`: 5 unknowns, 12 solutions (±t), a 71 x 83 template (a weighted
     /// monomial order) after its equations are row-reduced on the data.
     Twelve,
 }

@@ -39,9 +39,10 @@ pub struct TemplateOptions {
     /// keeping, for each action, the smallest template. On by default; off with
     /// `basis = standard`.
     pub alternative_bases: bool,
-    /// How many weighted monomial orders to also try (their standard bases, with candidate
+    /// How many weighted monomial orders with new standard bases to also try, beyond the
+    /// grid of weights 1 and 2 that small problems get (their standard bases, with candidate
     /// pools graded by the same weights; see [`super::search`]); 32 by default, 0 turns
-    /// them off.
+    /// weighted orders off.
     pub weighted_orders: usize,
     /// Rebuild the chosen template with the greedy exclusion of candidate rows
     /// ([`super::exclude`]) and keep it when it has fewer rows. On by default.

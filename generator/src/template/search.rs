@@ -94,9 +94,10 @@ pub(crate) fn best_template_within(
             all.extend(search_actions(eqs, basis, gb, opts, deadline, &random()));
         }
         let mut work = 0u64;
-        try_alternative_bases(eqs, &bases, visible, opts, deadline, &mut work, &mut all);
+        let starts =
+            try_alternative_bases(eqs, &bases, visible, opts, deadline, &mut work, &mut all);
         climb_weights(
-            eqs, basis, &bases, visible, opts, deadline, &mut work, &mut all,
+            eqs, basis, &bases, starts, visible, opts, deadline, &mut work, &mut all,
         );
         all
     };
@@ -317,7 +318,8 @@ fn alternative_bases<const P: u32>(
     let mut out = Vec::new();
     let mut keep = |label: String, b: Vec<Monomial>, weights: Vec<u32>| {
         let b = sorted(b);
-        if b.len() == basis.len() && !seen.contains(&b) {
+        let new = b.len() == basis.len() && !seen.contains(&b);
+        if new {
             seen.push(b.clone());
             out.push(AlternativeBasis {
                 label,
@@ -325,6 +327,7 @@ fn alternative_bases<const P: u32>(
                 weights,
             });
         }
+        new
     };
     for order in basis_orders(visible).into_iter().skip(1) {
         let BasisOrder::Grevlex(perm) = &order else {
@@ -366,12 +369,21 @@ fn alternative_bases<const P: u32>(
             Vec::new(),
         );
     }
-    for weights in weight_vectors(nvars, opts.weighted_orders, opts.seed) {
-        if deadline.check_time().is_err() {
+    // The grid of 1s and 2s (small problems), then a sample; a Gröbner basis for each
+    // until `opts.weighted_orders` bases beyond the grid's are new, most vectors falling in
+    // cones already seen.
+    let grid = ones_and_twos(nvars, opts.weighted_orders);
+    let wanted = grid.len() + opts.weighted_orders;
+    let draws = wanted.saturating_mul(DRAWS_PER_ORDER);
+    let sample = sampled_weights(nvars, draws.saturating_sub(grid.len()), opts.seed);
+    let sample: Vec<Vec<u32>> = sample.into_iter().filter(|w| !grid.contains(w)).collect();
+    let mut kept = 0;
+    for weights in grid.into_iter().chain(sample) {
+        if deadline.check_time().is_err() || kept >= wanted {
             break;
         }
         if let Some(b) = weighted_basis(eqs, nvars, &weights, deadline) {
-            keep(weighted_label(&weights), b, weights);
+            kept += usize::from(keep(weighted_label(&weights), b, weights));
         }
     }
     out
@@ -402,14 +414,37 @@ fn weighted_label(weights: &[u32]) -> String {
 /// Seed offset of the weight vectors of [`weight_vectors`].
 const WEIGHTS_SEED: u64 = 0x3E16_0000;
 
-/// The largest weights of [`weight_vectors`], in turn.
+/// The largest weights of [`weight_vectors`]'s sample, in turn.
 const WEIGHT_TOPS: [u32; 4] = [3, 5, 8, 12];
 
-/// `count` distinct weight vectors for `nvars` variables, not all equal (that order is
-/// grevlex), with entries uniform in `1..=MAX_WEIGHT`, from a generator seeded by `seed`:
-/// a sample of the Gröbner fan's cones, whose orders the weighted templates of Martyushev
-/// et al. come from.
-fn weight_vectors(nvars: usize, count: usize, seed: u64) -> Vec<Vec<u32>> {
+/// At most how many weight vectors [`alternative_bases`] computes a Gröbner basis for,
+/// per new basis it looks for.
+const DRAWS_PER_ORDER: usize = 8;
+
+/// Every weight vector of 1s and 2s for `nvars` variables but the two constant ones
+/// (grevlex), when there are at most `max`; otherwise none. Their cones lie nearest
+/// grevlex's, and their ties keep grevlex's tie-breaking on some variables.
+fn ones_and_twos(nvars: usize, max: usize) -> Vec<Vec<u32>> {
+    let n = 1usize
+        .checked_shl(nvars as u32)
+        .map_or(usize::MAX, |n| n - 2);
+    if nvars < 2 || n > max {
+        return Vec::new();
+    }
+    (1..=n)
+        .map(|bits| {
+            (0..nvars)
+                .map(|i| 1 + ((bits >> (nvars - 1 - i)) & 1) as u32)
+                .collect()
+        })
+        .collect()
+}
+
+/// `count` distinct weight vectors for `nvars` variables, none all equal (that order is
+/// grevlex), with entries uniform in `1..=top`, `top` cycling through
+/// [`WEIGHT_TOPS`], from a generator seeded by `seed`: a sample of the Gröbner fan's
+/// cones, whose orders the weighted templates of Martyushev et al. come from.
+fn sampled_weights(nvars: usize, count: usize, seed: u64) -> Vec<Vec<u32>> {
     use rand::{Rng, SeedableRng};
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed ^ WEIGHTS_SEED);
     let mut out: Vec<Vec<u32>> = Vec::new();
@@ -421,8 +456,6 @@ fn weight_vectors(nvars: usize, count: usize, seed: u64) -> Vec<Vec<u32>> {
         if out.len() == count {
             break;
         }
-        // Small weights first: their cones lie near grevlex's, and ties keep grevlex's
-        // tie-breaking on some variables.
         let top = WEIGHT_TOPS[out.len() % WEIGHT_TOPS.len()];
         let w: Vec<u32> = (0..nvars).map(|_| rng.gen_range(1..=top)).collect();
         if w.iter().all(|&x| x == w[0]) || out.contains(&w) {
@@ -444,7 +477,9 @@ fn sorted(mut b: Vec<Monomial>) -> Vec<Monomial> {
 }
 
 /// Replaces each action's template by the smallest one built on an alternative standard
-/// basis, where that is smaller (actions without a template keep their error).
+/// basis, where that is smaller (actions without a template keep their error). Returns
+/// the [`CLIMB_STARTS`] smallest templates built on weighted orders, with the index of
+/// their action in `all`, smallest first: where [`climb_weights`] starts.
 fn try_alternative_bases<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     bases: &[AlternativeBasis],
@@ -453,21 +488,20 @@ fn try_alternative_bases<const P: u32>(
     deadline: &Deadline,
     work: &mut u64,
     all: &mut PerAction,
-) {
-    for alt in bases {
-        for (action, result) in all.iter_mut() {
+) -> Vec<(usize, BuiltTemplate)> {
+    let mut starts: Vec<(usize, BuiltTemplate)> = Vec::new();
+    'bases: for alt in bases {
+        for (k, (action, result)) in all.iter_mut().enumerate() {
             let Ok(current) = result else { continue };
             if deadline.check_time().is_err() {
-                return;
+                break 'bases;
             }
             if !alt.weights.is_empty() && !take_work(work, current) {
                 continue;
             }
-            // A pool many times the template to beat rarely shrinks below it.
-            let max_pool = (POOL_FACTOR * current.template.eliminated_size().0) as u64;
-            let search = DegreeSearch {
-                max_pool: Some(max_pool),
-                ..degree_window(
+            let search = pool_capped(
+                current,
+                degree_window(
                     eqs,
                     &alt.basis,
                     action,
@@ -475,16 +509,42 @@ fn try_alternative_bases<const P: u32>(
                     opts,
                     deadline,
                     &alt.weights,
-                )
-            };
+                ),
+            );
             let distinct = current.distinct_eigenvalues;
             let r = build_template(eqs, &alt.basis, &alt.label, action, &search, distinct, opts);
             if let Ok(t) = r {
+                if !t.pool_weights.is_empty() {
+                    remember_start(&mut starts, k, &t);
+                }
                 if area(&t) < area(current) {
                     *result = Ok(t);
                 }
             }
         }
+    }
+    starts
+}
+
+/// How many of the smallest weighted templates [`climb_weights`] climbs from.
+const CLIMB_STARTS: usize = 3;
+
+/// Keeps `t` among the [`CLIMB_STARTS`] smallest weighted templates of `starts` (ties to
+/// the earlier), sorted by area.
+fn remember_start(starts: &mut Vec<(usize, BuiltTemplate)>, action: usize, t: &BuiltTemplate) {
+    let at = starts.partition_point(|(_, s)| area(s) <= area(t));
+    if at < CLIMB_STARTS {
+        starts.insert(at, (action, t.clone()));
+        starts.truncate(CLIMB_STARTS);
+    }
+}
+
+/// `search` with candidate pools capped at [`POOL_FACTOR`] times the rows of `current`,
+/// the template to beat: a pool many times that rarely shrinks below it.
+fn pool_capped<'a>(current: &BuiltTemplate, search: DegreeSearch<'a>) -> DegreeSearch<'a> {
+    DegreeSearch {
+        max_pool: Some((POOL_FACTOR * current.template.eliminated_size().0) as u64),
+        ..search
     }
 }
 
@@ -510,70 +570,66 @@ fn take_work(work: &mut u64, current: &BuiltTemplate) -> bool {
 /// Most moves of [`climb_weights`].
 const CLIMB_MOVES: usize = 6;
 
-/// A local search around the weighted order of the best template, when it has one: the
-/// weight vectors one step away ([`neighbours`]) give other standard bases, and a move is
-/// kept when its template, for the same action, is smaller; at most [`CLIMB_MOVES`] moves,
-/// each to the first smaller neighbour. Sampling finds the region of good orders, the climb
-/// the best cone near it.
+/// A local search around the weighted orders of the smallest weighted templates
+/// (`starts`, from [`try_alternative_bases`]): from each, the weight vectors one step away
+/// ([`neighbours`]) give other standard bases, and a move is kept when its template, for
+/// the same action, is smaller; at most [`CLIMB_MOVES`] moves, each to the first smaller
+/// neighbour. The end of a climb replaces its action's template when smaller. Sampling
+/// finds the regions of good orders, the climbs the best cones near them; several starts,
+/// because the cone of the best sampled order need not lead to the best one near.
 #[allow(clippy::too_many_arguments)]
 fn climb_weights<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     basis: &[Monomial],
     bases: &[AlternativeBasis],
+    starts: Vec<(usize, BuiltTemplate)>,
     visible: usize,
     opts: &TemplateOptions,
     deadline: &Deadline,
     work: &mut u64,
     all: &mut PerAction,
 ) {
-    let Some(k) = all
-        .iter()
-        .enumerate()
-        .filter_map(|(k, (_, r))| r.as_ref().ok().map(|b| (k, b)))
-        .min_by_key(|(k, b)| (preference(b, opts), *k))
-        .map(|(k, _)| k)
-    else {
-        return;
-    };
     let nvars = basis.first().map_or(0, Monomial::nvars);
     let mut seen: Vec<Vec<Monomial>> = std::iter::once(sorted(basis.to_vec()))
         .chain(bases.iter().map(|b| b.basis.clone()))
         .collect();
-    'moves: for _ in 0..CLIMB_MOVES {
-        let Ok(current) = &all[k].1 else { return };
-        if current.pool_weights.is_empty() {
-            return;
-        }
+    for (k, mut current) in starts {
         let action = all[k].0.clone();
-        for weights in neighbours(&current.pool_weights) {
-            if deadline.check_time().is_err() {
-                return;
-            }
-            let Some(b) = weighted_basis(eqs, nvars, &weights, deadline) else {
-                continue;
-            };
-            if b.len() != basis.len() || seen.contains(&b) {
-                continue;
-            }
-            seen.push(b.clone());
-            if !take_work(work, current) {
-                return;
-            }
-            let label = weighted_label(&weights);
-            let max_pool = (POOL_FACTOR * current.template.eliminated_size().0) as u64;
-            let search = DegreeSearch {
-                max_pool: Some(max_pool),
-                ..degree_window(eqs, &b, &action, visible, opts, deadline, &weights)
-            };
-            let distinct = current.distinct_eigenvalues;
-            if let Ok(t) = build_template(eqs, &b, &label, &action, &search, distinct, opts) {
-                if area(&t) < area(current) {
-                    all[k].1 = Ok(t);
-                    continue 'moves;
+        'moves: for _ in 0..CLIMB_MOVES {
+            for weights in neighbours(&current.pool_weights) {
+                if deadline.check_time().is_err() {
+                    return;
+                }
+                let Some(b) = weighted_basis(eqs, nvars, &weights, deadline) else {
+                    continue;
+                };
+                if b.len() != basis.len() || seen.contains(&b) {
+                    continue;
+                }
+                seen.push(b.clone());
+                if !take_work(work, &current) {
+                    return;
+                }
+                let label = weighted_label(&weights);
+                let search = pool_capped(
+                    &current,
+                    degree_window(eqs, &b, &action, visible, opts, deadline, &weights),
+                );
+                let distinct = current.distinct_eigenvalues;
+                if let Ok(t) = build_template(eqs, &b, &label, &action, &search, distinct, opts) {
+                    if area(&t) < area(&current) {
+                        current = t;
+                        continue 'moves;
+                    }
                 }
             }
+            break;
         }
-        return;
+        if let Ok(best) = &all[k].1 {
+            if area(&current) < area(best) {
+                all[k].1 = Ok(current);
+            }
+        }
     }
 }
 
@@ -604,7 +660,7 @@ fn neighbours(w: &[u32]) -> Vec<Vec<u32>> {
 }
 
 /// How many times the rows of the template to beat a candidate pool of an alternative basis
-/// may have.
+/// may have ([`pool_capped`]).
 const POOL_FACTOR: usize = 6;
 
 /// The candidate degrees an alternative basis (or a refinement) is built at: from the

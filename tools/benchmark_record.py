@@ -48,6 +48,7 @@ def markdown(rows):
     def ratio(x):
         return "—" if x is None else f"{x:.2f}"
     head = ["problem", "unknowns", "solutions", "template", "published", "area / std",
+            "area / std whole",
             "area / best", "audit: median / p99 log10 residual / failures", "seconds"]
     out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for r in rows:
@@ -59,7 +60,8 @@ def markdown(rows):
             f"`{r['problem']}`", unknowns or "—",
             "—" if r["solutions"] is None else str(r["solutions"]),
             size_text(r) or "none",
-            r["published"] or "—", ratio(r["area_over_std"]), ratio(r["area_over_best"]),
+            r["published"] or "—", ratio(r["area_over_std"]),
+            ratio(r["area_over_std_whole"]), ratio(r["area_over_best"]),
             "—" if a is None else f"{a['median_log10_residual']:.2f} / {a['p99_log10_residual']:.2f} / {a['failures']} of {a['instances']}",
             f"{r['seconds']:.2f}",
         ]

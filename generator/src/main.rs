@@ -157,11 +157,35 @@ struct SearchArgs {
     #[arg(long, value_name = "yes|no", value_parser = ["yes", "no"])]
     reduce_equations: Option<String>,
     /// How many weighted monomial orders to sample for other quotient bases (0 to 1024;
-    /// default: the file's `option weighted_orders`, else 0; 32 is a good start); more may find smaller
+    /// default: the file's `option weighted_orders`, else 32); more may find smaller
     /// templates and take longer.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(0..=1024))]
     weighted_orders: Option<u64>,
+    /// A weighted monomial order to try before all others: one positive weight per unknown
+    /// of the system, in the order `inspect` lists them, comma-separated (e.g. `4,2,3,2`);
+    /// may be given several times.
+    #[arg(long, value_name = "W,W,...", value_parser = weight_vector)]
+    weights: Vec<WeightVector>,
 }
+
+/// One `--weights` vector.
+#[derive(Clone, Debug)]
+struct WeightVector(Vec<u32>);
+
+/// `--weights`: comma-separated integers from 1 to [`MAX_WEIGHT`].
+fn weight_vector(s: &str) -> Result<WeightVector, String> {
+    let bad = || format!("expected comma-separated integers from 1 to {MAX_WEIGHT}, found '{s}'");
+    s.split(',')
+        .map(|w| match w.trim().parse::<u32>() {
+            Ok(w) if (1..=MAX_WEIGHT).contains(&w) => Ok(w),
+            _ => Err(bad()),
+        })
+        .collect::<Result<Vec<u32>, String>>()
+        .map(WeightVector)
+}
+
+/// The largest weight `--weights` takes: weighted degrees stay small integers.
+const MAX_WEIGHT: u32 = 64;
 
 impl SearchArgs {
     fn options(&self) -> Result<TemplateOptions, CliError> {
@@ -182,6 +206,7 @@ impl SearchArgs {
                 reduce_equations: self.reduce_equations.as_deref().map(|v| v == "yes"),
                 weighted_orders: self.weighted_orders.map(|n| n as usize),
             },
+            weights: self.weights.iter().map(|w| w.0.clone()).collect(),
             ..TemplateOptions::default()
         })
     }
@@ -481,6 +506,7 @@ fn print_plan(out: &mut String, plan: &mingen::pipeline::SolverPlan) {
             .collect::<Vec<_>>()
             .join(" ")
     );
+    outln!(out, "basis from: {}", g.built.basis_choice);
     outln!(out, "action: {}", t.action.display_with(&names));
     if let Some(r) = &t.reduction {
         outln!(

@@ -207,7 +207,7 @@ pub struct ProblemOptions {
     /// builds templates from the equations row-reduced on their data (each reduced equation
     /// has a pivot monomial no other has; see `template/reduction.rs`) and keeps the smaller.
     pub reduce_equations: Option<bool>,
-    /// `option weighted_orders = N` (default 0, at most [`MAX_WEIGHTED_ORDERS`]): how many
+    /// `option weighted_orders = N` (default 32, at most [`MAX_WEIGHTED_ORDERS`]): how many
     /// weighted monomial orders the template search samples for other quotient bases (0:
     /// none); more can find smaller templates at the cost of planning time.
     pub weighted_orders: Option<usize>,

@@ -97,12 +97,21 @@ pub fn problem_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, ReportError> {
 
 /// Published template sizes `(rows, columns)`, read from a `# published:` header line:
 /// `std RxC` (standard quotient basis), `red RxC` (redundant solving basis; the smallest
-/// if several), `nstd RxC` (a non-standard basis) and a bare leading `RxC` (a size whose
-/// kind is not stated, e.g. a PoseLib solver's).
+/// if several), `nstd RxC` (a non-standard basis), `std-whole RxC` (the standard-basis
+/// template before the Schur complement reduction of their solver, see below) and a bare
+/// leading `RxC` (a size whose kind is not stated, e.g. a PoseLib solver's).
+///
+/// Where a problem names `schur_pols`, Martyushev et al. count their template after
+/// eliminating the multiples of those equations first (their solvers' `M(k+1:end,k+1:end)
+/// - M(k+1:end,1:k)/M(1:k,1:k)*M(1:k,k+1:end)`, "Schur complement reduction"): `std` is
+/// then `k` rows and `k` columns smaller than the template it is computed from. mingen
+/// counts its templates whole, so `std-whole` is the size to compare with.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PublishedSizes {
     /// With the standard basis of some monomial order.
     pub std: Option<(usize, usize)>,
+    /// `std`'s template whole, before their Schur complement reduction.
+    pub std_whole: Option<(usize, usize)>,
     /// With a redundant solving basis.
     pub red: Option<(usize, usize)>,
     /// With a non-standard basis.
@@ -127,8 +136,9 @@ impl PublishedSizes {
         let words: Vec<&str> = text.split_whitespace().collect();
         for (k, w) in words.iter().enumerate() {
             let next = words.get(k + 1).and_then(|n| size(n));
-            match (w.trim_end_matches(':'), next) {
+            match (w.trim_start_matches('(').trim_end_matches(':'), next) {
                 ("std", Some(s)) => out.std = smaller(out.std, s),
+                ("std-whole", Some(s)) => out.std_whole = smaller(out.std_whole, s),
                 ("red", Some(s)) => out.red = smaller(out.red, s),
                 ("nstd", Some(s)) => out.nstd = smaller(out.nstd, s),
                 _ => {}
@@ -139,7 +149,13 @@ impl PublishedSizes {
         }
         out
     }
-    /// The smallest area among the sizes given.
+    /// The area of the standard-basis template counted as mingen counts its own: whole
+    /// (`std-whole`) where given, else `std`.
+    pub fn std_whole_area(&self) -> Option<usize> {
+        self.std_whole.or(self.std).map(|(r, c)| r * c)
+    }
+    /// The smallest area among the sizes given (`std-whole` aside: it is `std` counted
+    /// otherwise).
     pub fn best_area(&self) -> Option<usize> {
         [self.std, self.red, self.nstd, self.other]
             .into_iter()
@@ -255,6 +271,7 @@ impl ReportRow {
             "equation_reduction": self.reduction.map(|(r, c)| json!({"rows": r, "cols": c})),
             "published": self.published,
             "area_over_std": self.area_ratio(self.published_sizes.std.map(|(r, c)| r * c)),
+            "area_over_std_whole": self.area_ratio(self.published_sizes.std_whole_area()),
             "area_over_best": self.area_ratio(self.published_sizes.best_area()),
             "action": self.action,
             "audit": self.audit.as_ref().map(|a| json!({
@@ -303,6 +320,8 @@ impl ReportRow {
             self.published.clone().unwrap_or_else(dash),
             self.area_ratio(self.published_sizes.std.map(|(r, c)| r * c))
                 .map_or_else(dash, |x| format!("{x:.2}")),
+            self.area_ratio(self.published_sizes.std_whole_area())
+                .map_or_else(dash, |x| format!("{x:.2}")),
             self.area_ratio(self.published_sizes.best_area())
                 .map_or_else(dash, |x| format!("{x:.2}")),
             self.action.clone().unwrap_or_else(dash),
@@ -332,6 +351,7 @@ pub fn to_markdown(rows: &[ReportRow]) -> String {
         "template",
         "published",
         "area / std",
+        "area / std whole",
         "area / best",
         "action",
         "audit: median / p99 log10 residual / failures",
@@ -379,6 +399,12 @@ mod tests {
         assert_eq!(p.nstd, None);
         assert_eq!(p.other, None);
         assert_eq!(p.best_area(), Some(73 * 97));
+        assert_eq!(p.std_whole_area(), Some(76 * 100));
+        let w = PublishedSizes::parse("std 16x36 (std-whole 36x56), red 12x36");
+        assert_eq!(w.std, Some((16, 36)));
+        assert_eq!(w.std_whole, Some((36, 56)));
+        assert_eq!(w.std_whole_area(), Some(36 * 56));
+        assert_eq!(w.best_area(), Some(12 * 36));
         let q = PublishedSizes::parse("25x35 (PoseLib p35pf)");
         assert_eq!(q.other, Some((25, 35)));
         assert_eq!(q.std, None);

@@ -161,3 +161,21 @@ fn inspect_exits_2_on_a_degenerate_problem() {
     );
     assert_eq!(err.lines().count(), 1, "{err}");
 }
+
+/// `--weights` takes one positive weight per unknown; anything else exits with code 2 and
+/// a one-line message naming the vector, before or after planning.
+#[test]
+fn bad_weights_on_the_command_line_exit_2() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../templates/classic/relpose_5pt.mp");
+    for (weights, expect) in [("1,0,2", "1,0,2"), ("1,x,2", "1,x,2"), ("1,2", "[1, 2]")] {
+        let out = Command::new(env!("CARGO_BIN_EXE_mingen"))
+            .arg("inspect")
+            .arg(&file)
+            .args(["--weights", weights])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "--weights {weights}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(expect), "--weights {weights}: {err}");
+    }
+}

@@ -74,6 +74,15 @@ pub enum TemplateError {
     /// [`super::EquationReduction`] plans.
     #[error("equation reduction: {0}")]
     Reduction(#[from] ReductionError),
+    /// A weight vector of [`super::TemplateOptions::weights`] does not have one positive
+    /// weight per unknown.
+    #[error("weights {weights:?}: expected {unknowns} positive weights, one per unknown")]
+    Weights {
+        /// Unknowns of the system.
+        unknowns: usize,
+        /// The vector given.
+        weights: Vec<u32>,
+    },
     /// No action variable was given or none works.
     #[error("no usable action variable: {0}")]
     NoAction(String),

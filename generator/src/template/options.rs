@@ -44,6 +44,12 @@ pub struct TemplateOptions {
     /// pools graded by the same weights; see [`super::search`]); 32 by default, 0 turns
     /// weighted orders off.
     pub weighted_orders: usize,
+    /// Weight vectors whose weighted orders are tried before all others (one positive
+    /// weight per unknown of the system the template is built for, in variable order, as
+    /// `inspect` lists them): an order known to be good, from a paper say. Their templates
+    /// are built even where their standard basis is one seen before, since the candidate
+    /// pools are graded by the weights. Empty by default.
+    pub weights: Vec<Vec<u32>>,
     /// Rebuild the chosen template with the greedy exclusion of candidate rows
     /// ([`super::exclude`]) and keep it when it has fewer rows. On by default.
     pub exclude_monomials: bool,
@@ -77,6 +83,7 @@ impl Default for TemplateOptions {
             basis_selection: true,
             alternative_bases: true,
             weighted_orders: 32,
+            weights: Vec::new(),
             exclude_monomials: true,
             reduce_equations: true,
             seed: 2024,

@@ -60,6 +60,16 @@ pub(crate) fn best_template_within(
 ) -> Result<(BuiltTemplate, PerAction), TemplateError> {
     let (eqs, basis, gb) = (&analysis.equations, &analysis.basis, &analysis.groebner);
     let nvars = basis.first().map(|b| b.nvars()).unwrap_or(0);
+    if let Some(w) = opts
+        .weights
+        .iter()
+        .find(|w| w.len() != nvars || w.contains(&0))
+    {
+        return Err(TemplateError::Weights {
+            unknowns: nvars,
+            weights: w.clone(),
+        });
+    }
     // Hidden variables (of `nonzero`) are not actions: they are not read out.
     let visible = nvars - opts.hidden_vars.min(nvars);
     let random = || {
@@ -94,8 +104,17 @@ pub(crate) fn best_template_within(
             all.extend(search_actions(eqs, basis, gb, opts, deadline, &random()));
         }
         let mut work = 0u64;
-        let starts =
-            try_alternative_bases(eqs, &bases, visible, opts, deadline, &mut work, &mut all);
+        let distinct_of = |a: &Action| is_squarefree::<P1>(&nf_action_charpoly::<P1>(gb, basis, a));
+        let starts = try_alternative_bases(
+            eqs,
+            &bases,
+            visible,
+            opts,
+            deadline,
+            &distinct_of,
+            &mut work,
+            &mut all,
+        );
         climb_weights(
             eqs, basis, &bases, starts, visible, opts, deadline, &mut work, &mut all,
         );
@@ -303,9 +322,10 @@ struct AlternativeBasis {
 /// The standard bases of other monomial orders, each from a Gröbner basis of the
 /// equations on the analysis instance: grevlex under the variable orders of
 /// [`super::select::basis_orders`] other than the identity (the visible variables permuted,
-/// hidden ones last), then the weighted orders of [`weight_vectors`]. Bases equal to
-/// `basis` or to an earlier one, or of another size, are left out. Stops when the budget
-/// runs out.
+/// hidden ones last), then the weighted orders: `opts.weights`, the grid of
+/// [`ones_and_twos`] and the sample of [`sampled_weights`]. Bases equal to `basis` or to an
+/// earlier one (except those of `opts.weights`), or of another size, are left out. Stops
+/// when the budget runs out.
 fn alternative_bases<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     basis: &[Monomial],
@@ -316,11 +336,13 @@ fn alternative_bases<const P: u32>(
     let nvars = basis.first().map_or(0, Monomial::nvars);
     let mut seen: Vec<Vec<Monomial>> = vec![sorted(basis.to_vec())];
     let mut out = Vec::new();
-    let mut keep = |label: String, b: Vec<Monomial>, weights: Vec<u32>| {
+    let mut keep = |label: String, b: Vec<Monomial>, weights: Vec<u32>, always: bool| {
         let b = sorted(b);
         let new = b.len() == basis.len() && !seen.contains(&b);
         if new {
             seen.push(b.clone());
+        }
+        if new || (always && b.len() == basis.len()) {
             out.push(AlternativeBasis {
                 label,
                 basis: b,
@@ -329,6 +351,15 @@ fn alternative_bases<const P: u32>(
         }
         new
     };
+    // The orders the caller asked for first, each kept: their pools' grading is theirs.
+    for weights in &opts.weights {
+        if deadline.check_time().is_err() {
+            return out;
+        }
+        if let Some(b) = weighted_basis(eqs, nvars, weights, deadline) {
+            keep(weighted_label(weights), b, weights.clone(), true);
+        }
+    }
     for order in basis_orders(visible).into_iter().skip(1) {
         let BasisOrder::Grevlex(perm) = &order else {
             continue;
@@ -367,6 +398,7 @@ fn alternative_bases<const P: u32>(
             format!("standard monomials ({})", order.describe(&[])),
             b,
             Vec::new(),
+            false,
         );
     }
     // The grid of 1s and 2s (small problems), then a sample; a Gröbner basis for each
@@ -383,7 +415,7 @@ fn alternative_bases<const P: u32>(
             break;
         }
         if let Some(b) = weighted_basis(eqs, nvars, &weights, deadline) {
-            kept += usize::from(keep(weighted_label(&weights), b, weights));
+            kept += usize::from(keep(weighted_label(&weights), b, weights, false));
         }
     }
     out
@@ -477,22 +509,42 @@ fn sorted(mut b: Vec<Monomial>) -> Vec<Monomial> {
 }
 
 /// Replaces each action's template by the smallest one built on an alternative standard
-/// basis, where that is smaller (actions without a template keep their error). Returns
-/// the [`CLIMB_STARTS`] smallest templates built on weighted orders, with the index of
-/// their action in `all`, smallest first: where [`climb_weights`] starts.
+/// basis, where that is smaller. An action without a template on the standard basis (an
+/// unknown that basis cannot read off, say) is tried too, against the smallest template of
+/// the other actions, and gets the first template found; `distinct_of` tells whether its
+/// action matrix has distinct eigenvalues. Returns the [`CLIMB_STARTS`] smallest templates
+/// built on weighted orders, with the index of their action in `all`, smallest first:
+/// where [`climb_weights`] starts.
+#[allow(clippy::too_many_arguments)]
 fn try_alternative_bases<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     bases: &[AlternativeBasis],
     visible: usize,
     opts: &TemplateOptions,
     deadline: &Deadline,
+    distinct_of: &dyn Fn(&Action) -> bool,
     work: &mut u64,
     all: &mut PerAction,
 ) -> Vec<(usize, BuiltTemplate)> {
     let mut starts: Vec<(usize, BuiltTemplate)> = Vec::new();
+    let Some(smallest) = all
+        .iter()
+        .filter_map(|(_, r)| r.as_ref().ok())
+        .min_by_key(|b| area(b))
+        .cloned()
+    else {
+        return starts;
+    };
+    let distinct: Vec<bool> = all
+        .iter()
+        .map(|(a, r)| {
+            r.as_ref()
+                .map_or_else(|_| distinct_of(a), |b| b.distinct_eigenvalues)
+        })
+        .collect();
     'bases: for alt in bases {
         for (k, (action, result)) in all.iter_mut().enumerate() {
-            let Ok(current) = result else { continue };
+            let current = result.as_ref().unwrap_or(&smallest);
             if deadline.check_time().is_err() {
                 break 'bases;
             }
@@ -511,13 +563,20 @@ fn try_alternative_bases<const P: u32>(
                     &alt.weights,
                 ),
             );
-            let distinct = current.distinct_eigenvalues;
-            let r = build_template(eqs, &alt.basis, &alt.label, action, &search, distinct, opts);
+            let r = build_template(
+                eqs,
+                &alt.basis,
+                &alt.label,
+                action,
+                &search,
+                distinct[k],
+                opts,
+            );
             if let Ok(t) = r {
                 if !t.pool_weights.is_empty() {
                     remember_start(&mut starts, k, &t);
                 }
-                if area(&t) < area(current) {
+                if result.as_ref().map_or(true, |c| area(&t) < area(c)) {
                     *result = Ok(t);
                 }
             }

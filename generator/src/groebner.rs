@@ -26,6 +26,10 @@ use thiserror::Error;
 
 /// Largest number of variables the packed representation supports.
 pub const MAX_VARS: usize = 15;
+
+/// The largest weight of a weighted order ([`GroebnerOptions::weights`]): weighted degrees
+/// stay small integers.
+pub const MAX_WEIGHT: u32 = 64;
 /// Largest exponent the packed representation supports.
 pub const MAX_EXPONENT: u32 = 127;
 /// Largest total degree the packed representation supports (products of two monomials
@@ -71,8 +75,11 @@ pub enum GroebnerError {
         /// Milliseconds spent on this basis.
         millis: u64,
     },
-    /// The weights of a weighted order are not one positive weight per variable.
-    #[error("weights {got:?} for {nvars} variables: one positive weight per variable")]
+    /// The weights of a weighted order are not one weight from 1 to [`MAX_WEIGHT`] per
+    /// variable.
+    #[error(
+        "weights {got:?} for {nvars} variables: one weight from 1 to {MAX_WEIGHT} per variable"
+    )]
     Weights {
         /// The weights given.
         got: Vec<u32>,
@@ -198,6 +205,11 @@ impl Ord for Mon {
     fn cmp(&self, other: &Self) -> Ordering {
         (self.wdeg, self.key).cmp(&(other.wdeg, other.key))
     }
+}
+
+/// Whether `weights` has one weight from 1 to [`MAX_WEIGHT`] for each of `nvars` variables.
+pub fn weights_fit(weights: &[u32], nvars: usize) -> bool {
+    weights.len() == nvars && weights.iter().all(|w| (1..=MAX_WEIGHT).contains(w))
 }
 
 /// `sum_i weights[i] * e[i]`; empty weights are all 1 (the total degree).
@@ -404,7 +416,7 @@ pub fn groebner_with<const P: u32>(
     } else {
         &opts.weights
     };
-    if !weights.is_empty() && (weights.len() != nvars || weights.contains(&0)) {
+    if !weights.is_empty() && !weights_fit(weights, nvars) {
         return Err(GroebnerError::Weights {
             got: weights.to_vec(),
             nvars,

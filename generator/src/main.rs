@@ -172,8 +172,9 @@ struct SearchArgs {
 #[derive(Clone, Debug)]
 struct WeightVector(Vec<u32>);
 
-/// `--weights`: comma-separated integers from 1 to [`MAX_WEIGHT`].
+/// `--weights`: comma-separated integers from 1 to [`mingen::groebner::MAX_WEIGHT`].
 fn weight_vector(s: &str) -> Result<WeightVector, String> {
+    use mingen::groebner::MAX_WEIGHT;
     let bad = || format!("expected comma-separated integers from 1 to {MAX_WEIGHT}, found '{s}'");
     s.split(',')
         .map(|w| match w.trim().parse::<u32>() {
@@ -183,9 +184,6 @@ fn weight_vector(s: &str) -> Result<WeightVector, String> {
         .collect::<Result<Vec<u32>, String>>()
         .map(WeightVector)
 }
-
-/// The largest weight `--weights` takes: weighted degrees stay small integers.
-const MAX_WEIGHT: u32 = 64;
 
 impl SearchArgs {
     fn options(&self) -> Result<TemplateOptions, CliError> {

@@ -14,7 +14,8 @@ pub enum TemplateError {
     /// Counting solutions failed.
     #[error(transparent)]
     Analysis(#[from] AnalysisError),
-    /// A Gröbner basis computation failed (during validation).
+    /// A Gröbner basis computation failed (during validation), or a weighted order of
+    /// [`super::TemplateOptions::weights`] is not one the computation takes.
     #[error(transparent)]
     Groebner(#[from] GroebnerError),
     /// No candidate set up to the degree bound makes every reducible monomial reducible.
@@ -74,15 +75,6 @@ pub enum TemplateError {
     /// [`super::EquationReduction`] plans.
     #[error("equation reduction: {0}")]
     Reduction(#[from] ReductionError),
-    /// A weight vector of [`super::TemplateOptions::weights`] does not have one positive
-    /// weight per unknown.
-    #[error("weights {weights:?}: expected {unknowns} positive weights, one per unknown")]
-    Weights {
-        /// Unknowns of the system.
-        unknowns: usize,
-        /// The vector given.
-        weights: Vec<u32>,
-    },
     /// No action variable was given or none works.
     #[error("no usable action variable: {0}")]
     NoAction(String),

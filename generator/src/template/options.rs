@@ -44,9 +44,10 @@ pub struct TemplateOptions {
     /// pools graded by the same weights; see [`super::search`]); 32 by default, 0 turns
     /// weighted orders off.
     pub weighted_orders: usize,
-    /// Weight vectors whose weighted orders are tried before all others (one positive
-    /// weight per unknown of the system the template is built for, in variable order, as
-    /// `inspect` lists them): an order known to be good, from a paper say. Their templates
+    /// Weight vectors whose weighted orders are tried before all others (one weight from 1
+    /// to [`crate::groebner::MAX_WEIGHT`] per unknown of the system the template is built
+    /// for, in variable order, as `inspect` lists them; others are an error): an order
+    /// known to be good, from a paper say. Their templates
     /// are built even where their standard basis is one seen before, since the candidate
     /// pools are graded by the weights. Empty by default.
     pub weights: Vec<Vec<u32>>,

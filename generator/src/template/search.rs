@@ -19,7 +19,7 @@ use crate::algebra::MonomialOrder;
 use crate::algebra::{Fp, Monomial, Poly, P1};
 use crate::budget::Deadline;
 use crate::groebner::GroebnerBasis;
-use crate::groebner::{groebner_with, GroebnerOptions};
+use crate::groebner::{groebner_with, weights_fit, GroebnerError, GroebnerOptions};
 use crate::quotient::{standard_monomials, Analysis};
 
 /// Every action's result: `(action, template or why none)`.
@@ -60,15 +60,12 @@ pub(crate) fn best_template_within(
 ) -> Result<(BuiltTemplate, PerAction), TemplateError> {
     let (eqs, basis, gb) = (&analysis.equations, &analysis.basis, &analysis.groebner);
     let nvars = basis.first().map(|b| b.nvars()).unwrap_or(0);
-    if let Some(w) = opts
-        .weights
-        .iter()
-        .find(|w| w.len() != nvars || w.contains(&0))
-    {
-        return Err(TemplateError::Weights {
-            unknowns: nvars,
-            weights: w.clone(),
-        });
+    if let Some(w) = opts.weights.iter().find(|w| !weights_fit(w, nvars)) {
+        return Err(GroebnerError::Weights {
+            got: w.clone(),
+            nvars,
+        }
+        .into());
     }
     // Hidden variables (of `nonzero`) are not actions: they are not read out.
     let visible = nvars - opts.hidden_vars.min(nvars);
@@ -527,6 +524,9 @@ fn try_alternative_bases<const P: u32>(
     all: &mut PerAction,
 ) -> Vec<(usize, BuiltTemplate)> {
     let mut starts: Vec<(usize, BuiltTemplate)> = Vec::new();
+    if bases.is_empty() {
+        return starts;
+    }
     let Some(smallest) = all
         .iter()
         .filter_map(|(_, r)| r.as_ref().ok())

@@ -49,8 +49,14 @@ def markdown(rows):
         return "—" if x is None else f"{x:.2f}"
     head = ["problem", "unknowns", "solutions", "template", "published", "area / std",
             "area / std whole",
-            "area / best", "audit: median / p99 log10 residual / failures", "seconds"]
+            "area / best", "audit: median / p99 log10 residual / failures",
+            "before polishing", "seconds"]
     out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    def audit(a, figures):
+        if a is None or figures is None:
+            return "—"
+        return (f"{figures['median_log10_residual']:.2f} / {figures['p99_log10_residual']:.2f}"
+                f" / {figures['failures']} of {a['instances']}")
     for r in rows:
         a = r["audit"]
         unknowns = ", ".join(r["unknowns"])
@@ -62,7 +68,7 @@ def markdown(rows):
             size_text(r) or "none",
             r["published"] or "—", ratio(r["area_over_std"]),
             ratio(r["area_over_std_whole"]), ratio(r["area_over_best"]),
-            "—" if a is None else f"{a['median_log10_residual']:.2f} / {a['p99_log10_residual']:.2f} / {a['failures']} of {a['instances']}",
+            audit(a, a), audit(a, a and a.get("unpolished")),
             f"{r['seconds']:.2f}",
         ]
         out.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")

@@ -108,6 +108,22 @@ pub struct AuditReport {
     pub mean_real_solutions: f64,
     /// Recovery of the planted solutions, if the instances came with them.
     pub planted: Option<PlantedStats>,
+    /// The same residual figures before Gauss-Newton polishing (what the action matrix
+    /// alone gives), if the solver polishes (`newton_steps > 0`).
+    pub unpolished: Option<UnpolishedStats>,
+}
+
+/// Residual figures of the solutions as read off the action matrix, before polishing: over
+/// the same instances and with the same definitions as [`AuditReport`]'s.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UnpolishedStats {
+    /// Median log10 of the worst normalised residual, see
+    /// [`AuditReport::median_log10_residual`].
+    pub median_log10_residual: f64,
+    /// 99th percentile (nearest rank) of the same.
+    pub p99_log10_residual: f64,
+    /// Failures counted as [`AuditReport::failures`] are, on the unpolished residuals.
+    pub failures: usize,
 }
 
 /// Recovery of planted solutions ([`AuditInstance::planted`]). The error of one instance is
@@ -199,6 +215,8 @@ fn worst_residual(equations: &[Poly<f64>], s: &[f64]) -> f64 {
 struct Outcome {
     /// log10 of the worst residual over the real solutions (clamped), `None` without any.
     log10_residual: Option<f64>,
+    /// The same before polishing.
+    log10_unpolished: Option<f64>,
     /// Real solutions returned.
     real: usize,
     /// Real eigenpairs that gave no solution (rejected read-out or no eliminated unknowns).
@@ -212,6 +230,7 @@ struct Outcome {
 fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<Outcome> {
     let solved = solve_template(template, &inst.equations).ok()?;
     let mut worst: Option<f64> = None;
+    let mut worst_unpolished: Option<f64> = None;
     let mut real = 0;
     let mut returned = Vec::new();
     for s in &solved.solutions {
@@ -235,12 +254,21 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
                 full
             }
         };
+        let residual = |x: &[f64]| {
+            let r = worst_residual(&inst.original, x);
+            if r.is_nan() {
+                f64::INFINITY
+            } else {
+                r
+            }
+        };
+        let r = residual(&full);
+        worst_unpolished = Some(worst_unpolished.map_or(r, |w| w.max(r)));
         if inst.newton_steps > 0 {
             newton_polish_polys(&inst.original, &mut full, inst.newton_steps);
         }
         real += 1;
-        let r = worst_residual(&inst.original, &full);
-        let r = if r.is_nan() { f64::INFINITY } else { r };
+        let r = residual(&full);
         worst = Some(worst.map_or(r, |w| w.max(r)));
         returned.push(full);
     }
@@ -252,6 +280,7 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
         .map_or(&[][..], |e| e.positions.as_slice());
     Some(Outcome {
         log10_residual: worst.map(clamped_log10),
+        log10_unpolished: worst_unpolished.map(clamped_log10),
         real,
         missed: solved.eigenpairs - real,
         planted_error: inst
@@ -283,17 +312,23 @@ pub fn audit(
     let mut rng = ChaCha8Rng::seed_from_u64(opts.seed);
     let instances = opts.instances.min(MAX_INSTANCES);
     let mut logs = Vec::with_capacity(instances);
+    let mut unpolished_logs = Vec::with_capacity(instances);
+    let mut unpolished_failures = 0;
+    let mut polishes = false;
     let (mut failures, mut solve_errors, mut missed, mut no_real) = (0, 0, 0, 0);
     let (mut real_total, mut solved) = (0usize, 0usize);
     let mut planted_logs = Vec::new();
     for _ in 0..instances {
         let inst = make_instance(&mut rng);
+        polishes |= inst.newton_steps > 0;
         let has_planted = inst.planted.is_some();
         match run_instance(template, &inst) {
             None => {
                 solve_errors += 1;
                 failures += 1;
+                unpolished_failures += 1;
                 logs.push(LOG10_CEIL);
+                unpolished_logs.push(LOG10_CEIL);
                 if has_planted {
                     planted_logs.push(LOG10_CEIL);
                 }
@@ -308,12 +343,14 @@ pub fn audit(
                 if miss {
                     missed += 1;
                 }
-                let bad = o
-                    .log10_residual
-                    .is_some_and(|lg| lg > FAILURE_RESIDUAL.log10());
-                if miss || bad {
+                let bad = |lg: Option<f64>| lg.is_some_and(|lg| lg > FAILURE_RESIDUAL.log10());
+                if miss || bad(o.log10_residual) {
                     failures += 1;
                 }
+                if miss || bad(o.log10_unpolished) {
+                    unpolished_failures += 1;
+                }
+                unpolished_logs.extend(o.log10_unpolished);
                 match o.log10_residual {
                     Some(lg) => logs.push(lg),
                     None => no_real += 1,
@@ -322,6 +359,7 @@ pub fn audit(
         }
     }
     logs.sort_by(f64::total_cmp);
+    unpolished_logs.sort_by(f64::total_cmp);
     planted_logs.sort_by(f64::total_cmp);
     let planted = (!planted_logs.is_empty()).then(|| PlantedStats {
         instances: planted_logs.len(),
@@ -348,6 +386,11 @@ pub fn audit(
             0.0
         },
         planted,
+        unpolished: polishes.then(|| UnpolishedStats {
+            median_log10_residual: median(&unpolished_logs),
+            p99_log10_residual: quantile(&unpolished_logs, 0.99),
+            failures: unpolished_failures,
+        }),
     }
 }
 
@@ -391,8 +434,10 @@ impl AuditReport {
     /// `p99_log10_residual`, `failures`, `histogram` (a list of
     /// `{"lower_edge": e, "count": n}` for the bins `[e, e + 1)` of log10 residual), plus
     /// `solutions_expected`, `solve_errors`, `missed_solutions`, `no_real_solutions`,
-    /// `mean_real_solutions`, and `planted` (`null`, or `{"instances", "recovered",
-    /// "median_log10_error", "p99_log10_error"}`, see [`PlantedStats`]).
+    /// `mean_real_solutions`, `planted` (`null`, or `{"instances", "recovered",
+    /// "median_log10_error", "p99_log10_error"}`, see [`PlantedStats`]) and `unpolished`
+    /// (`null`, or `{"median_log10_residual", "p99_log10_residual", "failures"}` before
+    /// polishing, see [`UnpolishedStats`]).
     pub fn to_json(&self) -> serde_json::Value {
         serde_json::json!({
             "instances": self.instances,
@@ -414,6 +459,11 @@ impl AuditReport {
                 "recovered": p.recovered,
                 "median_log10_error": p.median_log10_error,
                 "p99_log10_error": p.p99_log10_error,
+            })),
+            "unpolished": self.unpolished.as_ref().map(|u| serde_json::json!({
+                "median_log10_residual": u.median_log10_residual,
+                "p99_log10_residual": u.p99_log10_residual,
+                "failures": u.failures,
             })),
         })
     }
@@ -454,6 +504,13 @@ impl fmt::Display for AuditReport {
             "failures:               {} ({pct:.2} %; {} unsolved, {} with missed solutions)",
             self.failures, self.solve_errors, self.missed_solutions
         )?;
+        if let Some(u) = &self.unpolished {
+            writeln!(
+                f,
+                "before polishing:       median {:.2}, p99 {:.2}, {} failures",
+                u.median_log10_residual, u.p99_log10_residual, u.failures
+            )?;
+        }
         if let Some(p) = &self.planted {
             writeln!(
                 f,
@@ -546,7 +603,7 @@ fn plan_instance(plan: &SolverPlan, data: &[f64]) -> AuditInstance {
             positions: e.eliminated,
             inhomogeneous: e.inhomogeneous,
         }),
-        newton_steps: plan.problem.layout.options.newton.unwrap_or(0) as usize,
+        newton_steps: plan.problem.layout.options.newton_steps() as usize,
         planted: None,
     }
 }

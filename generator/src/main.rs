@@ -142,7 +142,7 @@ struct SearchArgs {
     #[arg(long, value_name = "standard|selected", value_parser = ["standard", "selected"])]
     basis: Option<String>,
     /// Gauss-Newton steps polishing every solution on the original equations (0 to 8;
-    /// default: the file's `option newton`, else 0).
+    /// default: the file's `option newton`, else 2).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=8))]
     newton: Option<u32>,
     /// Solve unknowns from affine equations and substitute them, or else eliminate the
@@ -637,7 +637,7 @@ fn audit(
     let (rows, cols) = plan.generated.built.template.eliminated_size();
     // Far above rounding level without polishing: say what fixes it (Newton steps only
     // sharpen roots the action matrix found, so they are the usual remedy, not a given one).
-    let newton = plan.problem.layout.options.newton.unwrap_or(0);
+    let newton = plan.problem.layout.options.newton_steps();
     let hint = if newton == 0 && report.median_log10_residual > -11.0 {
         format!(
             "hint: the median residual is far above rounding level; Gauss-Newton polishing \

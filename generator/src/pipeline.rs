@@ -603,13 +603,13 @@ pub fn emit_plan_in(
     let tracer = Tracer::new();
     let data = tracer.inputs(layout.data_slot_count());
     let (equations, elimination) = plan.equations(&data);
-    let polish = match layout.options.newton {
-        Some(steps) if steps > 0 => Some(PolishSpec {
+    let polish = match layout.options.newton_steps() {
+        0 => None,
+        steps => Some(PolishSpec {
             steps: steps as usize,
             equations: plan.visible_equations(&data),
             unknowns: plan.visible_unknowns(),
         }),
-        _ => None,
     };
     let spec = SolverSpec {
         layout: layout.clone(),

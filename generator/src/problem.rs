@@ -180,6 +180,15 @@ pub struct UnknownSymbol {
     pub hidden: bool,
 }
 
+/// Gauss-Newton steps an emitted solver polishes each solution with when the problem file
+/// does not say (`option newton`). Solutions read off an action matrix are as accurate as
+/// the template's elimination, which on larger templates leaves some far above rounding
+/// level; a step roughly squares the error of a simple root, two bring such solutions to
+/// rounding level, and a solution already there costs one evaluation of the equations
+/// (`mingen_runtime::AT_ROUNDING_LEVEL`). `option newton = 0` turns it off (a caller that
+/// refines every hypothesis itself, as rspose's RANSAC does).
+pub const DEFAULT_NEWTON_STEPS: u32 = 2;
+
 /// Template-search options given in the problem file (`option NAME = VALUE`); the
 /// command line overrides them.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -191,11 +200,10 @@ pub struct ProblemOptions {
     /// `option basis = standard` (grevlex standard monomials only) or `selected` (also
     /// bases selected among the template's columns, the default).
     pub basis: Option<String>,
-    /// `option newton = N` (0 to 8, default 0): Gauss-Newton steps polishing every solution
-    /// on the problem's original equations (eliminated unknowns included), each step kept
-    /// only if it lowers their squared residual. For problems whose action matrix is too
-    /// inaccurate on its own (`mingen audit` shows it); it costs a few evaluations of the
-    /// equations and their gradients per solution and step.
+    /// `option newton = N` (0 to 8, default [`DEFAULT_NEWTON_STEPS`]): Gauss-Newton steps
+    /// polishing every solution on the problem's original equations (eliminated unknowns
+    /// included), each step kept only if it lowers their squared residual, none once the
+    /// residual is at rounding level. Read it through [`ProblemOptions::newton_steps`].
     pub newton: Option<u32>,
     /// `option auto_eliminate = yes|no` (default yes): whether planning, when the file
     /// eliminates nothing and the solution count stays the same, solves unknowns from
@@ -211,6 +219,13 @@ pub struct ProblemOptions {
     /// weighted monomial orders the template search samples for other quotient bases (0:
     /// none); more can find smaller templates at the cost of planning time.
     pub weighted_orders: Option<usize>,
+}
+
+impl ProblemOptions {
+    /// The Gauss-Newton steps of `option newton`, [`DEFAULT_NEWTON_STEPS`] if not given.
+    pub fn newton_steps(&self) -> u32 {
+        self.newton.unwrap_or(DEFAULT_NEWTON_STEPS)
+    }
 }
 
 /// The most weighted orders `option weighted_orders` may ask for.

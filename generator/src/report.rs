@@ -279,6 +279,11 @@ impl ReportRow {
                 "median_log10_residual": a.median_log10_residual,
                 "p99_log10_residual": a.p99_log10_residual,
                 "failures": a.failures,
+                "unpolished": a.unpolished.as_ref().map(|u| json!({
+                    "median_log10_residual": u.median_log10_residual,
+                    "p99_log10_residual": u.p99_log10_residual,
+                    "failures": u.failures,
+                })),
             })),
             "seconds": self.seconds,
             "error": self.error,
@@ -331,6 +336,15 @@ impl ReportRow {
                     a.median_log10_residual, a.p99_log10_residual, a.failures, a.instances
                 )
             }),
+            self.audit
+                .as_ref()
+                .and_then(|a| Some((a, a.unpolished.as_ref()?)))
+                .map_or_else(dash, |(a, u)| {
+                    format!(
+                        "{:.2} / {:.2} / {} of {}",
+                        u.median_log10_residual, u.p99_log10_residual, u.failures, a.instances
+                    )
+                }),
             format!("{:.2}", self.seconds),
         ]
     }
@@ -355,6 +369,7 @@ pub fn to_markdown(rows: &[ReportRow]) -> String {
         "area / best",
         "action",
         "audit: median / p99 log10 residual / failures",
+        "before polishing",
         "seconds",
     ];
     let mut out = format!("| {} |\n", header.join(" | "));

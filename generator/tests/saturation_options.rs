@@ -152,15 +152,21 @@ fn an_exhausted_budget_is_a_clear_error() {
 #[test]
 fn newton_polishes_solutions_in_the_audit_and_the_emitted_solver() {
     // A circle and a hyperbola (4 solutions): polishing may only lower the residuals, and
-    // the emitted solver carries the steps.
+    // the emitted solver carries the steps; by default (no `option newton`) it polishes
+    // with DEFAULT_NEWTON_STEPS, `option newton = 0` turns it off.
     let src = "problem c\nunknown x, y\ndata a: scalar, b: scalar\nx*x + y*y = a\nx*y = b\n";
-    let plain = planned(src, &TemplateOptions::default()).unwrap();
-    let polished = planned(
-        &format!("{src}option newton = 2\n"),
+    let plain = planned(
+        &format!("{src}option newton = 0\n"),
         &TemplateOptions::default(),
     )
     .unwrap();
-    assert_eq!(polished.problem.layout.options.newton, Some(2));
+    let polished = planned(src, &TemplateOptions::default()).unwrap();
+    assert_eq!(polished.problem.layout.options.newton, None);
+    assert_eq!(
+        polished.problem.layout.options.newton_steps(),
+        mingen::problem::DEFAULT_NEWTON_STEPS
+    );
+    assert_eq!(mingen::problem::DEFAULT_NEWTON_STEPS, 2);
     let audit = |p: &mingen::pipeline::SolverPlan| {
         mingen::audit::audit_plan(
             p,
@@ -176,6 +182,13 @@ fn newton_polishes_solutions_in_the_audit_and_the_emitted_solver() {
         "{a} {b}"
     );
     assert!(b.failures <= a.failures, "{a} {b}");
+    // The polished audit's figures before polishing are the unpolished audit's own (same
+    // instances); the unpolished one has none.
+    assert!(a.unpolished.is_none());
+    let before = b.unpolished.as_ref().expect("figures before polishing");
+    assert_eq!(before.median_log10_residual, a.median_log10_residual);
+    assert_eq!(before.p99_log10_residual, a.p99_log10_residual);
+    assert_eq!(before.failures, a.failures);
     let source = mingen::pipeline::emit_plan(&polished).unwrap();
     assert!(source.contains("newton_polish(&mut x, &NEWTON_TERMS, &newton_c, 2)"));
     assert!(!mingen::pipeline::emit_plan(&plain)

@@ -1,19 +1,21 @@
 //! Entry points whose sizes are known at run time only (the interpreter behind
-//! `mingen audit`): they dispatch to the const-generic functions the emitted solvers
-//! call, instantiated at the template's size, so both run the same code on the same
-//! matrix. Unlike the fixed-size functions these allocate their result.
+//! `mingen audit`): the same numerics as the functions the emitted solvers call, on the
+//! same matrix. Up to [`STURM_MAX_BASIS`] they dispatch to the const-generic Sturm back end
+//! instantiated at the matrix's size; above it the QR back end runs on the heap at any size
+//! ([`real_eigenpairs_hqr_dyn`], which the fixed-size [`super::real_eigenpairs_hqr`] runs
+//! too). Unlike the fixed-size functions these allocate their result.
 
-use super::{real_eigenpairs_hqr, real_eigenpairs_sturm};
+use super::{real_eigenpairs_hqr_dyn, real_eigenpairs_sturm};
 use nalgebra::SMatrix;
 
 /// Action matrices up to this size use the characteristic-polynomial / Sturm eigen back
 /// end ([`real_eigenpairs_sturm`]), larger ones Francis QR with exceptional shifts
-/// ([`real_eigenpairs_hqr`]). The emitter and [`real_eigenpairs_dyn`] both decide by it.
+/// ([`super::real_eigenpairs_hqr`]). The emitter and [`real_eigenpairs_dyn`] both decide by it.
 pub const STURM_MAX_BASIS: usize = 20;
 
-/// Largest action matrix [`real_eigenpairs_dyn`] accepts: each size is a separate
-/// instantiation of the eigen back end, compiled into every crate that calls it.
-pub const MAX_DYNAMIC_BASIS: usize = 128;
+/// Largest action matrix [`real_eigenpairs_dyn`] accepts: a bound on its memory (a few
+/// `n x n` matrices of f64) and time (O(n^3)), far above any template the search finishes.
+pub const MAX_DYNAMIC_BASIS: usize = 1024;
 
 /// One real eigenpair: eigenvalue and unit eigenvector.
 pub type DynEigenpair = (f64, Vec<f64>);
@@ -21,42 +23,29 @@ pub type DynEigenpair = (f64, Vec<f64>);
 /// The real eigenpairs of the `n x n` matrix stored column-major in `a` (nalgebra's
 /// layout, `a.len() == n * n`), computed by the back end an emitted solver of that size
 /// uses ([`real_eigenpairs_sturm`] up to [`STURM_MAX_BASIS`], else
-/// [`real_eigenpairs_hqr`]) and in the same order. `None` if `a.len() != n * n` or
-/// `n > MAX_DYNAMIC_BASIS`; otherwise the contract of those functions (empty for
-/// non-finite or zero input). Never panics.
+/// [`super::real_eigenpairs_hqr`]) and in the same order, bit for bit. `None` if
+/// `a.len() != n * n` or `n > MAX_DYNAMIC_BASIS`; otherwise the contract of those functions
+/// (empty for non-finite or zero input). Never panics.
 pub fn real_eigenpairs_dyn(a: &[f64], n: usize) -> Option<Vec<DynEigenpair>> {
-    if n.checked_mul(n) != Some(a.len()) {
+    if n.checked_mul(n) != Some(a.len()) || n > MAX_DYNAMIC_BASIS {
         return None;
     }
     macro_rules! dispatch {
-        ($($sturm:literal)*; $($hqr:literal)*) => {
+        ($($sturm:literal)*) => {
             match n {
                 0 => Some(Vec::new()),
-                $($sturm => Some(at_size::<$sturm>(a, true)),)*
-                $($hqr => Some(at_size::<$hqr>(a, false)),)*
-                _ => None,
+                $($sturm => Some(sturm_at_size::<$sturm>(a)),)*
+                _ => Some(real_eigenpairs_hqr_dyn(a, n)),
             }
         };
     }
-    dispatch!(
-        1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20;
-        21 22 23 24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42
-        43 44 45 46 47 48 49 50 51 52 53 54 55 56 57 58 59 60 61 62 63 64
-        65 66 67 68 69 70 71 72 73 74 75 76 77 78 79 80 81 82 83 84 85 86 87 88 89 90 91
-        92 93 94 95 96 97 98 99 100 101 102 103 104 105 106 107 108 109 110 111 112 113
-        114 115 116 117 118 119 120 121 122 123 124 125 126 127 128
-    )
+    dispatch!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20)
 }
 
-/// [`real_eigenpairs_dyn`] at the constant size `N`.
-fn at_size<const N: usize>(a: &[f64], sturm: bool) -> Vec<DynEigenpair> {
+/// [`real_eigenpairs_sturm`] at the constant size `N`.
+fn sturm_at_size<const N: usize>(a: &[f64]) -> Vec<DynEigenpair> {
     let m = SMatrix::<f64, N, N>::from_column_slice(a);
-    let pairs = if sturm {
-        real_eigenpairs_sturm(&m)
-    } else {
-        real_eigenpairs_hqr(&m)
-    };
-    pairs
+    real_eigenpairs_sturm(&m)
         .iter()
         .map(|(lam, v)| (*lam, v.iter().copied().collect()))
         .collect()
@@ -65,6 +54,7 @@ fn at_size<const N: usize>(a: &[f64], sturm: bool) -> Vec<DynEigenpair> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::real_eigenpairs_hqr;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
@@ -100,9 +90,50 @@ mod tests {
     #[test]
     fn rejects_bad_shapes() {
         assert!(real_eigenpairs_dyn(&[1.0; 5], 2).is_none());
-        assert!(real_eigenpairs_dyn(&[1.0; 129 * 129], 129).is_none());
+        let n = MAX_DYNAMIC_BASIS + 1;
+        assert!(real_eigenpairs_dyn(&vec![1.0; n * n], n).is_none());
         assert!(real_eigenpairs_dyn(&[], usize::MAX).is_none());
         assert_eq!(real_eigenpairs_dyn(&[], 0), Some(Vec::new()));
         assert!(real_eigenpairs_dyn(&[f64::NAN; 9], 3).unwrap().is_empty());
+        assert!(real_eigenpairs_dyn(&[f64::NAN; 900], 30)
+            .unwrap()
+            .is_empty());
+    }
+
+    /// Above any fixed size the emitted solvers are instantiated at, the pairs are still
+    /// eigenpairs: a matrix with known real spectrum 1..=n (similar to a diagonal one by a
+    /// well-conditioned `S`) of side 150.
+    #[test]
+    fn large_sizes_are_solved() {
+        let n = 150;
+        let mut rng = ChaCha8Rng::seed_from_u64(6);
+        let s = nalgebra::DMatrix::<f64>::from_fn(n, n, |i, j| {
+            f64::from(u8::from(i == j)) * 4.0 + rng.gen_range(-0.1..0.1)
+        });
+        let si = s.clone().try_inverse().expect("S is invertible");
+        let d = nalgebra::DMatrix::<f64>::from_fn(
+            n,
+            n,
+            |i, j| {
+                if i == j {
+                    1.0 + i as f64
+                } else {
+                    0.0
+                }
+            },
+        );
+        let a = &s * d * si;
+        let pairs = real_eigenpairs_dyn(a.as_slice(), n).expect("within MAX_DYNAMIC_BASIS");
+        assert_eq!(pairs.len(), n);
+        let mut found: Vec<f64> = pairs.iter().map(|p| p.0).collect();
+        found.sort_by(f64::total_cmp);
+        for (k, lam) in found.iter().enumerate() {
+            assert!((lam - (1.0 + k as f64)).abs() < 1e-8, "{k}: {lam}");
+        }
+        for (lam, v) in &pairs {
+            let v = nalgebra::DVector::from_column_slice(v);
+            let r = (&a * &v - &v * *lam).norm() / a.norm();
+            assert!(r < 1e-12, "residual {r:e}");
+        }
     }
 }

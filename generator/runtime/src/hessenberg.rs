@@ -1,6 +1,7 @@
-//! Upper Hessenberg form of small dense matrices and inverse iteration on it: the shared
-//! core of the eigen back ends ([`super::real_eigenpairs_sturm`],
-//! [`super::real_eigenpairs_hqr`]).
+//! Upper Hessenberg form of small dense matrices and inverse iteration on it, at a size
+//! fixed at compile time: the core of the Sturm eigen back end
+//! ([`super::real_eigenpairs_sturm`]), on the stack for its small matrices. The QR back end
+//! runs the same steps at run-time sizes on the heap ([`super::hessenberg_dyn`]).
 //!
 //! Convention: matrices are row-major `[[f64; N]; N]` (`a[i][j]`), scaled by the caller so
 //! that their norm is about 1 (the tolerances below are absolute).
@@ -44,6 +45,7 @@ impl<const N: usize> Similarity<N> {
 /// subdiagonal are set to zero; returns the similarity for the eigenvectors. A column that
 /// is already reduced costs one scan (see [`Similarity`]). The work is done on the
 /// transpose by [`hessenberg_of_columns`].
+#[cfg(test)]
 pub(super) fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) -> Similarity<N> {
     let mut cols = transpose(a);
     let s = hessenberg_of_columns(&mut cols);

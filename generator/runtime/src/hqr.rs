@@ -1,8 +1,12 @@
-//! Fast real eigenpairs of small fixed-size matrices: eigenvalues of the Hessenberg form by
-//! the Francis double-shift QR iteration (no Schur vectors accumulated), eigenvectors by
-//! inverse iteration on the Hessenberg form (O(N^2) per eigenvalue).
+//! Real eigenpairs by the Francis double-shift QR iteration: eigenvalues of the
+//! Hessenberg form (no Schur vectors accumulated), eigenvectors by inverse iteration on
+//! the Hessenberg form (O(n^2) per eigenvalue). One implementation for every size, on the
+//! heap ([`super::hessenberg_dyn`]): the fixed-size entry point [`real_eigenpairs_hqr`]
+//! of the emitted solvers and the run-time-size one of the interpreter
+//! ([`real_eigenpairs_hqr_dyn`]) compute the same bits, and a large action matrix does
+//! not live on the stack.
 
-use super::hessenberg::{balance, hessenberg, inverse_iteration, normalise};
+use super::hessenberg_dyn::{balance, hessenberg, inverse_iteration, normalise, Square};
 use super::{SolutionSet, NEAR_REAL_TOL};
 use nalgebra::{SMatrix, SVector};
 
@@ -11,30 +15,32 @@ const MAX_ITS: usize = 30;
 
 /// `H a H` with the Householder reflection `H = I - 2 u u^T / u^T u` for a fixed generic
 /// `u` (two choices, by `which`): a similarity, so the spectrum is that of `a`.
-fn reflect<const N: usize>(a: &[[f64; N]; N], which: usize) -> [[f64; N]; N] {
-    let mut u = [0.0; N];
-    for (i, x) in u.iter_mut().enumerate() {
-        *x = if which == 1 {
-            1.0 + 0.37 * i as f64 + ((i * 7919) % 13) as f64 * 0.11
-        } else {
-            ((i * 2_654_435_761) % 1009) as f64 / 1009.0 - 0.43
-        };
-    }
+fn reflect(a: &Square, which: usize) -> Square {
+    let n = a.n();
+    let u: Vec<f64> = (0..n)
+        .map(|i| {
+            if which == 1 {
+                1.0 + 0.37 * i as f64 + ((i * 7919) % 13) as f64 * 0.11
+            } else {
+                ((i * 2_654_435_761) % 1009) as f64 / 1009.0 - 0.43
+            }
+        })
+        .collect();
     let uu: f64 = u.iter().map(|x| x * x).sum();
     // H a H = a - 2/uu (u (u^T a) + (a u) u^T) + 4/uu^2 (u^T a u) u u^T.
-    let mut ua = [0.0; N]; // u^T a
-    let mut au = [0.0; N]; // a u
-    for i in 0..N {
-        for j in 0..N {
-            ua[j] += u[i] * a[i][j];
-            au[i] += a[i][j] * u[j];
+    let mut ua = vec![0.0; n]; // u^T a
+    let mut au = vec![0.0; n]; // a u
+    for i in 0..n {
+        for j in 0..n {
+            ua[j] += u[i] * a[(i, j)];
+            au[i] += a[(i, j)] * u[j];
         }
     }
-    let uau: f64 = (0..N).map(|i| u[i] * au[i]).sum();
-    let mut out = *a;
-    for i in 0..N {
-        for j in 0..N {
-            out[i][j] +=
+    let uau: f64 = (0..n).map(|i| u[i] * au[i]).sum();
+    let mut out = a.clone();
+    for i in 0..n {
+        for j in 0..n {
+            out[(i, j)] +=
                 -2.0 / uu * (u[i] * ua[j] + au[i] * u[j]) + 4.0 / (uu * uu) * uau * u[i] * u[j];
         }
     }
@@ -44,19 +50,15 @@ fn reflect<const N: usize>(a: &[[f64; N]; N], which: usize) -> [[f64; N]; N] {
 /// Eigenvalues (re, im) of an upper Hessenberg matrix (destroyed), by the Francis
 /// double-shift QR iteration (after Numerical Recipes `hqr`); returns the total number of
 /// iterations, `None` if it does not converge within [`MAX_ITS`] for some eigenvalue.
-fn hqr<const N: usize>(
-    h: &mut [[f64; N]; N],
-    wr: &mut [f64; N],
-    wi: &mut [f64; N],
-) -> Option<usize> {
+fn hqr(h: &mut Square, wr: &mut [f64], wi: &mut [f64]) -> Option<usize> {
     let mut total = 0;
     // 1-based indices as in the classic formulation; a!(i, j) is h[i-1][j-1].
     macro_rules! a {
         ($i:expr, $j:expr) => {
-            h[($i - 1) as usize][($j - 1) as usize]
+            h[(($i - 1) as usize, ($j - 1) as usize)]
         };
     }
-    let n = N as isize;
+    let n = h.n() as isize;
     let mut anorm = 0.0;
     for i in 1..=n {
         for j in (i - 1).max(1)..=n {
@@ -230,42 +232,66 @@ fn hqr<const N: usize>(
 /// eigenvalue), then each real eigenvalue's
 /// eigenvector by inverse iteration on the Hessenberg form `H - lambda I` (O(N^2) per
 /// eigenvalue; one to three steps, until the residual is at rounding level), transformed
-/// back by the similarity of the reduction. Order: as the
-/// iteration deflates them. No heap, no panic, no trait bounds beyond `N`.
+/// back by the similarity of the reduction. Order: as the iteration deflates them. The
+/// work is done by [`real_eigenpairs_hqr_dyn`] (on the heap); no panic.
 pub fn real_eigenpairs_hqr<const N: usize>(
     m: &SMatrix<f64, N, N>,
 ) -> SolutionSet<(f64, SVector<f64, N>), N> {
     let mut out = SolutionSet::filled_with((0.0, SVector::zeros()));
-    let mut a = [[0.0; N]; N];
-    let mut finite = true;
-    for (i, row) in a.iter_mut().enumerate() {
-        for (j, v) in row.iter_mut().enumerate() {
-            *v = m[(i, j)];
-            finite &= v.is_finite();
+    let mut a = Square::zeros(N);
+    for i in 0..N {
+        for j in 0..N {
+            a[(i, j)] = m[(i, j)];
         }
     }
-    if !finite || N == 0 {
+    for (lam, v) in eigenpairs(a) {
+        out.push((lam, SVector::from_iterator(v)));
+    }
+    out
+}
+
+/// [`real_eigenpairs_hqr`] for an `n x n` matrix stored column-major in `a` (nalgebra's
+/// layout, `a.len() == n * n`), of any size: the same pairs, bit for bit, in the same
+/// order. Empty if `a.len() != n * n`.
+pub fn real_eigenpairs_hqr_dyn(a: &[f64], n: usize) -> Vec<(f64, Vec<f64>)> {
+    if n.checked_mul(n) != Some(a.len()) {
+        return Vec::new();
+    }
+    let mut m = Square::zeros(n);
+    for j in 0..n {
+        for i in 0..n {
+            m[(i, j)] = a[j * n + i];
+        }
+    }
+    eigenpairs(m)
+}
+
+/// The real eigenpairs of the row-major `a` (see [`real_eigenpairs_hqr`]).
+fn eigenpairs(mut a: Square) -> Vec<(f64, Vec<f64>)> {
+    let n = a.n();
+    let mut out = Vec::new();
+    let finite = (0..n).all(|i| a.row(i).iter().all(|v| v.is_finite()));
+    if !finite || n == 0 {
         return out;
     }
     // Eigenvectors of the balanced D^-1 a D are D^-1 times a's: multiplied back by D below.
     let d = balance(&mut a);
     // Work on a / |a|_inf (norm 1: the tolerances of the inverse iteration are absolute).
-    let scale = a
-        .iter()
-        .map(|row| row.iter().map(|x| x.abs()).sum::<f64>())
+    let scale = (0..n)
+        .map(|i| a.row(i).iter().map(|x| x.abs()).sum::<f64>())
         .fold(0.0, f64::max);
     if !(scale > 0.0 && scale.is_finite()) {
         return out;
     }
     let inv = 1.0 / scale;
-    for row in a.iter_mut() {
-        for x in row.iter_mut() {
+    for i in 0..n {
+        for x in a.row_mut(i).iter_mut() {
             *x *= inv;
         }
     }
-    let mut h0 = a;
+    let mut h0 = a.clone();
     let sim = hessenberg(&mut h0);
-    let (mut wr, mut wi) = ([0.0; N], [0.0; N]);
+    let (mut wr, mut wi) = (vec![0.0; n], vec![0.0; n]);
     // The eigenvalues may come from a similar matrix (eigenvectors are computed on `h0`,
     // the Hessenberg form of `a` itself): if QR stalls, retry on `H a H` for a fixed
     // generic Householder reflection `H`, which breaks the exact structure of action
@@ -274,7 +300,7 @@ pub fn real_eigenpairs_hqr<const N: usize>(
     let mut converged = false;
     for attempt in 0..3 {
         let mut h = if attempt == 0 {
-            h0
+            h0.clone()
         } else {
             let mut r = reflect(&a, attempt);
             let _ = hessenberg(&mut r);
@@ -289,7 +315,7 @@ pub fn real_eigenpairs_hqr<const N: usize>(
         return out;
     }
     let mut k = 0;
-    while k < N {
+    while k < n {
         let lam = wr[k];
         let real = wi[k] == 0.0;
         // Relative to the eigenvalue (see `NEAR_REAL_TOL`), floored at rounding level.
@@ -301,7 +327,7 @@ pub fn real_eigenpairs_hqr<const N: usize>(
                     *x *= di;
                 }
                 if normalise(&mut v).is_some() {
-                    out.push((lam * scale, SVector::from(v)));
+                    out.push((lam * scale, v));
                 }
             }
         }

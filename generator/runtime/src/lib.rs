@@ -22,7 +22,9 @@
 //!   action matrix), by nalgebra's real Schur decomposition with an iteration cap (the
 //!   reference; not used by emitted solvers: it stalls on ±λ spectra).
 //! - [`real_eigenpairs_hqr`]: the same contract by Hessenberg reduction, Francis
-//!   double-shift QR with exceptional shifts, and inverse iteration on the Hessenberg form.
+//!   double-shift QR with exceptional shifts, and inverse iteration on the Hessenberg form,
+//!   on the heap at any size ([`real_eigenpairs_hqr_dyn`] for sizes known at run time, the
+//!   same bits).
 //! - [`real_eigenpairs_sturm`]: the same contract through balancing, Hessenberg form,
 //!   characteristic polynomial, Sturm-sequence root isolation + Newton, and per real root
 //!   the Hessenberg backward recurrence (again after a Newton step on Hyman's determinant,
@@ -55,6 +57,7 @@ mod eigen;
 mod elim;
 mod equation_reduction;
 mod hessenberg;
+mod hessenberg_dyn;
 mod hqr;
 mod newton;
 mod null;
@@ -72,8 +75,8 @@ pub use dynamic::{real_eigenpairs_dyn, DynEigenpair, MAX_DYNAMIC_BASIS, STURM_MA
 pub use eigen::{real_eigenpairs, NEAR_REAL_TOL};
 pub use elim::{gauss_jordan, lu_solve_template, lu_solve_template_fixed, PIVOT_TOL};
 pub use equation_reduction::reduce_equations;
-pub use hqr::real_eigenpairs_hqr;
-pub use newton::{newton_polish, NewtonTerm, MAX_NEWTON_UNKNOWNS};
+pub use hqr::{real_eigenpairs_hqr, real_eigenpairs_hqr_dyn};
+pub use newton::{newton_polish, NewtonTerm, AT_ROUNDING_LEVEL, MAX_NEWTON_UNKNOWNS};
 pub use null::{null_vector3, null_vector3_rows};
 pub use null_general::{dehomogenize, null_vector, null_vector_dyn};
 pub use readout::{read_linear, read_unknowns, MIN_UNIT_ENTRY};

@@ -7,7 +7,9 @@
 //! `(Σ g_i g_iᵀ) δ = −Σ f_i g_i` (Cholesky, with a relative ridge of 1e-14 on the diagonal
 //! for rank-deficient directions) and takes `x + δ` only if it lowers `Σ f_i²`; otherwise
 //! polishing stops. Near a simple root each step roughly squares the error, so the one or
-//! two steps a solution from an inaccurate action matrix needs bring it to rounding level.
+//! two steps a solution from an inaccurate action matrix needs bring it to rounding level;
+//! a solution already at rounding level ([`AT_ROUNDING_LEVEL`]) takes no step, so
+//! polishing costs an accurate solver one evaluation of its equations per solution.
 //! No heap allocation: at most [`MAX_NEWTON_UNKNOWNS`] unknowns.
 
 /// One term of an equation: the index of its coefficient and the exponent of each unknown.
@@ -64,16 +66,22 @@ fn term_factors(
     coefficients.get(c).copied()
 }
 
-/// Value of `Σ_terms c x^e`.
-fn value(terms: &[NewtonTerm<'_>], coefficients: &[f64], powers: &Powers<'_>) -> Option<f64> {
+/// Value of `Σ_terms c x^e` and its magnitude `Σ_terms |c x^e|`.
+fn value(
+    terms: &[NewtonTerm<'_>],
+    coefficients: &[f64],
+    powers: &Powers<'_>,
+) -> Option<(f64, f64)> {
     let n = powers.x.len();
     let mut factors = [0.0; MAX_NEWTON_UNKNOWNS];
-    let mut value = 0.0;
+    let (mut value, mut magnitude) = (0.0, 0.0);
     for &term in terms {
         let c = term_factors(term, coefficients, powers, &mut factors)?;
-        value += c * factors[..n].iter().product::<f64>();
+        let t = c * factors[..n].iter().product::<f64>();
+        value += t;
+        magnitude += t.abs();
     }
-    Some(value)
+    Some((value, magnitude))
 }
 
 /// Value and gradient of `Σ_terms c x^e` (gradient into `grad[..n]`): per term, the
@@ -110,19 +118,28 @@ fn value_and_gradient(
     Some(value)
 }
 
-/// `Σ_i f_i(x)²`, or `None` if an equation is malformed or a value not finite.
+/// A solution whose every equation has `|f_i| <= AT_ROUNDING_LEVEL * Σ_terms |c x^e|` is
+/// at the rounding level of evaluating the equations in f64: no step can make it more
+/// accurate, so polishing stops there (a solution from an accurate action matrix costs one
+/// evaluation of the equations, not a step).
+pub const AT_ROUNDING_LEVEL: f64 = 16.0 * f64::EPSILON;
+
+/// The sum of squares `Σ_i f_i(x)²` and whether every equation is at rounding level
+/// ([`AT_ROUNDING_LEVEL`]); `None` if an equation is malformed or a value not finite.
 fn squared_residual(
     equations: &[&[NewtonTerm<'_>]],
     coefficients: &[f64],
     x: &[f64],
-) -> Option<f64> {
+) -> Option<(f64, bool)> {
     let powers = Powers::new(x);
     let mut sum = 0.0;
+    let mut converged = true;
     for eq in equations {
-        let f = value(eq, coefficients, &powers)?;
+        let (f, magnitude) = value(eq, coefficients, &powers)?;
         sum += f * f;
+        converged &= f.abs() <= AT_ROUNDING_LEVEL * magnitude;
     }
-    sum.is_finite().then_some(sum)
+    sum.is_finite().then_some((sum, converged))
 }
 
 /// Solves `h δ = b` for the symmetric positive semi-definite `n x n` leading block of `h`
@@ -191,13 +208,13 @@ pub fn newton_polish(
     if n == 0 || n > MAX_NEWTON_UNKNOWNS || equations.len() < n {
         return 0;
     }
-    let Some(mut cost) = squared_residual(equations, coefficients, x) else {
+    let Some((mut cost, mut converged)) = squared_residual(equations, coefficients, x) else {
         return 0;
     };
     let mut taken = 0;
     let mut grad = [0.0; MAX_NEWTON_UNKNOWNS];
     for _ in 0..steps {
-        if cost == 0.0 {
+        if cost == 0.0 || converged {
             break;
         }
         let mut h = [[0.0; MAX_NEWTON_UNKNOWNS]; MAX_NEWTON_UNKNOWNS];
@@ -222,9 +239,10 @@ pub fn newton_polish(
             next[i] = x[i] + b[i];
         }
         match squared_residual(equations, coefficients, &next[..n]) {
-            Some(c) if c < cost => {
+            Some((c, at_rounding_level)) if c < cost => {
                 x.copy_from_slice(&next[..n]);
                 cost = c;
+                converged = at_rounding_level;
                 taken += 1;
             }
             _ => break,
@@ -274,7 +292,7 @@ mod tests {
         let v = value_and_gradient(&terms, &c, &powers, &mut grad).unwrap();
         let close = |p: f64, q: f64| (p - q).abs() <= 1e-14 * q.abs().max(1.0);
         assert!(close(v, f), "{v} {f}");
-        assert!(close(value(&terms, &c, &powers).unwrap(), f));
+        assert!(close(value(&terms, &c, &powers).unwrap().0, f));
         for k in 0..3 {
             assert!(close(grad[k], g[k]), "{k}: {} {}", grad[k], g[k]);
         }
@@ -309,9 +327,28 @@ mod tests {
         assert_eq!(x, [1.1, 0.9]);
         assert_eq!(newton_polish(&mut x, &eqs[..1], &c, 3), 0);
         // Far from a root the cost still only goes down.
-        let before = squared_residual(&eqs, &c, &[3.0, -2.0]).unwrap();
+        let before = squared_residual(&eqs, &c, &[3.0, -2.0]).unwrap().0;
         let mut x = [3.0, -2.0];
         newton_polish(&mut x, &eqs, &c, 8);
-        assert!(squared_residual(&eqs, &c, &x).unwrap() <= before);
+        assert!(squared_residual(&eqs, &c, &x).unwrap().0 <= before);
+    }
+
+    #[test]
+    fn stops_at_rounding_level() {
+        let (eqs, c) = system();
+        let eqs: Vec<&[NewtonTerm]> = eqs.iter().map(Vec::as_slice).collect();
+        // One ulp off the root: the residual (about 4e-16 against terms of size 1) is at
+        // rounding level, so no step is taken even with steps to spare.
+        let mut x = [1.0 + f64::EPSILON, 1.0];
+        assert!(squared_residual(&eqs, &c, &x).unwrap().1);
+        assert_eq!(newton_polish(&mut x, &eqs, &c, 8), 0);
+        assert_eq!(x, [1.0 + f64::EPSILON, 1.0]);
+        // A millionth off: not at rounding level; polishing takes steps and then stops
+        // before its budget, once the residual is at rounding level.
+        let mut x = [1.0 + 1e-6, 1.0 - 1e-6];
+        assert!(!squared_residual(&eqs, &c, &x).unwrap().1);
+        let steps = newton_polish(&mut x, &eqs, &c, 8);
+        assert!((1..8).contains(&steps), "{steps}");
+        assert!(squared_residual(&eqs, &c, &x).unwrap().1, "{x:?}");
     }
 }

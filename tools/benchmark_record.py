@@ -6,10 +6,13 @@ area the regression test generator/tests/benchmark_sizes.rs holds the search to;
 without a template gets no line) and the Markdown table of docs/BENCHMARK.md between its
 markers.
 
-    python3 tools/benchmark_record.py [--instances N] [--jobs J] [--check]
+    python3 tools/benchmark_record.py [--instances N] [--jobs J] [--check] [--only NAME ...]
 
 --check writes nothing and exits 1 if a recorded line would change (every problem is
-planned, also those the test skips for their planning time). Run from anywhere; builds mingen in release first.
+planned, also those the test skips for their planning time). Each problem's report row is
+kept in target/benchmark_rows/NAME.json; --only NAME ... plans just those problems (e.g.
+one whose wall-clock budget ran out on a busy machine) and takes the others' rows from
+there, so the table stays whole. Run from anywhere; builds mingen in release first.
 """
 import argparse
 import concurrent.futures
@@ -22,6 +25,7 @@ import sys
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 BENCH = ROOT / "templates" / "benchmark"
 DOC = ROOT / "docs" / "BENCHMARK.md"
+ROWS = ROOT / "target" / "benchmark_rows"
 BEGIN, END = "<!-- benchmark table: begin -->", "<!-- benchmark table: end -->"
 
 
@@ -98,13 +102,29 @@ def main():
     ap.add_argument("--max-seconds", type=float, default=None,
                     help="planning budget per problem (default: mingen's)")
     ap.add_argument("--jobs", type=int, default=2, help="problems planned at a time")
+    ap.add_argument("--only", nargs="+", metavar="NAME",
+                    help="plan only these problems (file stems); the other rows come from "
+                         "the last run's target/benchmark_rows/")
     a = ap.parse_args()
     subprocess.run(["cargo", "build", "--release", "-q", "-p", "mingen"], cwd=ROOT, check=True)
     extra = ["--max-seconds", str(a.max_seconds)] if a.max_seconds else []
     files = sorted(BENCH.glob("*.mp"))
 
+    if a.only:
+        unknown = sorted(set(a.only) - {f.stem for f in files})
+        if unknown:
+            sys.exit("no such benchmark problem: " + ", ".join(unknown))
+    ROWS.mkdir(parents=True, exist_ok=True)
+
     def one(f):
-        return json.loads(mingen("report", str(f), "--json", "--instances", str(a.instances), *extra))
+        cached = ROWS / f"{f.stem}.json"
+        if a.only and f.stem not in a.only:
+            if not cached.exists():
+                sys.exit(f"{cached} missing: run without --only first")
+            return json.loads(cached.read_text())
+        rs = json.loads(mingen("report", str(f), "--json", "--instances", str(a.instances), *extra))
+        cached.write_text(json.dumps(rs))
+        return rs
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as pool:
         rows = [row for rs in pool.map(one, files) for row in rs]

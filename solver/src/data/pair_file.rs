@@ -5,7 +5,10 @@
 //! ```text
 //! {
 //!   "camera": { "fx": f64, "fy": f64, "cx": f64, "cy": f64,
-//!               "width": f64, "height": f64, "readout": f64 },   // readout: λ, s/row
+//!               "width": f64, "height": f64, "readout": f64 },   // readout: λ, s/line
+//!   // or "camera": { "model": "OPENCV", "width": f64, "height": f64, "params": [...],
+//!   //               "readout": f64, "readout_direction": "top_to_bottom" }
+//!   // or "cameras": [camera1, camera2]
 //!   "gyro": [[wx, wy, wz], [wx, wy, wz]],   // ω of view 1 and view 2 (see below); optional
 //!                                          // when "gyro_log" is given
 //!   "gyro_log": {                          // optional: gyro samples instead of (or beside) "gyro"
@@ -40,7 +43,12 @@
 //! accelerometer reports it (any length and either sign, the same for both views; only the
 //! line's direction is used): for both views or neither.
 //!
-//! Both images share one camera. [`PairFile::load`] parses and then validates every field,
+//! `"camera"` is one camera for both images; `"cameras": [camera1, camera2]` gives each
+//! image its own (exactly one of the two keys). A camera is COLMAP's object
+//! `{"model", "width", "height", "params", "readout", "readout_direction"}` or the pinhole
+//! short form above ([`Camera`], `docs/PAIR_FILE.md`); a pixel's bearing is its
+//! undistorted normalised coordinates and its time `l λ`, `l` the line coordinate of the
+//! raw pixel along the readout direction. [`PairFile::load`] parses and then validates every field,
 //! returning a [`PairFileError`] that names the offending field (`camera.fx`, `matches[3]`,
 //! `ground_truth.rotation`, ...).
 
@@ -152,31 +160,107 @@ impl GyroLogSpec {
 
 /// A pair of rolling-shutter images with gyro readings and pixel matches (`PAIR.json`).
 /// Unknown keys, here and in the nested objects, are refused with their name: a misspelt
-/// optional key would otherwise silently take its default.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// optional key would otherwise silently take its default. In JSON the cameras are
+/// `"camera"` (one for both images) or `"cameras": [camera1, camera2]`, exactly one of
+/// the two; a file is written with `"camera"` when both cameras are equal.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(try_from = "PairFileJson")]
 pub struct PairFile {
-    /// The camera (both images).
-    pub camera: Camera,
+    /// The cameras of image 1 and image 2.
+    pub cameras: [Camera; 2],
     /// Angular velocities of view 1 and view 2 (rad/s, camera axes, as a gyroscope reports
     /// them), constant over each frame. Optional when `gyro_log` is given.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gyro: Option<[[f64; 3]; 2]>,
     /// Gyro samples: exact row rotations, and the rotation between the frames.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gyro_log: Option<GyroLogSpec>,
     /// Gravity in the camera axes of view 1 and view 2 at row 0 (accelerometer readings).
-    #[serde(
-        default,
-        skip_serializing_if = "Option::is_none",
-        deserialize_with = "gravity_field"
-    )]
     pub gravity: Option<[[f64; 3]; 2]>,
     /// Pixel matches `[[u1, v1], [u2, v2]]`.
     pub matches: Vec<Match>,
     /// Ground truth, present in simulated files.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ground_truth: Option<GroundTruth>,
+}
+
+/// The pair file as JSON holds it (`camera` or `cameras`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PairFileJson {
+    #[serde(default)]
+    camera: Option<Camera>,
+    #[serde(default)]
+    cameras: Option<[Camera; 2]>,
+    #[serde(default)]
+    gyro: Option<[[f64; 3]; 2]>,
+    #[serde(default)]
+    gyro_log: Option<GyroLogSpec>,
+    #[serde(default, deserialize_with = "gravity_field")]
+    gravity: Option<[[f64; 3]; 2]>,
+    matches: Vec<Match>,
+    #[serde(default)]
+    ground_truth: Option<GroundTruth>,
+}
+
+/// The pair file as it is written (borrowing the file's fields).
+#[derive(Serialize)]
+struct PairFileOut<'a> {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    camera: Option<&'a Camera>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    cameras: Option<&'a [Camera; 2]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    gyro: Option<&'a [[f64; 3]; 2]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    gyro_log: Option<&'a GyroLogSpec>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    gravity: Option<&'a [[f64; 3]; 2]>,
+    matches: &'a [Match],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    ground_truth: Option<&'a GroundTruth>,
+}
+
+impl TryFrom<PairFileJson> for PairFile {
+    type Error = String;
+
+    fn try_from(j: PairFileJson) -> Result<Self, String> {
+        let cameras = match (j.camera, j.cameras) {
+            (Some(c), None) => [c, c],
+            (None, Some(cs)) => cs,
+            (Some(_), Some(_)) => {
+                return Err(
+                    "give `camera` (both images) or `cameras` (one per image), not both".into(),
+                )
+            }
+            (None, None) => {
+                return Err(
+                    "missing field `camera` (both images) or `cameras` (one per image)".into(),
+                )
+            }
+        };
+        Ok(PairFile {
+            cameras,
+            gyro: j.gyro,
+            gyro_log: j.gyro_log,
+            gravity: j.gravity,
+            matches: j.matches,
+            ground_truth: j.ground_truth,
+        })
+    }
+}
+
+impl Serialize for PairFile {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let shared = self.cameras[0] == self.cameras[1];
+        PairFileOut {
+            camera: shared.then_some(&self.cameras[0]),
+            cameras: (!shared).then_some(&self.cameras),
+            gyro: self.gyro.as_ref(),
+            gyro_log: self.gyro_log.as_ref(),
+            gravity: self.gravity.as_ref(),
+            matches: &self.matches,
+            ground_truth: self.ground_truth.as_ref(),
+        }
+        .serialize(s)
+    }
 }
 
 /// Errors reading, validating or writing a pair file.
@@ -262,6 +346,37 @@ pub fn gravity_from_json(value: &serde_json::Value) -> Result<Option<[[f64; 3]; 
     Ok(Some(out))
 }
 
+/// The dotted field a camera error names: `camera.fx` (the short pinhole form's key, also
+/// for a `PINHOLE` written with `params`), `camera.params[4]` (`k1` of an `OPENCV`),
+/// `camera.readout`, ... (`key` is `camera` or `cameras[k]`).
+fn camera_field(key: &str, camera: &Camera, e: &CameraError) -> String {
+    let param = |name: &str| {
+        let names = camera.model.param_names();
+        match names.iter().position(|n| *n == name) {
+            Some(_) if camera.model == crate::model::camera_model::CameraModel::Pinhole => {
+                format!("{key}.{name}")
+            }
+            Some(i) => format!("{key}.params[{i}]"),
+            None => format!("{key}.params"),
+        }
+    };
+    match e {
+        CameraError::InvalidFocal { name, .. }
+        | CameraError::InvalidPrincipalPoint { name, .. }
+        | CameraError::InvalidDistortion { name, .. } => param(name),
+        CameraError::UnequalFocals { .. } => format!("{key}.params"),
+        CameraError::InvalidReadout(_) => format!("{key}.readout"),
+        CameraError::InvalidSize { .. } => format!("{key}.width/height"),
+        CameraError::UnknownModel(_) => format!("{key}.model"),
+        CameraError::WrongParamCount { .. } => format!("{key}.params"),
+        CameraError::InvalidObject(_)
+        | CameraError::NotInvertible { .. }
+        | CameraError::NotConverged { .. } => key.to_string(),
+        CameraError::InvalidGyro(..) => "gyro".into(),
+        CameraError::InvalidGravity(..) => "gravity".into(),
+    }
+}
+
 fn invalid(field: impl Into<String>, reason: impl Into<String>) -> PairFileError {
     PairFileError::InvalidField {
         field: field.into(),
@@ -290,19 +405,19 @@ impl PairFile {
                 return Err(invalid("gyro", "missing (give `gyro` or `gyro_log`)"));
             };
             return Ok((
-                View::new(self.camera, Vector3::from(g[0])),
-                View::new(self.camera, Vector3::from(g[1])),
+                View::new(self.cameras[0], Vector3::from(g[0])),
+                View::new(self.cameras[1], Vector3::from(g[1])),
             ));
         };
         let log = spec.log().map_err(log_error)?;
-        let duration = self.camera.height * self.camera.readout;
         log.check_gaps(MAX_SAMPLE_GAP).map_err(log_error)?;
         let view = |k: usize| -> Result<View, PairFileError> {
             let t0 = spec.row0_time(k);
+            let duration = self.cameras[k].frame_readout();
             log.check_covers(t0, t0 + duration, &format!("image {}'s readout", k + 1))
                 .map_err(log_error)?;
             Ok(View::with_track(
-                self.camera,
+                self.cameras[k],
                 log.mean_rate(t0, t0 + duration),
                 log.row_track(t0, duration),
             ))
@@ -327,17 +442,17 @@ impl PairFile {
     /// rotation ground truth that is a rotation, a unit translation, finite velocities and one
     /// inlier flag per match.
     pub fn validate(&self) -> Result<(), PairFileError> {
-        self.camera.validate().map_err(|e| {
-            let field = match &e {
-                CameraError::InvalidFocal { name, .. } => format!("camera.{name}"),
-                CameraError::InvalidPrincipalPoint { name, .. } => format!("camera.{name}"),
-                CameraError::InvalidReadout(_) => "camera.readout".into(),
-                CameraError::InvalidSize { .. } => "camera.width/height".into(),
-                CameraError::InvalidGyro(..) => "gyro".into(),
-                CameraError::InvalidGravity(..) => "gravity".into(),
+        let shared = self.cameras[0] == self.cameras[1];
+        for (k, camera) in self.cameras.iter().enumerate() {
+            let key = if shared {
+                "camera".to_string()
+            } else {
+                format!("cameras[{k}]")
             };
-            invalid(field, e.to_string())
-        })?;
+            camera
+                .validate()
+                .map_err(|e| invalid(camera_field(&key, camera, &e), e.to_string()))?;
+        }
         if let Some(g) = &self.gyro {
             for (i, w) in g.iter().enumerate() {
                 let speed = Vector3::from(*w).norm();
@@ -495,7 +610,7 @@ mod tests {
 
     fn sample() -> PairFile {
         PairFile {
-            camera: Camera::paper(),
+            cameras: [Camera::paper(); 2],
             gyro: Some([[0.1, 0.2, 0.3], [0.0, -1.0, 0.5]]),
             gyro_log: None,
             gravity: Some([[0.0, 9.8, 0.1], [0.2, 9.7, -0.3]]),
@@ -557,7 +672,10 @@ mod tests {
     fn errors_name_the_field() {
         let p = Path::new("x.json");
         let mut bad = sample();
-        bad.camera.fx = -1.0;
+        bad.cameras = [Camera {
+            fx: -1.0,
+            ..Camera::paper()
+        }; 2];
         let err = PairFile::from_json_str(&bad.to_json_string(), p).unwrap_err();
         assert!(matches!(&err, PairFileError::InvalidField { field, .. } if field == "camera.fx"));
         let mut bad = sample();

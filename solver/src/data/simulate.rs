@@ -227,7 +227,10 @@ pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError
             Some(d) => d,
             None => rng.gen_range(options.min_depth..options.max_depth),
         };
-        let x = cam.bearing(u, v) * depth;
+        let Ok(bearing) = cam.undistort_bearing(u, v) else {
+            continue;
+        };
+        let x = bearing * depth;
         if x.norm() > options.max_depth || (x - c2).norm() > options.max_depth {
             continue;
         }
@@ -261,10 +264,20 @@ pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError
         let i = rng.gen_range(0..matches.len());
         if inliers[i] {
             inliers[i] = false;
-            matches[i][1] = [
-                rng.gen_range(0.0..cam.width),
-                rng.gen_range(0.0..cam.height),
-            ];
+            // A random pixel that has a bearing (every pixel of a pinhole does; the
+            // principal point always has one).
+            let mut pixel = [cam.cx, cam.cy];
+            for _ in 0..10_000 {
+                let p = [
+                    rng.gen_range(0.0..cam.width),
+                    rng.gen_range(0.0..cam.height),
+                ];
+                if cam.observe(p).is_ok() {
+                    pixel = p;
+                    break;
+                }
+            }
+            matches[i][1] = pixel;
             chosen += 1;
         }
     }
@@ -282,7 +295,7 @@ pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError
     });
     let t = (-r2 * c2).normalize();
     Ok(PairFile {
-        camera: cam,
+        cameras: [cam; 2],
         gyro: Some([gyro[0].into(), gyro[1].into()]),
         gyro_log: None,
         gravity: Some(gravity),
@@ -342,11 +355,23 @@ mod tests {
         let e = skew(&gt.translation_vector()) * gt.rotation_matrix();
         let mut max_plain: f64 = 0.0;
         for m in &pair.matches {
-            let b1 = undistort_bearing(&v1, m[0][0], m[0][1]).normalize();
-            let b2 = undistort_bearing(&v2, m[1][0], m[1][1]).normalize();
+            let b1 = undistort_bearing(&v1, m[0][0], m[0][1])
+                .unwrap()
+                .normalize();
+            let b2 = undistort_bearing(&v2, m[1][0], m[1][1])
+                .unwrap()
+                .normalize();
             assert!((b2.transpose() * e * b1)[0].abs() < 1e-9);
-            let p1 = pair.camera.bearing(m[0][0], m[0][1]).normalize();
-            let p2 = pair.camera.bearing(m[1][0], m[1][1]).normalize();
+            let p1 = v1
+                .camera
+                .undistort_bearing(m[0][0], m[0][1])
+                .unwrap()
+                .normalize();
+            let p2 = v2
+                .camera
+                .undistort_bearing(m[1][0], m[1][1])
+                .unwrap()
+                .normalize();
             max_plain = max_plain.max((p2.transpose() * e * p1)[0].abs());
         }
         // The global-shutter model is visibly violated.

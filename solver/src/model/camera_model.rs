@@ -229,26 +229,22 @@ fn mul(a: &[f64], b: &[f64]) -> Vec<f64> {
     out
 }
 
-/// Whether the radial map of a non-fisheye model is invertible on `[0, r]`, `s_max = r²`:
-/// the denominator `D(s) > 0` and `dρ/dr = (N D + 2 s (N' D − N D')) / D² > 0` there.
-fn radial_invertible(n: &[f64; 4], d: &[f64; 4], s_max: f64) -> bool {
-    if !positive_on(d, s_max) {
-        return false;
-    }
+/// The numerator `N D + 2 s (N' D − N D')` of `dρ/dr = (N D + 2 s (N' D − N D')) / D²`,
+/// the radial map's derivative in `r` (`'` is `d/ds`, `s = r²`).
+fn radial_slope_numerator(n: &[f64; 4], d: &[f64; 4]) -> Vec<f64> {
     let (dn, dd) = (derivative(n), derivative(d));
-    let nd = mul(n, d);
-    let cross = {
-        let a = mul(&dn, d);
-        let b = mul(n, &dd);
-        a.iter().zip(&b).map(|(x, y)| x - y).collect::<Vec<_>>()
-    };
-    // N D + 2 s cross(s)
-    let mut p = nd.clone();
-    p.resize(nd.len().max(cross.len() + 1), 0.0);
-    for (i, c) in cross.iter().enumerate() {
-        p[i + 1] += 2.0 * c;
+    let mut p = mul(n, d);
+    p.push(0.0);
+    for (i, (a, b)) in mul(&dn, d).iter().zip(mul(n, &dd)).enumerate() {
+        p[i + 1] += 2.0 * (a - b);
     }
-    positive_on(&p, s_max)
+    p
+}
+
+/// Whether the radial map of a non-fisheye model is invertible on `[0, r]`, `s_max = r²`:
+/// the denominator `D(s) > 0` and `dρ/dr > 0` there.
+fn radial_invertible(n: &[f64; 4], d: &[f64; 4], s_max: f64) -> bool {
+    positive_on(d, s_max) && positive_on(&radial_slope_numerator(n, d), s_max)
 }
 
 /// `θ_d(θ)` of the fisheye and its derivative.
@@ -341,7 +337,7 @@ pub(crate) fn undistort(
         }
         let (dx, j) = distort_with_jacobian(model, k, x);
         let Some(inv) = j.try_inverse() else {
-            return Err(UndistortFailure::NotInvertible);
+            return Err(beyond_reach(model, k, xd));
         };
         let step = inv * (dx - xd);
         let mut scale = 1.0;
@@ -362,12 +358,34 @@ pub(crate) fn undistort(
         }
     }
     if res.is_nan() || res > tol || !x.iter().all(|c| c.is_finite()) {
-        return Err(UndistortFailure::NotConverged);
+        return Err(beyond_reach(model, k, xd));
     }
     if !invertible_at(model, k, x) {
         return Err(UndistortFailure::NotInvertible);
     }
     Ok(x)
+}
+
+/// Why Newton's iteration failed for `x_d` (non-fisheye models): `NotInvertible` if the
+/// radial map `ρ(r)` stops increasing (or its denominator vanishes) at some `r_max` with
+/// `ρ(r_max) < |x_d|`, so that no point of the invertible region reaches the pixel's radius
+/// (the tangential terms aside), else `NotConverged`.
+fn beyond_reach(model: CameraModel, k: &[f64; 8], xd: Vector2<f64>) -> UndistortFailure {
+    let (n, d, _, _) = rational(model, k);
+    let p = radial_slope_numerator(&n, &d);
+    // Far beyond any lens's field of view (r = 100).
+    let s_far = 1e4;
+    let first = roots_in(&p, 0.0, s_far)
+        .into_iter()
+        .chain(roots_in(&d, 0.0, s_far))
+        .fold(f64::INFINITY, f64::min);
+    if first.is_finite() {
+        let reach = first.sqrt() * eval(&n, first) / eval(&d, first);
+        if reach.is_nan() || reach < xd.norm() {
+            return UndistortFailure::NotInvertible;
+        }
+    }
+    UndistortFailure::NotConverged
 }
 
 /// The fisheye's undistortion: `θ_d` is increasing on `[0, θ_max]`, `θ_max` the first

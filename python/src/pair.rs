@@ -7,19 +7,23 @@ use numpy::ndarray::Array1;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList, PyTuple};
 use rspose_core::data::pair_file::{
     gravity_from_json, matrix_from_rows, GroundTruth as RsGroundTruth, GyroLogSpec, Match, PairFile,
 };
-use rspose_core::model::camera::Camera as RsCamera;
+use rspose_core::model::camera::{Camera as RsCamera, CameraError, ReadoutDirection};
+use rspose_core::model::camera_model::CameraModel;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-/// A pinhole rolling-shutter camera: focal lengths ``fx``, ``fy`` and principal point
-/// ``cx``, ``cy`` (pixels), image size ``width`` x ``height`` (pixels) and ``readout``, the
-/// readout time per image row (s/row; 0 for a global shutter). Values are checked when a
-/// pair is made from it, with the command line's messages (``invalid field `camera.fx`:
-/// ...``).
+/// A rolling-shutter camera: a COLMAP camera model (``model``, ``params`` in COLMAP's
+/// order), image size ``width`` x ``height`` (pixels), ``readout`` the readout time per line
+/// (s/line; 0 for a global shutter) and ``readout_direction`` (``"top_to_bottom"``,
+/// ``"bottom_to_top"``, ``"left_to_right"``, ``"right_to_left"``). ``Camera(fx, fy, cx, cy,
+/// width, height, readout)`` is a ``PINHOLE``; ``Camera.from_params`` any model. A pixel's
+/// bearing is its undistorted normalised coordinates, its time ``readout_line(u, v) x
+/// readout``. Values are checked when a pair is made from it, with the command line's
+/// messages (``invalid field `camera.fx`: ...``).
 #[pyclass(module = "rspose", frozen, eq, from_py_object)]
 #[derive(Clone, PartialEq)]
 pub struct Camera {
@@ -27,22 +31,58 @@ pub struct Camera {
     pub inner: RsCamera,
 }
 
+fn direction_of(name: &str) -> PyResult<ReadoutDirection> {
+    ReadoutDirection::from_name(name).ok_or_else(|| {
+        PyValueError::new_err(format!(
+            "readout_direction: expected top_to_bottom, bottom_to_top, left_to_right or right_to_left, got `{name}`"
+        ))
+    })
+}
+
 #[pymethods]
 impl Camera {
     #[new]
-    #[pyo3(signature = (fx, fy, cx, cy, width, height, readout))]
-    fn new(fx: f64, fy: f64, cx: f64, cy: f64, width: f64, height: f64, readout: f64) -> Self {
-        Camera {
+    #[pyo3(signature = (fx, fy, cx, cy, width, height, readout, *, readout_direction="top_to_bottom"))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        fx: f64,
+        fy: f64,
+        cx: f64,
+        cy: f64,
+        width: f64,
+        height: f64,
+        readout: f64,
+        readout_direction: &str,
+    ) -> PyResult<Self> {
+        Ok(Camera {
             inner: RsCamera {
-                fx,
-                fy,
-                cx,
-                cy,
-                width,
-                height,
-                readout,
+                readout_direction: direction_of(readout_direction)?,
+                ..RsCamera::pinhole(fx, fy, cx, cy, width, height, readout)
             },
-        }
+        })
+    }
+
+    /// A camera of COLMAP's ``model`` (``SIMPLE_PINHOLE``, ``PINHOLE``, ``SIMPLE_RADIAL``,
+    /// ``RADIAL``, ``OPENCV``, ``OPENCV_FISHEYE``, ``FULL_OPENCV``) with COLMAP's ``params``
+    /// (e.g. ``[fx, fy, cx, cy, k1, k2, p1, p2]`` for ``OPENCV``). ``ValueError`` for an
+    /// unknown model or a wrong number of params.
+    #[staticmethod]
+    #[pyo3(signature = (model, width, height, params, readout, readout_direction="top_to_bottom"))]
+    fn from_params(
+        model: &str,
+        width: f64,
+        height: f64,
+        params: Vec<f64>,
+        readout: f64,
+        readout_direction: &str,
+    ) -> PyResult<Self> {
+        let m = CameraModel::from_name(model).ok_or_else(|| {
+            PyValueError::new_err(CameraError::UnknownModel(model.to_string()).to_string())
+        })?;
+        let direction = direction_of(readout_direction)?;
+        RsCamera::from_params(m, width, height, &params, readout, direction)
+            .map(|inner| Camera { inner })
+            .map_err(|e| PyValueError::new_err(e.to_string()))
     }
 
     /// The paper's synthetic camera: 1920 x 1080, f = 640 px, principal point at the
@@ -54,6 +94,16 @@ impl Camera {
         }
     }
 
+    /// COLMAP's model name, e.g. ``"OPENCV"``.
+    #[getter]
+    fn model(&self) -> &'static str {
+        self.inner.model.name()
+    }
+    /// COLMAP's parameters of the model, in its order.
+    #[getter]
+    fn params(&self) -> Vec<f64> {
+        self.inner.params()
+    }
     /// Focal length along u, pixels.
     #[getter]
     fn fx(&self) -> f64 {
@@ -84,79 +134,247 @@ impl Camera {
     fn height(&self) -> f64 {
         self.inner.height
     }
-    /// Readout time per row, s.
+    /// Readout time per line, s.
     #[getter]
     fn readout(&self) -> f64 {
         self.inner.readout
     }
+    /// The order in which lines are read, e.g. ``"top_to_bottom"``.
+    #[getter]
+    fn readout_direction(&self) -> &'static str {
+        self.inner.readout_direction.name()
+    }
+    /// Lines read per frame (``height``, or ``width`` for a column readout).
+    #[getter]
+    fn lines(&self) -> f64 {
+        self.inner.lines()
+    }
 
-    /// The camera as a dict with the pair file's keys.
+    /// The bearing ``[x, y, 1]`` of pixel ``(u, v)``: its undistorted normalised
+    /// coordinates. ``ValueError`` where the distortion is not invertible.
+    fn undistort_bearing<'py>(
+        &self,
+        py: Python<'py>,
+        u: f64,
+        v: f64,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        self.inner
+            .undistort_bearing(u, v)
+            .map(|b| vector_array(py, &b))
+            .map_err(|e| PyValueError::new_err(e.to_string()))
+    }
+
+    /// The line coordinate of raw pixel ``(u, v)``: ``v``, ``height - 1 - v``, ``u`` or
+    /// ``width - 1 - u`` by the readout direction; read ``line x readout`` s after line 0.
+    fn readout_line(&self, u: f64, v: f64) -> f64 {
+        self.inner.readout_line(u, v)
+    }
+
+    /// The pixel ``[u, v]`` of camera-frame point ``point`` (distorted), or None behind the
+    /// camera or where the distortion is not invertible.
+    fn project<'py>(
+        &self,
+        py: Python<'py>,
+        point: &Bound<'py, PyAny>,
+    ) -> PyResult<Option<Bound<'py, PyArray1<f64>>>> {
+        let x = nalgebra::Vector3::from(vector_of::<3>(point, "point", "[x, y, z]")?);
+        Ok(self
+            .inner
+            .project(&x)
+            .map(|p| Array1::from_vec(vec![p.x, p.y]).into_pyarray(py)))
+    }
+
+    /// The camera as a dict, the pair file's ``camera`` object: the pinhole short form for a
+    /// ``PINHOLE`` read from the top, else ``model``, ``width``, ``height``, ``params``,
+    /// ``readout``, ``readout_direction``.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
-        let c = &self.inner;
-        for (k, v) in [
-            ("fx", c.fx),
-            ("fy", c.fy),
-            ("cx", c.cx),
-            ("cy", c.cy),
-            ("width", c.width),
-            ("height", c.height),
-            ("readout", c.readout),
-        ] {
-            d.set_item(k, v)?;
+        let value =
+            serde_json::to_value(self.inner).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        if let serde_json::Value::Object(map) = value {
+            for (k, v) in map {
+                match v {
+                    serde_json::Value::String(s) => d.set_item(k, s)?,
+                    serde_json::Value::Array(a) => {
+                        let numbers: Vec<f64> = a.iter().filter_map(|x| x.as_f64()).collect();
+                        d.set_item(k, numbers)?
+                    }
+                    other => d.set_item(k, other.as_f64())?,
+                }
+            }
         }
         Ok(d)
     }
 
     fn __repr__(&self) -> String {
         let c = &self.inner;
+        if c.model == CameraModel::Pinhole && c.readout_direction == ReadoutDirection::TopToBottom {
+            return format!(
+                "Camera(fx={}, fy={}, cx={}, cy={}, width={}, height={}, readout={})",
+                c.fx, c.fy, c.cx, c.cy, c.width, c.height, c.readout
+            );
+        }
         format!(
-            "Camera(fx={}, fy={}, cx={}, cy={}, width={}, height={}, readout={})",
-            c.fx, c.fy, c.cx, c.cy, c.width, c.height, c.readout
+            "Camera.from_params({:?}, {}, {}, {:?}, {}, {:?})",
+            c.model.name(),
+            c.width,
+            c.height,
+            c.params(),
+            c.readout,
+            c.readout_direction.name()
         )
     }
 }
 
-/// A camera from a `Camera` or a mapping with the pair file's keys (`fx`, `fy`, `cx`, `cy`,
-/// `width`, `height`, `readout`).
+/// A camera from a `Camera` or a mapping with the pair file's keys: the pinhole short form
+/// (`fx`, `fy`, `cx`, `cy`, `width`, `height`, `readout`) or COLMAP's (`model`, `width`,
+/// `height`, `params`, `readout`, `readout_direction`), read by the pair file's own parser
+/// (the same messages).
 pub fn camera_of(obj: &Bound<'_, PyAny>) -> PyResult<RsCamera> {
     if let Ok(c) = obj.cast::<Camera>() {
         return Ok(c.get().inner);
     }
     let Ok(d) = obj.cast::<PyDict>() else {
         return Err(PyTypeError::new_err(format!(
-            "camera: expected rspose.Camera or a dict with fx, fy, cx, cy, width, height, readout, got {}",
+            "camera: expected rspose.Camera or a dict (fx, fy, cx, cy, width, height, readout; or model, width, height, params, readout, readout_direction), got {}",
             type_name(obj)
         )));
     };
-    let field = |k: &str| -> PyResult<f64> {
-        let v = d
-            .get_item(k)?
-            .ok_or_else(|| PyValueError::new_err(format!("camera: missing field `{k}`")))?;
-        v.extract::<f64>().map_err(|_| {
+    let mut map = serde_json::Map::new();
+    let mut raw_params = None;
+    for (k, v) in d.iter() {
+        let k: String = k.extract().map_err(|_| {
             PyTypeError::new_err(format!(
-                "camera: field `{k}`: expected a number, got {}",
-                type_name(&v)
+                "camera: keys must be strings, got {}",
+                type_name(&k)
             ))
-        })
-    };
-    for (k, _) in d.iter() {
-        let k: String = k.extract().unwrap_or_default();
-        if !["fx", "fy", "cx", "cy", "width", "height", "readout"].contains(&k.as_str()) {
-            return Err(PyValueError::new_err(format!(
-                "camera: unknown field `{k}`"
-            )));
+        })?;
+        let value = match k.as_str() {
+            "model" | "readout_direction" => {
+                serde_json::Value::from(v.extract::<String>().map_err(|_| {
+                    PyTypeError::new_err(format!(
+                        "camera: field `{k}`: expected a string, got {}",
+                        type_name(&v)
+                    ))
+                })?)
+            }
+            "params" => {
+                let params = v.extract::<Vec<f64>>().map_err(|_| {
+                    PyTypeError::new_err(format!(
+                        "camera: field `params`: expected a list of numbers, got {}",
+                        type_name(&v)
+                    ))
+                })?;
+                let finite: Vec<f64> = params
+                    .iter()
+                    .map(|x| if x.is_finite() { *x } else { 0.0 })
+                    .collect();
+                raw_params = Some(params);
+                serde_json::Value::from(finite)
+            }
+            _ => {
+                let x = v.extract::<f64>().map_err(|_| {
+                    PyTypeError::new_err(format!(
+                        "camera: field `{k}`: expected a number, got {}",
+                        type_name(&v)
+                    ))
+                })?;
+                // Non-finite numbers, which JSON cannot hold, are checked with the pair.
+                serde_json::Number::from_f64(x).map_or(serde_json::Value::from(0.0), Into::into)
+            }
+        };
+        map.insert(k, value);
+    }
+    let nonfinite: Vec<(String, f64)> = d
+        .iter()
+        .filter_map(|(k, v)| Some((k.extract::<String>().ok()?, v.extract::<f64>().ok()?)))
+        .filter(|(_, x)| !x.is_finite())
+        .collect();
+    let mut camera: RsCamera =
+        serde_json::from_value(serde_json::Value::Object(map)).map_err(|e| {
+            let e = e.to_string();
+            PyValueError::new_err(if e.starts_with("camera:") {
+                e
+            } else {
+                format!("camera: {e}")
+            })
+        })?;
+    // Non-finite params, which JSON cannot hold, are put back for the pair's validation to
+    // name them (the count was checked by the parser).
+    if let Some(params) = raw_params.filter(|p| p.iter().any(|x| !x.is_finite())) {
+        camera = RsCamera::from_params(
+            camera.model,
+            camera.width,
+            camera.height,
+            &params,
+            camera.readout,
+            camera.readout_direction,
+        )
+        .map_err(|e| PyValueError::new_err(format!("camera: {e}")))?;
+    }
+    for (k, x) in nonfinite {
+        match k.as_str() {
+            "fx" => camera.fx = x,
+            "fy" => camera.fy = x,
+            "cx" => camera.cx = x,
+            "cy" => camera.cy = x,
+            "width" => camera.width = x,
+            "height" => camera.height = x,
+            "readout" => camera.readout = x,
+            _ => {}
         }
     }
-    Ok(RsCamera {
-        fx: field("fx")?,
-        fy: field("fy")?,
-        cx: field("cx")?,
-        cy: field("cy")?,
-        width: field("width")?,
-        height: field("height")?,
-        readout: field("readout")?,
-    })
+    Ok(camera)
+}
+
+/// The two images' cameras from `camera` (both images) or `cameras` (one per image, a list
+/// or tuple of two), exactly one of them, as the pair file's keys.
+pub fn cameras_of(
+    camera: Option<&Bound<'_, PyAny>>,
+    cameras: Option<&Bound<'_, PyAny>>,
+) -> PyResult<[RsCamera; 2]> {
+    match (camera, cameras) {
+        (Some(c), None) => {
+            let c = camera_of(c)?;
+            Ok([c, c])
+        }
+        (None, Some(cs)) => {
+            let items: Vec<Bound<'_, PyAny>> = if let Ok(l) = cs.cast::<PyList>() {
+                l.iter().collect()
+            } else if let Ok(t) = cs.cast::<PyTuple>() {
+                t.iter().collect()
+            } else {
+                return Err(PyTypeError::new_err(format!(
+                    "cameras: expected a list or tuple of two cameras (image 1, image 2), got {}",
+                    type_name(cs)
+                )));
+            };
+            if items.len() != 2 {
+                return Err(PyValueError::new_err(format!(
+                    "`cameras` needs one camera for each of the two images, got {}",
+                    items.len()
+                )));
+            }
+            let one = |k: usize| {
+                camera_of(&items[k]).map_err(|e| {
+                    let py = cs.py();
+                    let message = format!("cameras[{k}]: {}", e.value(py));
+                    if e.is_instance_of::<PyTypeError>(py) {
+                        PyTypeError::new_err(message)
+                    } else {
+                        PyValueError::new_err(message)
+                    }
+                })
+            };
+            Ok([one(0)?, one(1)?])
+        }
+        (Some(_), Some(_)) => Err(PyValueError::new_err(
+            "give `camera` (both images) or `cameras` (one per image), not both",
+        )),
+        (None, None) => Err(PyTypeError::new_err(
+            "missing `camera` (both images) or `cameras` (one per image)",
+        )),
+    }
 }
 
 /// Gyroscope samples around the two frames of a pair (the pair file's ``gyro_log``):
@@ -330,8 +548,8 @@ pub struct Source {
     pub path: Option<PathBuf>,
 }
 
-/// Two rolling-shutter images of one camera: pixel matches ``x1``, ``x2`` (N x 2, ``[u, v]``
-/// with v the row), the gyroscope reading of each view in camera axes (rad/s) or a
+/// Two rolling-shutter images: pixel matches ``x1``, ``x2`` (N x 2, ``[u, v]`` with v the
+/// row), ``camera`` for both images or ``cameras`` (one per image), the gyroscope reading of each view in camera axes (rad/s) or a
 /// ``GyroLog``, optionally each view's gravity direction (camera axes, any length), and for
 /// simulated pairs the ground truth. The pair file of the command line
 /// (``rspose.load_pair``, ``Pair.save``); made in Python, it is checked by the same code
@@ -374,7 +592,8 @@ impl Pair {
     pub fn from_args(
         x1: &Bound<'_, PyAny>,
         x2: &Bound<'_, PyAny>,
-        camera: &Bound<'_, PyAny>,
+        camera: Option<&Bound<'_, PyAny>>,
+        cameras: Option<&Bound<'_, PyAny>>,
         gyro1: Option<&Bound<'_, PyAny>>,
         gyro2: Option<&Bound<'_, PyAny>>,
         gyro_log: Option<&Bound<'_, PyAny>>,
@@ -391,7 +610,7 @@ impl Pair {
             )));
         }
         let matches: Vec<Match> = p1.into_iter().zip(p2).map(|(a, b)| [a, b]).collect();
-        let camera = camera_of(camera)?;
+        let cameras = cameras_of(camera, cameras)?;
         let gyro = match (gyro1, gyro2) {
             (None, None) => None,
             (Some(a), Some(b)) => Some([
@@ -422,7 +641,7 @@ impl Pair {
         };
         let gravity = gravity_value(gravity1, gravity2)?;
         let pair = PairFile {
-            camera,
+            cameras,
             gyro,
             gyro_log,
             gravity,
@@ -448,19 +667,22 @@ impl Pair {
 #[pymethods]
 impl Pair {
     #[new]
-    #[pyo3(signature = (x1, x2, camera, gyro1=None, gyro2=None, *, gyro_log=None, gravity1=None, gravity2=None))]
+    #[pyo3(signature = (x1, x2, camera=None, gyro1=None, gyro2=None, *, cameras=None, gyro_log=None, gravity1=None, gravity2=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         x1: &Bound<'_, PyAny>,
         x2: &Bound<'_, PyAny>,
-        camera: &Bound<'_, PyAny>,
+        camera: Option<&Bound<'_, PyAny>>,
         gyro1: Option<&Bound<'_, PyAny>>,
         gyro2: Option<&Bound<'_, PyAny>>,
+        cameras: Option<&Bound<'_, PyAny>>,
         gyro_log: Option<&Bound<'_, PyAny>>,
         gravity1: Option<&Bound<'_, PyAny>>,
         gravity2: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        Pair::from_args(x1, x2, camera, gyro1, gyro2, gyro_log, gravity1, gravity2)
+        Pair::from_args(
+            x1, x2, camera, cameras, gyro1, gyro2, gyro_log, gravity1, gravity2,
+        )
     }
 
     /// Pixels in image 1, N x 2 ``[u, v]``.
@@ -475,12 +697,23 @@ impl Pair {
         let rows: Vec<[f64; 2]> = self.inner.matches.iter().map(|m| m[1]).collect();
         rows_array(py, &rows)
     }
-    /// The camera of both images.
+    /// The camera of both images; ``ValueError`` if the images have different cameras
+    /// (see ``cameras``).
     #[getter]
-    fn camera(&self) -> Camera {
-        Camera {
-            inner: self.inner.camera,
+    fn camera(&self) -> PyResult<Camera> {
+        let [c1, c2] = self.inner.cameras;
+        if c1 != c2 {
+            return Err(PyValueError::new_err(
+                "the two images have different cameras: use Pair.cameras",
+            ));
         }
+        Ok(Camera { inner: c1 })
+    }
+    /// The cameras of image 1 and image 2.
+    #[getter]
+    fn cameras(&self) -> (Camera, Camera) {
+        let [c1, c2] = self.inner.cameras;
+        (Camera { inner: c1 }, Camera { inner: c2 })
     }
     /// Gyro reading of view 1 (rad/s, camera axes), or None.
     #[getter]

@@ -7,14 +7,16 @@
 //! (`solvers`). Conventions are the library's: pixels `[u, v]` with v the row, the gyro a
 //! gyroscope's reading in camera axes (rad/s), `R = R2 R1^T`, `t = R2 (C1 - C2) / |.|`.
 
+mod camera;
 mod convert;
 mod estimate;
 mod options;
 mod pair;
 mod solvers;
 
+use camera::camera_of;
 use convert::NoSolutionError;
-use pair::{camera_of, Pair};
+use pair::Pair;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rspose_core::data::simulate::{simulate as rs_simulate, SimulationOptions};
@@ -114,7 +116,7 @@ fn methods() -> Vec<&'static str> {
 fn rspose(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("NoSolutionError", m.py().get_type::<NoSolutionError>())?;
-    m.add_class::<pair::Camera>()?;
+    m.add_class::<camera::Camera>()?;
     m.add_class::<pair::GyroLog>()?;
     m.add_class::<pair::GroundTruth>()?;
     m.add_class::<pair::Pair>()?;

@@ -2,8 +2,8 @@
 //! public conventions; the solvers' internal data are built by the library, as its RANSAC
 //! builds them).
 
+use crate::camera::camera_of;
 use crate::convert::{matrix_array, matrix_rows, rows_of, vector_array, vector_of};
-use crate::pair::camera_of;
 use nalgebra::{Matrix3, Vector3};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;

@@ -255,9 +255,20 @@ impl TryFrom<PairFileJson> for PairFile {
     }
 }
 
+/// Whether two cameras are the same, bit for bit (a NaN parameter equal to itself: a file
+/// with one `camera` holding a NaN names `camera`, not `cameras[0]`).
+fn same_camera(a: &Camera, b: &Camera) -> bool {
+    let numbers = |c: &Camera| {
+        let mut v = vec![c.fx, c.fy, c.cx, c.cy, c.width, c.height, c.readout];
+        v.extend(c.distortion);
+        v.into_iter().map(f64::to_bits).collect::<Vec<_>>()
+    };
+    a.model == b.model && a.readout_direction == b.readout_direction && numbers(a) == numbers(b)
+}
+
 impl Serialize for PairFile {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let shared = self.cameras[0] == self.cameras[1];
+        let shared = same_camera(&self.cameras[0], &self.cameras[1]);
         PairFileOut {
             camera: shared.then_some(&self.cameras[0]),
             cameras: (!shared).then_some(&self.cameras),
@@ -450,7 +461,7 @@ impl PairFile {
     /// rotation ground truth that is a rotation, a unit translation, finite velocities and one
     /// inlier flag per match.
     pub fn validate(&self) -> Result<(), PairFileError> {
-        let shared = self.cameras[0] == self.cameras[1];
+        let shared = same_camera(&self.cameras[0], &self.cameras[1]);
         for (k, camera) in self.cameras.iter().enumerate() {
             let key = if shared {
                 "camera".to_string()

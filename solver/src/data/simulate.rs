@@ -8,8 +8,9 @@
 //! and a linear velocity of magnitude `linear_velocity` (m/s, world frame), each in an
 //! independent uniformly random direction. Points are drawn along random pixels of image 1 at
 //! depths uniform in `[min_depth, max_depth]`, kept if within `max_depth` of both camera
-//! centres and if their rolling-shutter projections ([`project_rs`], row fixed point) fall
-//! inside both images. Pixels get Gaussian noise (`pixel_noise` px per coordinate); the gyro
+//! centres and if their rolling-shutter projections ([`project_rs`], fixed point over the
+//! line coordinate of the raw distorted pixel, with the camera's model and readout
+//! direction) fall inside both images. Pixels get Gaussian noise (`pixel_noise` px per coordinate); the gyro
 //! readings stored in the file are the true ω plus Gaussian noise (`gyro_noise` rad/s per
 //! axis), while the true ω generated the images. A fraction `outlier_fraction` of the matches
 //! has its image-2 pixel replaced by a uniformly random pixel (flagged as outliers in the
@@ -33,7 +34,11 @@ use thiserror::Error;
 /// level, with zero linear velocity.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SimulationOptions {
-    /// Camera (default [`Camera::paper`]: 1920x1080, f = 640 px, centred, 60 µs/row).
+    /// Camera (default [`Camera::paper`]: 1920x1080, f = 640 px, centred, 60 µs/row): any
+    /// model and readout direction. Points are drawn along the bearings of random pixels
+    /// (undistorted; pixels without one skipped) and projected through the distortion,
+    /// each at the time of its raw pixel's line ([`project_rs`]); points outside the
+    /// distortion's invertible region are not visible.
     pub camera: Camera,
     /// Number of matches visible in both images (default 150).
     pub points: usize,

@@ -1,6 +1,8 @@
 //! Rolling-shutter row model.
 //!
-//! Row `v` of a view is exposed `v λ` seconds after row 0. The gyro convention is the
+//! Row `v` of a view is exposed `v λ` seconds after row 0; throughout, "row `v`" is the
+//! line coordinate of a raw pixel along the camera's readout direction
+//! ([`Camera::readout_line`]; the image row for the default top-to-bottom readout). The gyro convention is the
 //! physical one: `ω` is what a gyroscope reports, rotated into camera axes (x right, y down,
 //! z forward; rad/s, bias removed), i.e. the camera's angular velocity in its own frame,
 //! `Ṙ_wc = R_wc [ω]×` for the camera-to-world rotation `R_wc`. So the world-to-camera

@@ -349,6 +349,7 @@ def load_pair(path: PathLike) -> Pair:
 def simulate(
     *,
     camera: Optional[CameraLike] = None,
+    camera2: Optional[CameraLike] = None,
     points: int = 150,
     min_depth: float = 1.0,
     max_depth: float = 60.0,
@@ -365,7 +366,7 @@ def simulate(
 ) -> Pair:
     """One pair of the paper's synthetic protocol with ground truth (``rspose simulate``);
     unset arguments take the Rust ``SimulationOptions`` defaults shown here (camera:
-    ``Camera.paper()``)."""
+    ``Camera.paper()``; ``camera2``: view 2's own camera, if it differs)."""
 
 def solve_essential(
     x1: ArrayLike, x2: ArrayLike, camera: CameraLike, solver: Literal["five_point", "eight_point"] = "five_point"

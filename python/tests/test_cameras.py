@@ -94,3 +94,13 @@ def test_a_camera_per_view_and_its_errors():
     x2[5] = [1919.0, 1079.0]
     with pytest.raises(ValueError, match="match 5: image 2's pixel has no bearing"):
         rspose.estimate_relative_pose(fish.x1, x2, FISHEYE, fish.gyro1, fish.gyro2, "rectified")
+
+
+def test_simulate_with_a_camera_per_view():
+    p = rspose.simulate(camera=OPENCV, camera2=FISHEYE, pixel_noise=0.0, gyro_noise=0.0, seed=3)
+    assert [c.model for c in p.cameras] == ["OPENCV", "OPENCV_FISHEYE"]
+    assert p.cameras[1].readout_direction == "right_to_left"
+    e = p.estimate("rectified")
+    assert rotation_error(e, p.ground_truth) < 1e-4
+    again = rspose.Pair(p.x1, p.x2, cameras=[OPENCV, FISHEYE], gyro1=p.gyro1, gyro2=p.gyro2)
+    assert again.cameras == p.cameras

@@ -40,6 +40,9 @@ pub struct SimulationOptions {
     /// each at the time of its raw pixel's line ([`project_rs`]); points outside the
     /// distortion's invertible region are not visible.
     pub camera: Camera,
+    /// Image 2's camera, if it differs from image 1's (default `None`: `camera` for both;
+    /// the pair file then has `cameras`).
+    pub camera2: Option<Camera>,
     /// Number of matches visible in both images (default 150).
     pub points: usize,
     /// Nearest point depth in camera 1, m (default 1).
@@ -77,6 +80,7 @@ impl Default for SimulationOptions {
     fn default() -> Self {
         SimulationOptions {
             camera: Camera::paper(),
+            camera2: None,
             points: 150,
             min_depth: 1.0,
             max_depth: 60.0,
@@ -146,6 +150,9 @@ fn check(options: &SimulationOptions) -> Result<(), SimulationError> {
     if let Err(e) = options.camera.validate() {
         return bad("camera", &e.to_string());
     }
+    if let Some(Err(e)) = options.camera2.map(|c| c.validate()) {
+        return bad("camera2", &e.to_string());
+    }
     if options.points == 0 || options.points > MAX_POINTS {
         return bad("points", &format!("must be between 1 and {MAX_POINTS}"));
     }
@@ -188,6 +195,7 @@ fn check(options: &SimulationOptions) -> Result<(), SimulationError> {
 pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError> {
     check(options)?;
     let cam = options.camera;
+    let cam2 = options.camera2.unwrap_or(cam);
     let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
     let r2 = exp_so3(&(gauss3(&mut rng) * options.rotation_std_deg.to_radians()));
     let c2 = loop {
@@ -218,7 +226,7 @@ pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError
             omega: omega[1],
         },
     ];
-    let inside = |p: &nalgebra::Vector2<f64>| {
+    let inside = |p: &nalgebra::Vector2<f64>, cam: &Camera| {
         p.x >= 0.0 && p.x < cam.width && p.y >= 0.0 && p.y < cam.height
     };
     let mut matches: Vec<Match> = Vec::with_capacity(options.points);
@@ -241,11 +249,11 @@ pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError
         }
         let (Ok(p1), Ok(p2)) = (
             project_rs(&cam, &poses[0], &x),
-            project_rs(&cam, &poses[1], &x),
+            project_rs(&cam2, &poses[1], &x),
         ) else {
             continue;
         };
-        if !(inside(&p1) && inside(&p2)) {
+        if !(inside(&p1, &cam) && inside(&p2, &cam2)) {
             continue;
         }
         matches.push([[p1.x, p1.y], [p2.x, p2.y]]);
@@ -271,13 +279,13 @@ pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError
             inliers[i] = false;
             // A random pixel that has a bearing (every pixel of a pinhole does; the
             // principal point always has one).
-            let mut pixel = [cam.cx, cam.cy];
+            let mut pixel = [cam2.cx, cam2.cy];
             for _ in 0..10_000 {
                 let p = [
-                    rng.gen_range(0.0..cam.width),
-                    rng.gen_range(0.0..cam.height),
+                    rng.gen_range(0.0..cam2.width),
+                    rng.gen_range(0.0..cam2.height),
                 ];
-                if cam.observe(p).is_ok() {
+                if cam2.observe(p).is_ok() {
                     pixel = p;
                     break;
                 }
@@ -300,7 +308,7 @@ pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError
     });
     let t = (-r2 * c2).normalize();
     Ok(PairFile {
-        cameras: [cam; 2],
+        cameras: [cam, cam2],
         gyro: Some([gyro[0].into(), gyro[1].into()]),
         gyro_log: None,
         gravity: Some(gravity),

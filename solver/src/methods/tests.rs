@@ -601,6 +601,16 @@ fn gyro_methods_are_exact_with_distortion_and_any_readout_direction() {
     for d in [ReadoutDirection::TopToBottom, ReadoutDirection::RightToLeft] {
         scenes.push(camera(CameraModel::OpenCvFisheye, &fisheye, d));
     }
+    let mut scenes: Vec<(Camera, Option<Camera>)> = scenes.into_iter().map(|c| (c, None)).collect();
+    // A camera per view: different lenses read in different directions.
+    scenes.push((
+        camera(CameraModel::OpenCv, &opencv, ReadoutDirection::BottomToTop),
+        Some(camera(
+            CameraModel::OpenCvFisheye,
+            &fisheye,
+            ReadoutDirection::LeftToRight,
+        )),
+    ));
     let gyro_methods = [
         Method::Rectified,
         Method::RectifiedV,
@@ -608,9 +618,10 @@ fn gyro_methods_are_exact_with_distortion_and_any_readout_direction() {
         Method::GrsrpPlus,
         Method::GrsrpGravity,
     ];
-    for (seed, cam) in scenes.into_iter().enumerate() {
+    for (seed, (cam, camera2)) in scenes.into_iter().enumerate() {
         let p = pair(SimulationOptions {
             camera: cam,
+            camera2,
             pixel_noise: 0.0,
             gyro_noise: 0.0,
             gravity_noise_deg: 0.0,
@@ -619,7 +630,13 @@ fn gyro_methods_are_exact_with_distortion_and_any_readout_direction() {
             ..Default::default()
         });
         let gt = p.ground_truth.as_ref().unwrap();
-        let label = format!("{} {}", cam.model, cam.readout_direction.name());
+        assert_eq!(p.cameras, [cam, camera2.unwrap_or(cam)]);
+        let label = format!(
+            "{} {} / {:?}",
+            cam.model,
+            cam.readout_direction.name(),
+            camera2.map(|c| (c.model, c.readout_direction))
+        );
         for m in gyro_methods {
             let e = run(&p, &EstimateOptions::for_method(m)).unwrap();
             let err = pose_errors(&e, gt);

@@ -26,7 +26,11 @@ Method = Literal["gsrp", "nrsrp", "grsrp", "grsrp+", "rectified", "rectified+v",
 Preset = Literal["default", "paper"]
 Rows = Literal["integrated", "constant"]
 Threshold = Tuple[Literal["sampson_pixels", "algebraic"], float]
-CameraLike = Union["Camera", Mapping[str, float]]
+CameraLike = Union["Camera", Mapping[str, Any]]
+CameraModel = Literal[
+    "SIMPLE_PINHOLE", "PINHOLE", "SIMPLE_RADIAL", "RADIAL", "OPENCV", "OPENCV_FISHEYE", "FULL_OPENCV"
+]
+ReadoutDirection = Literal["top_to_bottom", "bottom_to_top", "left_to_right", "right_to_left"]
 PathLike = Union[str, "os.PathLike[str]"]
 
 class NoSolutionError(RuntimeError):
@@ -34,16 +38,44 @@ class NoSolutionError(RuntimeError):
     the command line's exit code 1, ``no solution found``."""
 
 class Camera:
-    """A pinhole rolling-shutter camera. ``readout`` is the readout time per image row
-    (s/row; 0 for a global shutter). Checked when a pair is made from it
-    (``invalid field `camera.fx`: ...``)."""
+    """A rolling-shutter camera: a COLMAP camera model (``model``, ``params`` in COLMAP's
+    order), image size, ``readout`` the readout time per line (s/line; 0 for a global
+    shutter) and ``readout_direction``. ``Camera(fx, fy, cx, cy, width, height, readout)``
+    is a ``PINHOLE``; ``Camera.from_params`` any model (SIMPLE_PINHOLE, PINHOLE,
+    SIMPLE_RADIAL, RADIAL, OPENCV, OPENCV_FISHEYE, FULL_OPENCV). A pixel's bearing is its
+    undistorted normalised coordinates, its time ``readout_line(u, v) * readout``. Checked
+    when a pair is made from it (``invalid field `camera.fx`: ...``)."""
 
     def __init__(
-        self, fx: float, fy: float, cx: float, cy: float, width: float, height: float, readout: float
+        self,
+        fx: float,
+        fy: float,
+        cx: float,
+        cy: float,
+        width: float,
+        height: float,
+        readout: float,
+        *,
+        readout_direction: ReadoutDirection = "top_to_bottom",
     ) -> None: ...
+    @staticmethod
+    def from_params(
+        model: CameraModel,
+        width: float,
+        height: float,
+        params: Sequence[float],
+        readout: float,
+        readout_direction: ReadoutDirection = "top_to_bottom",
+    ) -> Camera:
+        """COLMAP's model and params, e.g. ``("OPENCV", 1920, 1080, [fx, fy, cx, cy, k1, k2,
+        p1, p2], 3e-5)``; ``ValueError`` for an unknown model or a wrong number of params."""
     @staticmethod
     def paper() -> Camera:
         """1920 x 1080, f = 640 px, principal point at the centre, 60 µs per row."""
+    @property
+    def model(self) -> str: ...
+    @property
+    def params(self) -> list[float]: ...
     @property
     def fx(self) -> float: ...
     @property
@@ -58,8 +90,21 @@ class Camera:
     def height(self) -> float: ...
     @property
     def readout(self) -> float: ...
-    def to_dict(self) -> dict[str, float]:
-        """The pair file's ``camera`` object."""
+    @property
+    def readout_direction(self) -> str: ...
+    @property
+    def lines(self) -> float:
+        """Lines per frame: ``height``, or ``width`` for a column readout."""
+    def undistort_bearing(self, u: float, v: float) -> npt.NDArray[np.float64]:
+        """``[x, y, 1]``, the pixel's undistorted normalised coordinates (``ValueError``
+        where the distortion is not invertible)."""
+    def readout_line(self, u: float, v: float) -> float:
+        """``v``, ``height - 1 - v``, ``u`` or ``width - 1 - u`` by the readout direction."""
+    def project(self, point: ArrayLike) -> Optional[npt.NDArray[np.float64]]:
+        """The distorted pixel of a camera-frame point, or None."""
+    def to_dict(self) -> dict[str, Any]:
+        """The pair file's ``camera`` object (the pinhole short form for a PINHOLE read
+        from the top)."""
 
 class GyroLog:
     """Gyro samples around the two frames of a pair (the pair file's ``gyro_log``).
@@ -120,7 +165,7 @@ class GroundTruth:
         """False for a simulated outlier."""
 
 class Pair:
-    """Two images of one camera: matches, gyro readings or a gyro log, optional gravity and
+    """Two images (``camera`` for both or ``cameras``, one per image): matches, gyro readings or a gyro log, optional gravity and
     ground truth. The command line's pair file (``load_pair``, ``save``); made in Python it
     is checked by the same code with the same messages (``ValueError``)."""
 
@@ -128,10 +173,11 @@ class Pair:
         self,
         x1: ArrayLike,
         x2: ArrayLike,
-        camera: CameraLike,
+        camera: Optional[CameraLike] = None,
         gyro1: Optional[ArrayLike] = None,
         gyro2: Optional[ArrayLike] = None,
         *,
+        cameras: Optional[Sequence[CameraLike]] = None,
         gyro_log: Optional[GyroLog] = None,
         gravity1: Optional[ArrayLike] = None,
         gravity2: Optional[ArrayLike] = None,
@@ -143,7 +189,11 @@ class Pair:
     def x2(self) -> npt.NDArray[np.float64]:
         """Pixels in image 2, N x 2."""
     @property
-    def camera(self) -> Camera: ...
+    def camera(self) -> Camera:
+        """The camera of both images (``ValueError`` if they differ)."""
+    @property
+    def cameras(self) -> Tuple[Camera, Camera]:
+        """The cameras of image 1 and image 2."""
     @property
     def gyro1(self) -> Optional[npt.NDArray[np.float64]]: ...
     @property
@@ -240,11 +290,12 @@ class Estimate:
 def estimate_relative_pose(
     x1: ArrayLike,
     x2: ArrayLike,
-    camera: CameraLike,
+    camera: Optional[CameraLike] = None,
     gyro1: Optional[ArrayLike] = None,
     gyro2: Optional[ArrayLike] = None,
     method: Method = "grsrp+",
     *,
+    cameras: Optional[Sequence[CameraLike]] = None,
     gyro_log: Optional[GyroLog] = None,
     gravity1: Optional[ArrayLike] = None,
     gravity2: Optional[ArrayLike] = None,
@@ -254,6 +305,8 @@ def estimate_relative_pose(
 ) -> Estimate:
     """Relative pose of two rolling-shutter views from N x 2 pixel matches.
 
+    ``camera``: both images' camera (a ``Camera`` or the pair file's camera dict), or
+    ``cameras``: one per image (exactly one of the two).
     ``gyro1``/``gyro2``: each view's gyro reading (rad/s, camera axes); optional with
     ``gyro_log``, whose samples then give the row rotations (``rows="constant"``: each
     frame's mean rate). ``gravity1``/``gravity2``: each view's gravity direction (camera
@@ -296,6 +349,7 @@ def load_pair(path: PathLike) -> Pair:
 def simulate(
     *,
     camera: Optional[CameraLike] = None,
+    camera2: Optional[CameraLike] = None,
     points: int = 150,
     min_depth: float = 1.0,
     max_depth: float = 60.0,
@@ -312,7 +366,7 @@ def simulate(
 ) -> Pair:
     """One pair of the paper's synthetic protocol with ground truth (``rspose simulate``);
     unset arguments take the Rust ``SimulationOptions`` defaults shown here (camera:
-    ``Camera.paper()``)."""
+    ``Camera.paper()``; ``camera2``: view 2's own camera, if it differs)."""
 
 def solve_essential(
     x1: ArrayLike, x2: ArrayLike, camera: CameraLike, solver: Literal["five_point", "eight_point"] = "five_point"

@@ -231,7 +231,8 @@ pub fn failure_error(f: &Failure, path: Option<&PathBuf>) -> PyErr {
 /// Estimates the relative pose of two rolling-shutter views from pixel matches.
 ///
 /// ``x1``, ``x2``: N x 2 pixels ``[u, v]`` (v = row) of the matches in image 1 and 2.
-/// ``camera``: a ``Camera`` or a dict with its fields. ``gyro1``, ``gyro2``: each view's
+/// ``camera``: a ``Camera`` or a dict with the pair file's camera keys (both images), or
+/// ``cameras``: one per image (exactly one of the two). ``gyro1``, ``gyro2``: each view's
 /// gyroscope reading as a gyroscope reports it, rotated into camera axes (x right, y down,
 /// z forward; rad/s, bias removed); optional with ``gyro_log``. ``method``: gsrp, nrsrp,
 /// grsrp, grsrp+, rectified, rectified+v or grsrp-gravity (which needs ``gravity1`` and
@@ -250,16 +251,17 @@ pub fn failure_error(f: &Failure, path: Option<&PathBuf>) -> PyErr {
 /// Raises ``ValueError`` (bad input, with the command line's message), ``TypeError`` (an
 /// argument of the wrong type or an unknown option) or ``NoSolutionError`` (no pose found).
 #[pyfunction]
-#[pyo3(signature = (x1, x2, camera, gyro1=None, gyro2=None, method="grsrp+", *, gyro_log=None, gravity1=None, gravity2=None, rows="integrated", preset="default", **options))]
+#[pyo3(signature = (x1, x2, camera=None, gyro1=None, gyro2=None, method="grsrp+", *, cameras=None, gyro_log=None, gravity1=None, gravity2=None, rows="integrated", preset="default", **options))]
 #[allow(clippy::too_many_arguments)]
 pub fn estimate_relative_pose(
     py: Python<'_>,
     x1: &Bound<'_, PyAny>,
     x2: &Bound<'_, PyAny>,
-    camera: &Bound<'_, PyAny>,
+    camera: Option<&Bound<'_, PyAny>>,
     gyro1: Option<&Bound<'_, PyAny>>,
     gyro2: Option<&Bound<'_, PyAny>>,
     method: &str,
+    cameras: Option<&Bound<'_, PyAny>>,
     gyro_log: Option<&Bound<'_, PyAny>>,
     gravity1: Option<&Bound<'_, PyAny>>,
     gravity2: Option<&Bound<'_, PyAny>>,
@@ -268,7 +270,9 @@ pub fn estimate_relative_pose(
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Estimate> {
     let req = request(method, preset, rows, options, "estimate_relative_pose")?;
-    let pair = Pair::from_args(x1, x2, camera, gyro1, gyro2, gyro_log, gravity1, gravity2)?;
+    let pair = Pair::from_args(
+        x1, x2, camera, cameras, gyro1, gyro2, gyro_log, gravity1, gravity2,
+    )?;
     estimate_pair(py, &pair, &req)
 }
 
@@ -309,7 +313,8 @@ fn item_of(obj: &Bound<'_, PyAny>, index: usize) -> PyResult<Item> {
         for (k, _) in d.iter() {
             let k: String = k.extract().unwrap_or_default();
             if ![
-                "x1", "x2", "camera", "gyro1", "gyro2", "gyro_log", "gravity1", "gravity2",
+                "x1", "x2", "camera", "cameras", "gyro1", "gyro2", "gyro_log", "gravity1",
+                "gravity2",
             ]
             .contains(&k.as_str())
             {
@@ -322,7 +327,13 @@ fn item_of(obj: &Bound<'_, PyAny>, index: usize) -> PyResult<Item> {
             get(k)?
                 .ok_or_else(|| PyTypeError::new_err(format!("pairs[{index}]: missing key `{k}`")))
         };
-        let (x1, x2, camera) = (need("x1")?, need("x2")?, need("camera")?);
+        let (x1, x2) = (need("x1")?, need("x2")?);
+        let (camera, cameras) = (get("camera")?, get("cameras")?);
+        if camera.is_none() && cameras.is_none() {
+            return Err(PyTypeError::new_err(format!(
+                "pairs[{index}]: missing key `camera` (or `cameras`, one per image)"
+            )));
+        }
         let (g1, g2, log, a1, a2) = (
             get("gyro1")?,
             get("gyro2")?,
@@ -333,7 +344,8 @@ fn item_of(obj: &Bound<'_, PyAny>, index: usize) -> PyResult<Item> {
         return Pair::from_args(
             &x1,
             &x2,
-            &camera,
+            camera.as_ref(),
+            cameras.as_ref(),
             g1.as_ref(),
             g2.as_ref(),
             log.as_ref(),
@@ -349,7 +361,8 @@ fn item_of(obj: &Bound<'_, PyAny>, index: usize) -> PyResult<Item> {
             return Pair::from_args(
                 &i(0)?,
                 &i(1)?,
-                &i(2)?,
+                Some(&i(2)?),
+                None,
                 Some(&i(3)?),
                 Some(&i(4)?),
                 None,

@@ -7,14 +7,16 @@
 //! (`solvers`). Conventions are the library's: pixels `[u, v]` with v the row, the gyro a
 //! gyroscope's reading in camera axes (rad/s), `R = R2 R1^T`, `t = R2 (C1 - C2) / |.|`.
 
+mod camera;
 mod convert;
 mod estimate;
 mod options;
 mod pair;
 mod solvers;
 
+use camera::camera_of;
 use convert::NoSolutionError;
-use pair::{camera_of, Pair};
+use pair::Pair;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rspose_core::data::simulate::{simulate as rs_simulate, SimulationOptions};
@@ -26,15 +28,17 @@ use rspose_core::data::simulate::{simulate as rs_simulate, SimulationOptions};
 /// ``points`` matches with ``pixel_noise`` px of noise, gyro readings with ``gyro_noise``
 /// rad/s of noise per axis, gravity directions with ``gravity_noise_deg`` per axis, a
 /// fraction ``outlier_fraction`` of outliers; ``plane_depth``: every point on the plane at
-/// that depth. Unset arguments take the Rust ``SimulationOptions`` defaults. Deterministic
-/// given ``seed``. Returns a ``Pair`` with ``ground_truth``; ``ValueError`` for an invalid
-/// option (the command line's message).
+/// that depth. ``camera`` (any model and readout direction) images both views, or view 1
+/// only when ``camera2`` gives view 2 its own. Unset arguments take the Rust
+/// ``SimulationOptions`` defaults. Deterministic given ``seed``. Returns a ``Pair`` with
+/// ``ground_truth``; ``ValueError`` for an invalid option (the command line's message).
 #[pyfunction]
-#[pyo3(signature = (*, camera=None, points=None, min_depth=None, max_depth=None, rotation_std_deg=None, translation_std=None, angular_velocity=None, linear_velocity=None, pixel_noise=None, gyro_noise=None, outlier_fraction=None, gravity_noise_deg=None, seed=None, plane_depth=None))]
+#[pyo3(signature = (*, camera=None, camera2=None, points=None, min_depth=None, max_depth=None, rotation_std_deg=None, translation_std=None, angular_velocity=None, linear_velocity=None, pixel_noise=None, gyro_noise=None, outlier_fraction=None, gravity_noise_deg=None, seed=None, plane_depth=None))]
 #[allow(clippy::too_many_arguments)]
 fn simulate(
     py: Python<'_>,
     camera: Option<&Bound<'_, PyAny>>,
+    camera2: Option<&Bound<'_, PyAny>>,
     points: Option<usize>,
     min_depth: Option<f64>,
     max_depth: Option<f64>,
@@ -52,6 +56,7 @@ fn simulate(
     let d = SimulationOptions::default();
     let options = SimulationOptions {
         camera: camera.map(camera_of).transpose()?.unwrap_or(d.camera),
+        camera2: camera2.map(camera_of).transpose()?.or(d.camera2),
         points: points.unwrap_or(d.points),
         min_depth: min_depth.unwrap_or(d.min_depth),
         max_depth: max_depth.unwrap_or(d.max_depth),
@@ -114,7 +119,7 @@ fn methods() -> Vec<&'static str> {
 fn rspose(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("NoSolutionError", m.py().get_type::<NoSolutionError>())?;
-    m.add_class::<pair::Camera>()?;
+    m.add_class::<camera::Camera>()?;
     m.add_class::<pair::GyroLog>()?;
     m.add_class::<pair::GroundTruth>()?;
     m.add_class::<pair::Pair>()?;

@@ -1,7 +1,9 @@
-//! The pair classes: `Camera`, `GyroLog`, `GroundTruth` and `Pair`, each a view of the
-//! library's pair-file types (`rspose::pair_file`), so that a pair made in Python is checked
-//! by the same code, with the same messages, as a pair file the command line reads.
+//! The pair classes: `GyroLog`, `GroundTruth` and `Pair` (`Camera` is in `camera.rs`), each
+//! a view of the library's pair-file types (`rspose::pair_file`), so that a pair made in
+//! Python is checked by the same code, with the same messages, as a pair file the command
+//! line reads.
 
+use crate::camera::{cameras_of, Camera};
 use crate::convert::{pair_file_error, rows_array, rows_of, type_name, vector_array, vector_of};
 use numpy::ndarray::Array1;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
@@ -11,153 +13,8 @@ use pyo3::types::PyDict;
 use rspose_core::data::pair_file::{
     gravity_from_json, matrix_from_rows, GroundTruth as RsGroundTruth, GyroLogSpec, Match, PairFile,
 };
-use rspose_core::model::camera::Camera as RsCamera;
 use std::path::PathBuf;
 use std::sync::Arc;
-
-/// A pinhole rolling-shutter camera: focal lengths ``fx``, ``fy`` and principal point
-/// ``cx``, ``cy`` (pixels), image size ``width`` x ``height`` (pixels) and ``readout``, the
-/// readout time per image row (s/row; 0 for a global shutter). Values are checked when a
-/// pair is made from it, with the command line's messages (``invalid field `camera.fx`:
-/// ...``).
-#[pyclass(module = "rspose", frozen, eq, from_py_object)]
-#[derive(Clone, PartialEq)]
-pub struct Camera {
-    /// The library's camera.
-    pub inner: RsCamera,
-}
-
-#[pymethods]
-impl Camera {
-    #[new]
-    #[pyo3(signature = (fx, fy, cx, cy, width, height, readout))]
-    fn new(fx: f64, fy: f64, cx: f64, cy: f64, width: f64, height: f64, readout: f64) -> Self {
-        Camera {
-            inner: RsCamera {
-                fx,
-                fy,
-                cx,
-                cy,
-                width,
-                height,
-                readout,
-            },
-        }
-    }
-
-    /// The paper's synthetic camera: 1920 x 1080, f = 640 px, principal point at the
-    /// centre, 60 µs per row.
-    #[staticmethod]
-    fn paper() -> Self {
-        Camera {
-            inner: RsCamera::paper(),
-        }
-    }
-
-    /// Focal length along u, pixels.
-    #[getter]
-    fn fx(&self) -> f64 {
-        self.inner.fx
-    }
-    /// Focal length along v, pixels.
-    #[getter]
-    fn fy(&self) -> f64 {
-        self.inner.fy
-    }
-    /// Principal point u, pixels.
-    #[getter]
-    fn cx(&self) -> f64 {
-        self.inner.cx
-    }
-    /// Principal point v, pixels.
-    #[getter]
-    fn cy(&self) -> f64 {
-        self.inner.cy
-    }
-    /// Image width, pixels.
-    #[getter]
-    fn width(&self) -> f64 {
-        self.inner.width
-    }
-    /// Image height (rows), pixels.
-    #[getter]
-    fn height(&self) -> f64 {
-        self.inner.height
-    }
-    /// Readout time per row, s.
-    #[getter]
-    fn readout(&self) -> f64 {
-        self.inner.readout
-    }
-
-    /// The camera as a dict with the pair file's keys.
-    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let d = PyDict::new(py);
-        let c = &self.inner;
-        for (k, v) in [
-            ("fx", c.fx),
-            ("fy", c.fy),
-            ("cx", c.cx),
-            ("cy", c.cy),
-            ("width", c.width),
-            ("height", c.height),
-            ("readout", c.readout),
-        ] {
-            d.set_item(k, v)?;
-        }
-        Ok(d)
-    }
-
-    fn __repr__(&self) -> String {
-        let c = &self.inner;
-        format!(
-            "Camera(fx={}, fy={}, cx={}, cy={}, width={}, height={}, readout={})",
-            c.fx, c.fy, c.cx, c.cy, c.width, c.height, c.readout
-        )
-    }
-}
-
-/// A camera from a `Camera` or a mapping with the pair file's keys (`fx`, `fy`, `cx`, `cy`,
-/// `width`, `height`, `readout`).
-pub fn camera_of(obj: &Bound<'_, PyAny>) -> PyResult<RsCamera> {
-    if let Ok(c) = obj.cast::<Camera>() {
-        return Ok(c.get().inner);
-    }
-    let Ok(d) = obj.cast::<PyDict>() else {
-        return Err(PyTypeError::new_err(format!(
-            "camera: expected rspose.Camera or a dict with fx, fy, cx, cy, width, height, readout, got {}",
-            type_name(obj)
-        )));
-    };
-    let field = |k: &str| -> PyResult<f64> {
-        let v = d
-            .get_item(k)?
-            .ok_or_else(|| PyValueError::new_err(format!("camera: missing field `{k}`")))?;
-        v.extract::<f64>().map_err(|_| {
-            PyTypeError::new_err(format!(
-                "camera: field `{k}`: expected a number, got {}",
-                type_name(&v)
-            ))
-        })
-    };
-    for (k, _) in d.iter() {
-        let k: String = k.extract().unwrap_or_default();
-        if !["fx", "fy", "cx", "cy", "width", "height", "readout"].contains(&k.as_str()) {
-            return Err(PyValueError::new_err(format!(
-                "camera: unknown field `{k}`"
-            )));
-        }
-    }
-    Ok(RsCamera {
-        fx: field("fx")?,
-        fy: field("fy")?,
-        cx: field("cx")?,
-        cy: field("cy")?,
-        width: field("width")?,
-        height: field("height")?,
-        readout: field("readout")?,
-    })
-}
 
 /// Gyroscope samples around the two frames of a pair (the pair file's ``gyro_log``):
 /// ``samples`` is N x 4, ``[t, wx, wy, wz]`` on the gyro's clock (s) and in the gyro's axes
@@ -330,8 +187,8 @@ pub struct Source {
     pub path: Option<PathBuf>,
 }
 
-/// Two rolling-shutter images of one camera: pixel matches ``x1``, ``x2`` (N x 2, ``[u, v]``
-/// with v the row), the gyroscope reading of each view in camera axes (rad/s) or a
+/// Two rolling-shutter images: pixel matches ``x1``, ``x2`` (N x 2, ``[u, v]`` with v the
+/// row), ``camera`` for both images or ``cameras`` (one per image), the gyroscope reading of each view in camera axes (rad/s) or a
 /// ``GyroLog``, optionally each view's gravity direction (camera axes, any length), and for
 /// simulated pairs the ground truth. The pair file of the command line
 /// (``rspose.load_pair``, ``Pair.save``); made in Python, it is checked by the same code
@@ -374,7 +231,8 @@ impl Pair {
     pub fn from_args(
         x1: &Bound<'_, PyAny>,
         x2: &Bound<'_, PyAny>,
-        camera: &Bound<'_, PyAny>,
+        camera: Option<&Bound<'_, PyAny>>,
+        cameras: Option<&Bound<'_, PyAny>>,
         gyro1: Option<&Bound<'_, PyAny>>,
         gyro2: Option<&Bound<'_, PyAny>>,
         gyro_log: Option<&Bound<'_, PyAny>>,
@@ -391,7 +249,7 @@ impl Pair {
             )));
         }
         let matches: Vec<Match> = p1.into_iter().zip(p2).map(|(a, b)| [a, b]).collect();
-        let camera = camera_of(camera)?;
+        let cameras = cameras_of(camera, cameras)?;
         let gyro = match (gyro1, gyro2) {
             (None, None) => None,
             (Some(a), Some(b)) => Some([
@@ -422,7 +280,7 @@ impl Pair {
         };
         let gravity = gravity_value(gravity1, gravity2)?;
         let pair = PairFile {
-            camera,
+            cameras,
             gyro,
             gyro_log,
             gravity,
@@ -448,19 +306,22 @@ impl Pair {
 #[pymethods]
 impl Pair {
     #[new]
-    #[pyo3(signature = (x1, x2, camera, gyro1=None, gyro2=None, *, gyro_log=None, gravity1=None, gravity2=None))]
+    #[pyo3(signature = (x1, x2, camera=None, gyro1=None, gyro2=None, *, cameras=None, gyro_log=None, gravity1=None, gravity2=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         x1: &Bound<'_, PyAny>,
         x2: &Bound<'_, PyAny>,
-        camera: &Bound<'_, PyAny>,
+        camera: Option<&Bound<'_, PyAny>>,
         gyro1: Option<&Bound<'_, PyAny>>,
         gyro2: Option<&Bound<'_, PyAny>>,
+        cameras: Option<&Bound<'_, PyAny>>,
         gyro_log: Option<&Bound<'_, PyAny>>,
         gravity1: Option<&Bound<'_, PyAny>>,
         gravity2: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        Pair::from_args(x1, x2, camera, gyro1, gyro2, gyro_log, gravity1, gravity2)
+        Pair::from_args(
+            x1, x2, camera, cameras, gyro1, gyro2, gyro_log, gravity1, gravity2,
+        )
     }
 
     /// Pixels in image 1, N x 2 ``[u, v]``.
@@ -475,12 +336,23 @@ impl Pair {
         let rows: Vec<[f64; 2]> = self.inner.matches.iter().map(|m| m[1]).collect();
         rows_array(py, &rows)
     }
-    /// The camera of both images.
+    /// The camera of both images; ``ValueError`` if the images have different cameras
+    /// (see ``cameras``).
     #[getter]
-    fn camera(&self) -> Camera {
-        Camera {
-            inner: self.inner.camera,
+    fn camera(&self) -> PyResult<Camera> {
+        let [c1, c2] = self.inner.cameras;
+        if c1 != c2 {
+            return Err(PyValueError::new_err(
+                "the two images have different cameras: use Pair.cameras",
+            ));
         }
+        Ok(Camera { inner: c1 })
+    }
+    /// The cameras of image 1 and image 2.
+    #[getter]
+    fn cameras(&self) -> (Camera, Camera) {
+        let [c1, c2] = self.inner.cameras;
+        (Camera { inner: c1 }, Camera { inner: c2 })
     }
     /// Gyro reading of view 1 (rad/s, camera axes), or None.
     #[getter]

@@ -2,8 +2,8 @@
 //! public conventions; the solvers' internal data are built by the library, as its RANSAC
 //! builds them).
 
+use crate::camera::camera_of;
 use crate::convert::{matrix_array, matrix_rows, rows_of, vector_array, vector_of};
-use crate::pair::camera_of;
 use nalgebra::{Matrix3, Vector3};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -11,7 +11,7 @@ use pyo3::types::PyList;
 use rspose_core::data::pair_file::{matrix_from_rows, Match};
 use rspose_core::minimal::{EssentialSolver, GravitySample, GrsrpSample};
 use rspose_core::model::camera::{Camera, View};
-use rspose_core::model::epipolar::PointData;
+use rspose_core::model::epipolar::{observe_matches, PointData};
 use rspose_core::EstimateError;
 
 /// `n` matches from `x1`, `x2` (exactly `n` rows, or at least `n` when `at_least`), finite.
@@ -45,6 +45,11 @@ fn matches_of(
         }
     }
     Ok(matches)
+}
+
+/// A match without a bearing as the estimator reports it (`ValueError`).
+fn unobservable(e: rspose_core::model::epipolar::UnobservableMatch) -> PyErr {
+    PyValueError::new_err(EstimateError::from(e).to_string())
 }
 
 /// Two checked constant-rate views (with gravity where given).
@@ -84,7 +89,8 @@ fn gyro_of(g: &Bound<'_, PyAny>, name: &str) -> PyResult<Vector3<f64>> {
 
 /// The global-shutter essential-matrix solvers: ``solver="five_point"`` (the generated
 /// ``gs5pt``, exactly 5 matches, up to 10 solutions) or ``"eight_point"`` (linear, at least
-/// 8 matches, one solution). ``x1``, ``x2``: pixels (N x 2); bearings are K^-1 [u, v, 1].
+/// 8 matches, one solution). ``x1``, ``x2``: pixels (N x 2); bearings are their undistorted
+/// normalised coordinates (K^-1 [u, v, 1] for a pinhole).
 /// Returns the essential matrices E (3 x 3, Frobenius norm 1) with x2^T E x1 = 0 on the
 /// bearings.
 #[pyfunction]
@@ -101,14 +107,9 @@ pub fn solve_essential<'py>(
     let n = solver.sample_size();
     let matches = matches_of(x1, x2, n, solver == EssentialSolver::EightPoint)?;
     views_of(camera, [Vector3::zeros(); 2], None)?;
-    let b1: Vec<Vector3<f64>> = matches
-        .iter()
-        .map(|m| camera.bearing(m[0][0], m[0][1]))
-        .collect();
-    let b2: Vec<Vector3<f64>> = matches
-        .iter()
-        .map(|m| camera.bearing(m[1][0], m[1][1]))
-        .collect();
+    let observed = observe_matches(&camera, &camera, &matches).map_err(unobservable)?;
+    let b1: Vec<Vector3<f64>> = observed.iter().map(|[a, _]| a.bearing).collect();
+    let b2: Vec<Vector3<f64>> = observed.iter().map(|[_, b]| b.bearing).collect();
     let mut out: Vec<Matrix3<f64>> = Vec::new();
     py.detach(|| solver.solve(&b1, &b2, &mut out));
     let list = PyList::empty(py);
@@ -149,7 +150,7 @@ pub fn solve_grsrp<'py>(
     if !r0.iter().all(|x| x.is_finite()) {
         return Err(PyValueError::new_err("r0 must be finite"));
     }
-    let data = PointData::new(&v1, &v2, &matches);
+    let data = PointData::new(&v1, &v2, &matches).map_err(unobservable)?;
     let sample = GrsrpSample::from_points(&data, &[0, 1, 2, 3, 4], r0);
     let mut out = Vec::new();
     py.detach(|| solver.solve(&sample, &mut out));
@@ -188,8 +189,8 @@ pub fn solve_gravity<'py>(
         [gyro_of(gyro1, "gyro1")?, gyro_of(gyro2, "gyro2")?],
         Some(g),
     )?;
-    let data = PointData::new(&v1, &v2, &matches);
-    let sample = GravitySample::from_points(&data, &[0, 1, 2], g, [camera.height; 2]);
+    let data = PointData::new(&v1, &v2, &matches).map_err(unobservable)?;
+    let sample = GravitySample::from_points(&data, &[0, 1, 2], g, [camera.lines(); 2]);
     let mut out = Vec::new();
     py.detach(|| solver.solve(&sample, &mut out));
     poses(py, &out)

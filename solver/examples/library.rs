@@ -16,15 +16,9 @@ fn load() -> Result<Recording, Box<dyn std::error::Error>> {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let camera = Camera {
-        fx: 640.0,
-        fy: 640.0,
-        cx: 960.0,
-        cy: 540.0,
-        width: 1920.0,
-        height: 1080.0,
-        readout: 60e-6,
-    };
+    // fx, fy, cx, cy, width, height (pixels), readout (s per row, read from the top);
+    // distorted lenses: Camera::from_params(CameraModel::OpenCv, ...).
+    let camera = Camera::pinhole(640.0, 640.0, 960.0, 540.0, 1920.0, 1080.0, 60e-6);
     let (matches, gyro) = load()?; // [[u1, v1], [u2, v2]] pixels; rad/s, camera axes
     let view1 = View::new(camera, Vector3::from(gyro[0])); // gyroscope reading of image 1
     let view2 = View::new(camera, Vector3::from(gyro[1])); // gyroscope reading of image 2

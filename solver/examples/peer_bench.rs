@@ -48,10 +48,13 @@ fn write(dir: &Path, num_pairs: u64) -> Result<(), String> {
             ..Default::default()
         })
         .map_err(|e| e.to_string())?;
-        let cam = p.camera;
+        let cam = p.cameras[0];
         for k in 0..2 {
             for m in &p.matches {
-                let b = cam.bearing(m[k][0], m[k][1]).normalize();
+                let b = cam
+                    .undistort_bearing(m[k][0], m[k][1])
+                    .map_err(|e| e.to_string())?
+                    .normalize();
                 let _ = write!(five, "{:e} {:e} {:e} ", b.x, b.y, b.z);
             }
         }
@@ -69,7 +72,7 @@ fn write(dir: &Path, num_pairs: u64) -> Result<(), String> {
         })
         .map_err(|e| e.to_string())?;
         let gt = p.ground_truth.ok_or("no ground truth")?;
-        let c = p.camera;
+        let c = p.cameras[0];
         let _ = write!(
             pairs,
             "{} {} {} {} {}",
@@ -121,15 +124,7 @@ fn read(dir: &Path) -> Result<(Vec<Five>, Vec<Pair>), String> {
             return Err("pairs.txt: a header has 17 numbers".into());
         }
         let n = h[0] as usize;
-        let camera = Camera {
-            fx: h[1],
-            fy: h[2],
-            cx: h[3],
-            cy: h[4],
-            width: 1920.0,
-            height: 1080.0,
-            readout: 0.0,
-        };
+        let camera = Camera::pinhole(h[1], h[2], h[3], h[4], 1920.0, 1080.0, 0.0);
         let mut matches: Vec<Match> = Vec::with_capacity(n);
         for _ in 0..n {
             let v = numbers(lines.next().ok_or("pairs.txt: truncated")?)?;

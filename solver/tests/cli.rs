@@ -484,3 +484,62 @@ fn the_default_preset_reports_the_fitted_gyro_noise_and_the_paper_preset_does_no
     let v = run(&["--preset", "paper"]);
     assert!(v.get("noise_fit").is_none(), "{v}");
 }
+
+/// `simulate --camera` images the scene through a fisheye read right to left; `estimate`
+/// reads the camera back from the pair file; a pixel outside the fisheye's invertible
+/// region, a wrong parameter count and both `camera` and `cameras` are bad input.
+#[test]
+fn fisheye_cameras_simulate_estimate_and_refuse_bad_pixels() {
+    let d = scratch("fisheye");
+    let cam = d.join("camera.json");
+    std::fs::write(
+        &cam,
+        r#"{"model": "OPENCV_FISHEYE", "width": 1920, "height": 1080,
+            "params": [600, 600, 960, 540, 0.05, -0.01, 0.002, -0.0005],
+            "readout": 3.4e-5, "readout_direction": "right_to_left"}"#,
+    )
+    .unwrap();
+    let p = d.join("pair.json");
+    let o = rspose(&[
+        "simulate",
+        "--camera",
+        cam.to_str().unwrap(),
+        "--pixel-noise",
+        "0",
+        "--gyro-noise",
+        "0",
+        "-o",
+        p.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&p).unwrap();
+    assert!(text.contains("OPENCV_FISHEYE") && text.contains("right_to_left"));
+    let o = rspose(&["estimate", p.to_str().unwrap(), "--method", "rectified"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    // The image corner (1100 px from the centre) lies beyond the fisheye's horizon:
+    // θ_d(π/2) = 1.69, 1012 px at f = 600.
+    v["matches"][4][1] = serde_json::json!([1919.0, 1079.0]);
+    let bad = d.join("corner.json");
+    std::fs::write(&bad, v.to_string()).unwrap();
+    let o = rspose(&["estimate", bad.to_str().unwrap()]);
+    assert_bad_input(&o, "match 4: image 2's pixel has no bearing");
+    assert_eq!(stderr(&o).trim().lines().count(), 1, "{}", stderr(&o));
+
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["camera"]["params"].as_array_mut().unwrap().pop();
+    let bad = d.join("params.json");
+    std::fs::write(&bad, v.to_string()).unwrap();
+    assert_bad_input(
+        &rspose(&["estimate", bad.to_str().unwrap()]),
+        "OPENCV_FISHEYE takes 8 params",
+    );
+
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["cameras"] = serde_json::json!([v["camera"], v["camera"]]);
+    let bad = d.join("both.json");
+    std::fs::write(&bad, v.to_string()).unwrap();
+    assert_bad_input(&rspose(&["estimate", bad.to_str().unwrap()]), "not both");
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -198,8 +198,8 @@ pub fn run(a: Args) -> Result<(), CliError> {
         if let Some(k) = est.readout_scale {
             println!(
                 "readout      {:.2} ms (nominal {:.2} ms, x{k:.3})",
-                k * v1.camera.readout * v1.camera.height * 1e3,
-                v1.camera.readout * v1.camera.height * 1e3
+                k * v1.camera.readout * v1.camera.lines() * 1e3,
+                v1.camera.readout * v1.camera.lines() * 1e3
             );
         }
         if let Some([d1, d2]) = est.linear_velocity {

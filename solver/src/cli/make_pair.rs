@@ -184,7 +184,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     check_output_dir(&a.output)?;
     let calibration = load_calibration(&a.calibration)?;
     let camera = calibration.camera;
-    let duration = camera.height * camera.readout;
+    let duration = camera.frame_readout();
     let (csv, full_log) = load_gyro_csv(&a.gyro, &calibration)?;
     let times = load_frame_times(&a.frame_times)?;
     let m: MatchesFile = parse_json(&a.matches)?;
@@ -229,7 +229,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         a.margin,
     );
     let mut pair = PairFile {
-        camera,
+        cameras: [camera; 2],
         gyro: None,
         gyro_log: Some(spec),
         gravity: None,

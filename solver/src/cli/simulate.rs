@@ -2,6 +2,7 @@
 
 use super::{check_output_dir, CliError};
 use rspose::data::simulate::{simulate, SimulationOptions};
+use rspose::model::camera::Camera;
 use std::path::PathBuf;
 
 /// Options of `rspose simulate` (defaults: 2.5 rad/s, 0 m/s, 1 px, 0.1 rad/s, 1° gravity
@@ -38,14 +39,39 @@ pub struct Args {
     /// Standard deviation of camera 2's centre per axis (m); the baseline.
     #[arg(long = "translation-std", default_value_t = 2.0)]
     translation_std: f64,
+    /// Camera to image the scene with: a JSON file holding one camera object in the pair
+    /// file's form (a COLMAP model with `params` and a readout direction, or the pinhole
+    /// short form); default: the paper's 1920x1080 pinhole, 60 µs per row.
+    #[arg(long)]
+    camera: Option<PathBuf>,
+    /// Image 2's camera, if it differs from image 1's (a JSON file as for `--camera`; the
+    /// pair file then has `cameras`).
+    #[arg(long)]
+    camera2: Option<PathBuf>,
     /// Output pair file (JSON).
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
 }
 
+/// One camera object (the pair file's form) from a JSON file, checked.
+fn read_camera(path: &std::path::Path) -> Result<Camera, CliError> {
+    let bad = |e: String| CliError::input(format!("{}: {e}", path.display()));
+    let text = std::fs::read_to_string(path).map_err(|e| bad(e.to_string()))?;
+    let camera: Camera = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
+    camera.validate().map_err(|e| bad(e.to_string()))?;
+    Ok(camera)
+}
+
 pub fn run(a: Args) -> Result<(), CliError> {
     check_output_dir(&a.output)?;
+    let camera = match &a.camera {
+        Some(path) => read_camera(path)?,
+        None => Camera::paper(),
+    };
+    let camera2 = a.camera2.as_deref().map(read_camera).transpose()?;
     let options = SimulationOptions {
+        camera,
+        camera2,
         angular_velocity: a.angular,
         linear_velocity: a.linear,
         pixel_noise: a.pixel_noise,

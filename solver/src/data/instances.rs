@@ -103,7 +103,8 @@ pub fn grsrp_instances(
             .iter()
             .map(|i| pair.matches[inliers[i]])
             .collect();
-        let d = PointData::new(&view1, &view2, &picked);
+        let d = PointData::new(&view1, &view2, &picked)
+            .map_err(|e| InstancesError::Pair(e.to_string()))?;
         let axis = loop {
             let v = Vector3::new(gauss(&mut rng), gauss(&mut rng), gauss(&mut rng));
             let n = v.norm();

@@ -5,7 +5,10 @@
 //! ```text
 //! {
 //!   "camera": { "fx": f64, "fy": f64, "cx": f64, "cy": f64,
-//!               "width": f64, "height": f64, "readout": f64 },   // readout: λ, s/row
+//!               "width": f64, "height": f64, "readout": f64 },   // readout: λ, s/line
+//!   // or "camera": { "model": "OPENCV", "width": f64, "height": f64, "params": [...],
+//!   //               "readout": f64, "readout_direction": "top_to_bottom" }
+//!   // or "cameras": [camera1, camera2]
 //!   "gyro": [[wx, wy, wz], [wx, wy, wz]],   // ω of view 1 and view 2 (see below); optional
 //!                                          // when "gyro_log" is given
 //!   "gyro_log": {                          // optional: gyro samples instead of (or beside) "gyro"
@@ -40,7 +43,12 @@
 //! accelerometer reports it (any length and either sign, the same for both views; only the
 //! line's direction is used): for both views or neither.
 //!
-//! Both images share one camera. [`PairFile::load`] parses and then validates every field,
+//! `"camera"` is one camera for both images; `"cameras": [camera1, camera2]` gives each
+//! image its own (exactly one of the two keys). A camera is COLMAP's object
+//! `{"model", "width", "height", "params", "readout", "readout_direction"}` or the pinhole
+//! short form above ([`Camera`], `docs/PAIR_FILE.md`); a pixel's bearing is its
+//! undistorted normalised coordinates and its time `l λ`, `l` the line coordinate of the
+//! raw pixel along the readout direction. [`PairFile::load`] parses and then validates every field,
 //! returning a [`PairFileError`] that names the offending field (`camera.fx`, `matches[3]`,
 //! `ground_truth.rotation`, ...).
 
@@ -152,31 +160,126 @@ impl GyroLogSpec {
 
 /// A pair of rolling-shutter images with gyro readings and pixel matches (`PAIR.json`).
 /// Unknown keys, here and in the nested objects, are refused with their name: a misspelt
-/// optional key would otherwise silently take its default.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// optional key would otherwise silently take its default. In JSON the cameras are
+/// `"camera"` (one for both images) or `"cameras": [camera1, camera2]`, exactly one of
+/// the two; a file is written with `"camera"` when both cameras are equal.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(try_from = "PairFileJson")]
 pub struct PairFile {
-    /// The camera (both images).
-    pub camera: Camera,
+    /// The cameras of image 1 and image 2.
+    pub cameras: [Camera; 2],
     /// Angular velocities of view 1 and view 2 (rad/s, camera axes, as a gyroscope reports
     /// them), constant over each frame. Optional when `gyro_log` is given.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gyro: Option<[[f64; 3]; 2]>,
     /// Gyro samples: exact row rotations, and the rotation between the frames.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gyro_log: Option<GyroLogSpec>,
     /// Gravity in the camera axes of view 1 and view 2 at row 0 (accelerometer readings).
-    #[serde(
-        default,
-        skip_serializing_if = "Option::is_none",
-        deserialize_with = "gravity_field"
-    )]
     pub gravity: Option<[[f64; 3]; 2]>,
     /// Pixel matches `[[u1, v1], [u2, v2]]`.
     pub matches: Vec<Match>,
     /// Ground truth, present in simulated files.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ground_truth: Option<GroundTruth>,
+}
+
+/// The pair file as JSON holds it (`camera` or `cameras`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PairFileJson {
+    #[serde(default)]
+    camera: Option<Camera>,
+    #[serde(default)]
+    cameras: Option<Vec<Camera>>,
+    #[serde(default)]
+    gyro: Option<[[f64; 3]; 2]>,
+    #[serde(default)]
+    gyro_log: Option<GyroLogSpec>,
+    #[serde(default, deserialize_with = "gravity_field")]
+    gravity: Option<[[f64; 3]; 2]>,
+    matches: Vec<Match>,
+    #[serde(default)]
+    ground_truth: Option<GroundTruth>,
+}
+
+/// The pair file as it is written (borrowing the file's fields).
+#[derive(Serialize)]
+struct PairFileOut<'a> {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    camera: Option<&'a Camera>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    cameras: Option<&'a [Camera; 2]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    gyro: Option<&'a [[f64; 3]; 2]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    gyro_log: Option<&'a GyroLogSpec>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    gravity: Option<&'a [[f64; 3]; 2]>,
+    matches: &'a [Match],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    ground_truth: Option<&'a GroundTruth>,
+}
+
+impl TryFrom<PairFileJson> for PairFile {
+    type Error = String;
+
+    fn try_from(j: PairFileJson) -> Result<Self, String> {
+        let cameras = match (j.camera, j.cameras) {
+            (Some(c), None) => [c, c],
+            (None, Some(cs)) => match cs[..] {
+                [c1, c2] => [c1, c2],
+                _ => {
+                    return Err(format!(
+                        "`cameras` needs one camera for each of the two images, got {}",
+                        cs.len()
+                    ))
+                }
+            },
+            (Some(_), Some(_)) => {
+                return Err(
+                    "give `camera` (both images) or `cameras` (one per image), not both".into(),
+                )
+            }
+            (None, None) => {
+                return Err(
+                    "missing field `camera` (both images) or `cameras` (one per image)".into(),
+                )
+            }
+        };
+        Ok(PairFile {
+            cameras,
+            gyro: j.gyro,
+            gyro_log: j.gyro_log,
+            gravity: j.gravity,
+            matches: j.matches,
+            ground_truth: j.ground_truth,
+        })
+    }
+}
+
+/// Whether two cameras are the same, bit for bit (a NaN parameter equal to itself: a file
+/// with one `camera` holding a NaN names `camera`, not `cameras[0]`).
+fn same_camera(a: &Camera, b: &Camera) -> bool {
+    let numbers = |c: &Camera| {
+        let mut v = vec![c.fx, c.fy, c.cx, c.cy, c.width, c.height, c.readout];
+        v.extend(c.distortion);
+        v.into_iter().map(f64::to_bits).collect::<Vec<_>>()
+    };
+    a.model == b.model && a.readout_direction == b.readout_direction && numbers(a) == numbers(b)
+}
+
+impl Serialize for PairFile {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let shared = same_camera(&self.cameras[0], &self.cameras[1]);
+        PairFileOut {
+            camera: shared.then_some(&self.cameras[0]),
+            cameras: (!shared).then_some(&self.cameras),
+            gyro: self.gyro.as_ref(),
+            gyro_log: self.gyro_log.as_ref(),
+            gravity: self.gravity.as_ref(),
+            matches: &self.matches,
+            ground_truth: self.ground_truth.as_ref(),
+        }
+        .serialize(s)
+    }
 }
 
 /// Errors reading, validating or writing a pair file.
@@ -262,6 +365,37 @@ pub fn gravity_from_json(value: &serde_json::Value) -> Result<Option<[[f64; 3]; 
     Ok(Some(out))
 }
 
+/// The dotted field a camera error names: `camera.fx` (the short pinhole form's key, also
+/// for a `PINHOLE` written with `params`), `camera.params[4]` (`k1` of an `OPENCV`),
+/// `camera.readout`, ... (`key` is `camera` or `cameras[k]`).
+fn camera_field(key: &str, camera: &Camera, e: &CameraError) -> String {
+    let param = |name: &str| {
+        let names = camera.model.param_names();
+        match names.iter().position(|n| *n == name) {
+            Some(_) if camera.model == crate::model::camera_model::CameraModel::Pinhole => {
+                format!("{key}.{name}")
+            }
+            Some(i) => format!("{key}.params[{i}]"),
+            None => format!("{key}.params"),
+        }
+    };
+    match e {
+        CameraError::InvalidFocal { name, .. }
+        | CameraError::InvalidPrincipalPoint { name, .. }
+        | CameraError::InvalidDistortion { name, .. } => param(name),
+        CameraError::UnequalFocals { .. } => format!("{key}.params"),
+        CameraError::InvalidReadout(_) => format!("{key}.readout"),
+        CameraError::InvalidSize { .. } => format!("{key}.width/height"),
+        CameraError::UnknownModel(_) => format!("{key}.model"),
+        CameraError::WrongParamCount { .. } => format!("{key}.params"),
+        CameraError::InvalidObject(_)
+        | CameraError::NotInvertible { .. }
+        | CameraError::NotConverged { .. } => key.to_string(),
+        CameraError::InvalidGyro(..) => "gyro".into(),
+        CameraError::InvalidGravity(..) => "gravity".into(),
+    }
+}
+
 fn invalid(field: impl Into<String>, reason: impl Into<String>) -> PairFileError {
     PairFileError::InvalidField {
         field: field.into(),
@@ -290,19 +424,19 @@ impl PairFile {
                 return Err(invalid("gyro", "missing (give `gyro` or `gyro_log`)"));
             };
             return Ok((
-                View::new(self.camera, Vector3::from(g[0])),
-                View::new(self.camera, Vector3::from(g[1])),
+                View::new(self.cameras[0], Vector3::from(g[0])),
+                View::new(self.cameras[1], Vector3::from(g[1])),
             ));
         };
         let log = spec.log().map_err(log_error)?;
-        let duration = self.camera.height * self.camera.readout;
         log.check_gaps(MAX_SAMPLE_GAP).map_err(log_error)?;
         let view = |k: usize| -> Result<View, PairFileError> {
             let t0 = spec.row0_time(k);
+            let duration = self.cameras[k].frame_readout();
             log.check_covers(t0, t0 + duration, &format!("image {}'s readout", k + 1))
                 .map_err(log_error)?;
             Ok(View::with_track(
-                self.camera,
+                self.cameras[k],
                 log.mean_rate(t0, t0 + duration),
                 log.row_track(t0, duration),
             ))
@@ -327,17 +461,17 @@ impl PairFile {
     /// rotation ground truth that is a rotation, a unit translation, finite velocities and one
     /// inlier flag per match.
     pub fn validate(&self) -> Result<(), PairFileError> {
-        self.camera.validate().map_err(|e| {
-            let field = match &e {
-                CameraError::InvalidFocal { name, .. } => format!("camera.{name}"),
-                CameraError::InvalidPrincipalPoint { name, .. } => format!("camera.{name}"),
-                CameraError::InvalidReadout(_) => "camera.readout".into(),
-                CameraError::InvalidSize { .. } => "camera.width/height".into(),
-                CameraError::InvalidGyro(..) => "gyro".into(),
-                CameraError::InvalidGravity(..) => "gravity".into(),
+        let shared = same_camera(&self.cameras[0], &self.cameras[1]);
+        for (k, camera) in self.cameras.iter().enumerate() {
+            let key = if shared {
+                "camera".to_string()
+            } else {
+                format!("cameras[{k}]")
             };
-            invalid(field, e.to_string())
-        })?;
+            camera
+                .validate()
+                .map_err(|e| invalid(camera_field(&key, camera, &e), e.to_string()))?;
+        }
         if let Some(g) = &self.gyro {
             for (i, w) in g.iter().enumerate() {
                 let speed = Vector3::from(*w).norm();
@@ -490,139 +624,4 @@ impl PairFile {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn sample() -> PairFile {
-        PairFile {
-            camera: Camera::paper(),
-            gyro: Some([[0.1, 0.2, 0.3], [0.0, -1.0, 0.5]]),
-            gyro_log: None,
-            gravity: Some([[0.0, 9.8, 0.1], [0.2, 9.7, -0.3]]),
-            matches: vec![[[1.0, 2.0], [3.0, 4.0]], [[5.0, 6.0], [7.0, 8.0]]],
-            ground_truth: Some(GroundTruth {
-                rotation: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-                translation: [0.0, 0.0, 1.0],
-                omega: [[0.0; 3]; 2],
-                velocity: [[0.0; 3]; 2],
-                inliers: vec![true, false],
-            }),
-        }
-    }
-
-    #[test]
-    fn roundtrip_and_atomic_save() {
-        let dir = std::env::temp_dir().join(format!("rspose-pairfile-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("pair.json");
-        let p = sample();
-        p.save_atomic(&path).unwrap();
-        assert_eq!(PairFile::load(&path).unwrap(), p);
-        let leftovers: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
-        assert_eq!(leftovers.len(), 1);
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
-
-    #[test]
-    fn unknown_keys_are_refused_with_their_name() {
-        // A misspelt key would otherwise silently take its default (identity, zero).
-        let p = Path::new("x.json");
-        let good = sample().to_json_string();
-        assert!(PairFile::from_json_str(&good, p).is_ok());
-        for (from, to) in [
-            ("\"gravity\"", "\"gravty\""),
-            ("\"fx\"", "\"focal\""),
-            ("\"inliers\"", "\"inlier\""),
-        ] {
-            let text = good.replacen(from, to, 1);
-            let e = PairFile::from_json_str(&text, p).unwrap_err().to_string();
-            let key = to.trim_matches('"');
-            assert!(e.contains(&format!("unknown field `{key}`")), "{e}");
-        }
-        let mut with_log = sample();
-        with_log.gyro_log = Some(GyroLogSpec {
-            camera_from_gyro: identity_rows(),
-            time_offset: 0.0,
-            frame_times: [0.0, 0.1],
-            samples: vec![[0.0, 0.0, 0.0, 0.0], [0.2, 0.0, 0.0, 0.0]],
-        });
-        let text = with_log
-            .to_json_string()
-            .replacen("camera_from_gyro", "camera_from_gyr", 1);
-        let e = PairFile::from_json_str(&text, p).unwrap_err().to_string();
-        assert!(e.contains("unknown field `camera_from_gyr`"), "{e}");
-    }
-
-    #[test]
-    fn errors_name_the_field() {
-        let p = Path::new("x.json");
-        let mut bad = sample();
-        bad.camera.fx = -1.0;
-        let err = PairFile::from_json_str(&bad.to_json_string(), p).unwrap_err();
-        assert!(matches!(&err, PairFileError::InvalidField { field, .. } if field == "camera.fx"));
-        let mut bad = sample();
-        bad.ground_truth.as_mut().unwrap().inliers.pop();
-        let err = bad.validate().unwrap_err();
-        assert!(err.to_string().contains("ground_truth.inliers"));
-        let mut bad = sample();
-        bad.matches[1][0][1] = f64::NAN;
-        assert!(bad
-            .validate()
-            .unwrap_err()
-            .to_string()
-            .contains("matches[1]"));
-        // NaN serialises as null, which fails to parse with a field-naming message.
-        let err = PairFile::from_json_str(&bad.to_json_string(), p).unwrap_err();
-        assert!(matches!(err, PairFileError::Parse { .. }));
-        let err = PairFile::from_json_str(r#"{"camera": {"fx": 1}}"#, p).unwrap_err();
-        assert!(err.to_string().contains("missing field"), "{err}");
-        let err = PairFile::load("/nonexistent/dir/pair.json").unwrap_err();
-        assert!(matches!(err, PairFileError::Io { .. }));
-        assert!(PairFile::from_json_str(&sample().to_json_string(), p).is_ok());
-
-        // Gravity: both views or neither, each finite with a non-zero length.
-        let mut bad = sample();
-        bad.gravity = Some([[0.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
-        let err = bad.validate().unwrap_err().to_string();
-        assert!(err.contains("`gravity[0]`"), "{err}");
-        bad.gravity = Some([[0.0, 1.0, 0.0], [f64::NAN, 1.0, 0.0]]);
-        let err = bad.validate().unwrap_err().to_string();
-        assert!(err.contains("`gravity[1]`"), "{err}");
-        let text = sample().to_json_string().replacen(
-            "\"gravity\": [",
-            "\"gravity\": [[0, 1, 0]], \"unused\": [",
-            1,
-        );
-        let err = PairFile::from_json_str(&text, p).unwrap_err().to_string();
-        assert!(err.contains("field `gravity`"), "{err}");
-        let (v1, v2) = sample().views().unwrap();
-        assert_eq!(v1.gravity, Some(Vector3::new(0.0, 9.8, 0.1)));
-        assert_eq!(v2.gravity, Some(Vector3::new(0.2, 9.7, -0.3)));
-
-        // A gyro log's bad sample is named by its index; coverage is checked per frame.
-        let mut with_log = sample();
-        with_log.gyro = None;
-        with_log.gyro_log = Some(GyroLogSpec {
-            camera_from_gyro: identity_rows(),
-            time_offset: 0.0,
-            frame_times: [0.0, 0.1],
-            samples: (0..100)
-                .map(|i| [i as f64 * 0.002, 0.1, 0.2, 0.3])
-                .collect(),
-        });
-        assert!(with_log.validate().is_ok());
-        assert!(with_log.gyro_relative_rotation().is_some());
-        let mut bad = with_log.clone();
-        bad.gyro_log.as_mut().unwrap().samples.swap(10, 11);
-        let err = bad.validate().unwrap_err().to_string();
-        assert!(err.contains("gyro_log.samples[11]"), "{err}");
-        let mut bad = with_log.clone();
-        bad.gyro_log.as_mut().unwrap().frame_times[1] = 0.19;
-        let err = bad.validate().unwrap_err().to_string();
-        assert!(err.contains("image 2's readout"), "{err}");
-        let mut bad = with_log;
-        bad.gyro_log = None;
-        let err = bad.validate().unwrap_err().to_string();
-        assert!(err.contains("gyro"), "{err}");
-    }
-}
+mod tests;

@@ -8,8 +8,9 @@
 //! and a linear velocity of magnitude `linear_velocity` (m/s, world frame), each in an
 //! independent uniformly random direction. Points are drawn along random pixels of image 1 at
 //! depths uniform in `[min_depth, max_depth]`, kept if within `max_depth` of both camera
-//! centres and if their rolling-shutter projections ([`project_rs`], row fixed point) fall
-//! inside both images. Pixels get Gaussian noise (`pixel_noise` px per coordinate); the gyro
+//! centres and if their rolling-shutter projections ([`project_rs`], fixed point over the
+//! line coordinate of the raw distorted pixel, with the camera's model and readout
+//! direction) fall inside both images. Pixels get Gaussian noise (`pixel_noise` px per coordinate); the gyro
 //! readings stored in the file are the true ω plus Gaussian noise (`gyro_noise` rad/s per
 //! axis), while the true ω generated the images. A fraction `outlier_fraction` of the matches
 //! has its image-2 pixel replaced by a uniformly random pixel (flagged as outliers in the
@@ -33,8 +34,15 @@ use thiserror::Error;
 /// level, with zero linear velocity.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SimulationOptions {
-    /// Camera (default [`Camera::paper`]: 1920x1080, f = 640 px, centred, 60 µs/row).
+    /// Camera (default [`Camera::paper`]: 1920x1080, f = 640 px, centred, 60 µs/row): any
+    /// model and readout direction. Points are drawn along the bearings of random pixels
+    /// (undistorted; pixels without one skipped) and projected through the distortion,
+    /// each at the time of its raw pixel's line ([`project_rs`]); points outside the
+    /// distortion's invertible region are not visible.
     pub camera: Camera,
+    /// Image 2's camera, if it differs from image 1's (default `None`: `camera` for both;
+    /// the pair file then has `cameras`).
+    pub camera2: Option<Camera>,
     /// Number of matches visible in both images (default 150).
     pub points: usize,
     /// Nearest point depth in camera 1, m (default 1).
@@ -72,6 +80,7 @@ impl Default for SimulationOptions {
     fn default() -> Self {
         SimulationOptions {
             camera: Camera::paper(),
+            camera2: None,
             points: 150,
             min_depth: 1.0,
             max_depth: 60.0,
@@ -141,6 +150,9 @@ fn check(options: &SimulationOptions) -> Result<(), SimulationError> {
     if let Err(e) = options.camera.validate() {
         return bad("camera", &e.to_string());
     }
+    if let Some(Err(e)) = options.camera2.map(|c| c.validate()) {
+        return bad("camera2", &e.to_string());
+    }
     if options.points == 0 || options.points > MAX_POINTS {
         return bad("points", &format!("must be between 1 and {MAX_POINTS}"));
     }
@@ -183,6 +195,7 @@ fn check(options: &SimulationOptions) -> Result<(), SimulationError> {
 pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError> {
     check(options)?;
     let cam = options.camera;
+    let cam2 = options.camera2.unwrap_or(cam);
     let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
     let r2 = exp_so3(&(gauss3(&mut rng) * options.rotation_std_deg.to_radians()));
     let c2 = loop {
@@ -213,7 +226,7 @@ pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError
             omega: omega[1],
         },
     ];
-    let inside = |p: &nalgebra::Vector2<f64>| {
+    let inside = |p: &nalgebra::Vector2<f64>, cam: &Camera| {
         p.x >= 0.0 && p.x < cam.width && p.y >= 0.0 && p.y < cam.height
     };
     let mut matches: Vec<Match> = Vec::with_capacity(options.points);
@@ -227,17 +240,20 @@ pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError
             Some(d) => d,
             None => rng.gen_range(options.min_depth..options.max_depth),
         };
-        let x = cam.bearing(u, v) * depth;
+        let Ok(bearing) = cam.undistort_bearing(u, v) else {
+            continue;
+        };
+        let x = bearing * depth;
         if x.norm() > options.max_depth || (x - c2).norm() > options.max_depth {
             continue;
         }
         let (Ok(p1), Ok(p2)) = (
             project_rs(&cam, &poses[0], &x),
-            project_rs(&cam, &poses[1], &x),
+            project_rs(&cam2, &poses[1], &x),
         ) else {
             continue;
         };
-        if !(inside(&p1) && inside(&p2)) {
+        if !(inside(&p1, &cam) && inside(&p2, &cam2)) {
             continue;
         }
         matches.push([[p1.x, p1.y], [p2.x, p2.y]]);
@@ -261,10 +277,20 @@ pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError
         let i = rng.gen_range(0..matches.len());
         if inliers[i] {
             inliers[i] = false;
-            matches[i][1] = [
-                rng.gen_range(0.0..cam.width),
-                rng.gen_range(0.0..cam.height),
-            ];
+            // A random pixel that has a bearing (every pixel of a pinhole does; the
+            // principal point always has one).
+            let mut pixel = [cam2.cx, cam2.cy];
+            for _ in 0..10_000 {
+                let p = [
+                    rng.gen_range(0.0..cam2.width),
+                    rng.gen_range(0.0..cam2.height),
+                ];
+                if cam2.observe(p).is_ok() {
+                    pixel = p;
+                    break;
+                }
+            }
+            matches[i][1] = pixel;
             chosen += 1;
         }
     }
@@ -282,7 +308,7 @@ pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError
     });
     let t = (-r2 * c2).normalize();
     Ok(PairFile {
-        camera: cam,
+        cameras: [cam, cam2],
         gyro: Some([gyro[0].into(), gyro[1].into()]),
         gyro_log: None,
         gravity: Some(gravity),
@@ -342,11 +368,23 @@ mod tests {
         let e = skew(&gt.translation_vector()) * gt.rotation_matrix();
         let mut max_plain: f64 = 0.0;
         for m in &pair.matches {
-            let b1 = undistort_bearing(&v1, m[0][0], m[0][1]).normalize();
-            let b2 = undistort_bearing(&v2, m[1][0], m[1][1]).normalize();
+            let b1 = undistort_bearing(&v1, m[0][0], m[0][1])
+                .unwrap()
+                .normalize();
+            let b2 = undistort_bearing(&v2, m[1][0], m[1][1])
+                .unwrap()
+                .normalize();
             assert!((b2.transpose() * e * b1)[0].abs() < 1e-9);
-            let p1 = pair.camera.bearing(m[0][0], m[0][1]).normalize();
-            let p2 = pair.camera.bearing(m[1][0], m[1][1]).normalize();
+            let p1 = v1
+                .camera
+                .undistort_bearing(m[0][0], m[0][1])
+                .unwrap()
+                .normalize();
+            let p2 = v2
+                .camera
+                .undistort_bearing(m[1][0], m[1][1])
+                .unwrap()
+                .normalize();
             max_plain = max_plain.max((p2.transpose() * e * p1)[0].abs());
         }
         // The global-shutter model is visibly violated.

@@ -12,6 +12,7 @@
 //! search is a grid, then a finer grid around the best cell.
 
 use crate::data::pair_file::PairFile;
+use crate::model::epipolar::{observe_matches, UnobservableMatch};
 use crate::model::gyro_log::{GyroLog, GyroLogError};
 use nalgebra::{Matrix3, SymmetricEigen, Vector3};
 use serde::Serialize;
@@ -46,6 +47,14 @@ pub enum CalibrationError {
         margin: f64,
         /// What is missing.
         source: GyroLogError,
+    },
+    /// A pair's match has a pixel without a bearing in its camera.
+    #[error("pair {pair}: {source}")]
+    Unobservable {
+        /// Pair index.
+        pair: usize,
+        /// The match and why.
+        source: UnobservableMatch,
     },
 }
 
@@ -143,7 +152,7 @@ impl Default for CalibrationOptions {
 pub struct Calibration {
     /// Best frame readout time `H λ`, s.
     pub readout: f64,
-    /// Best readout time per row `λ`, s/row.
+    /// Best readout time per line `λ` of the first pair's first camera, s/line.
     pub readout_per_row: f64,
     /// Best time offset, s.
     pub offset: f64,
@@ -189,7 +198,8 @@ impl Calibration {
 struct PairData {
     log: GyroLog,
     frame_times: [f64; 2],
-    height: f64,
+    /// Lines per frame of image 1 and image 2 (the frame readout is shared).
+    lines: [f64; 2],
     focal: f64,
     bearings: Vec<(f64, Vector3<f64>, f64, Vector3<f64>)>,
 }
@@ -197,7 +207,7 @@ struct PairData {
 impl PairData {
     /// Robust cost of the pure-translation fit (px²) at `(T, δ)`.
     fn cost(&self, readout: f64, offset: f64, scale_px: f64) -> f64 {
-        let lambda = readout / self.height;
+        let lambda = [readout / self.lines[0], readout / self.lines[1]];
         let (t1, t2) = (self.frame_times[0] + offset, self.frame_times[1] + offset);
         let track1 = self.log.row_track(t1, readout);
         let track2 = self.log.row_track(t2, readout);
@@ -206,8 +216,8 @@ impl PairData {
             .bearings
             .iter()
             .map(|(v1, m1, v2, m2)| {
-                let b1 = (track1.orientation(v1 * lambda) * m1).normalize();
-                let b2 = (q12 * track2.orientation(v2 * lambda) * m2).normalize();
+                let b1 = (track1.orientation(v1 * lambda[0]) * m1).normalize();
+                let b2 = (q12 * track2.orientation(v2 * lambda[1]) * m2).normalize();
                 (b1, b2)
             })
             .collect();
@@ -309,23 +319,17 @@ pub fn calibrate(
             margin: (lo - start).max(end - hi).max(0.0),
             source,
         })?;
-        let cam = p.camera;
+        let [cam1, cam2] = p.cameras;
+        let observations = observe_matches(&cam1, &cam2, &p.matches)
+            .map_err(|source| CalibrationError::Unobservable { pair: i, source })?;
         data.push(PairData {
             log,
             frame_times: spec.frame_times,
-            height: cam.height,
-            focal: cam.mean_focal(),
-            bearings: p
-                .matches
+            lines: [cam1.lines(), cam2.lines()],
+            focal: 0.5 * (cam1.mean_focal() + cam2.mean_focal()),
+            bearings: observations
                 .iter()
-                .map(|m| {
-                    (
-                        m[0][1],
-                        cam.bearing(m[0][0], m[0][1]),
-                        m[1][1],
-                        cam.bearing(m[1][0], m[1][1]),
-                    )
-                })
+                .map(|[a, b]| (a.line, a.bearing, b.line, b.bearing))
                 .collect(),
         });
     }
@@ -376,10 +380,10 @@ pub fn calibrate(
             }
         }
     }
-    let height = pairs[0].camera.height;
+    let lines = pairs[0].cameras[0].lines();
     let mut c = Calibration {
         readout,
-        readout_per_row: readout / height,
+        readout_per_row: readout / lines,
         offset,
         cost,
         readouts,
@@ -441,18 +445,7 @@ mod tests {
     #[test]
     fn recovers_readout_and_offset_from_a_synthetic_recording() {
         let (readout, offset) = (0.020, -0.003);
-        let cam = Camera {
-            readout: readout / 600.0,
-            ..Camera {
-                fx: 500.0,
-                fy: 500.0,
-                cx: 400.0,
-                cy: 300.0,
-                width: 800.0,
-                height: 600.0,
-                readout: 0.0,
-            }
-        };
+        let cam = Camera::pinhole(500.0, 500.0, 400.0, 300.0, 800.0, 600.0, readout / 600.0);
         let rate = |t: f64| {
             Vector3::new(
                 1.5 * (9.0 * t).sin(),
@@ -506,10 +499,10 @@ mod tests {
             }
         }
         let pair = PairFile {
-            camera: Camera {
+            cameras: [Camera {
                 readout: 1e-5,
                 ..cam
-            },
+            }; 2],
             gyro: None,
             gravity: None,
             gyro_log: Some(GyroLogSpec {

@@ -22,8 +22,8 @@ use crate::data::pair_file::Match;
 use crate::estimation::refine::{
     levenberg_marquardt, LmOptions, LmProblem, Loss, Pose, PoseProblem,
 };
-use crate::model::camera::View;
-use crate::model::epipolar::{PointData, PoseModel, ResidualKind};
+use crate::model::camera::{Observation, View};
+use crate::model::epipolar::{observe_matches, PointData, PoseModel, ResidualKind};
 use nalgebra::{Matrix3, SVector, Vector3};
 
 /// Settings of [`refine_readout_scale`].
@@ -96,7 +96,8 @@ const LN_K_STEP: f64 = 1e-6;
 /// `(pose, ln k)` on the inlier matches.
 struct ReadoutProblem<'a> {
     views: (&'a View, &'a View),
-    matches: Vec<Match>,
+    /// The kept matches' bearings and line coordinates (independent of the readout time).
+    observations: Vec<[Observation; 2]>,
     /// `0..matches.len()`, the indices the pose refinement's problem runs on.
     indices: Vec<usize>,
     loss: Loss,
@@ -118,10 +119,10 @@ impl ReadoutProblem<'_> {
 
     fn data(&self, ln_k: f64) -> PointData {
         let k = ln_k.exp();
-        PointData::new(
+        PointData::from_observations(
             &scaled(self.views.0, k),
             &scaled(self.views.1, k),
-            &self.matches,
+            &self.observations,
         )
     }
 }
@@ -129,7 +130,7 @@ impl ReadoutProblem<'_> {
 impl LmProblem<6> for ReadoutProblem<'_> {
     type State = (Pose, f64);
     fn num_residuals(&self) -> usize {
-        self.matches.len()
+        self.observations.len()
     }
     fn residuals(&self, (pose, ln_k): &(Pose, f64), out: &mut [f64]) {
         let d = self.data(*ln_k);
@@ -141,7 +142,7 @@ impl LmProblem<6> for ReadoutProblem<'_> {
         out: &mut [f64],
         jac: &mut [SVector<f64, 6>],
     ) -> bool {
-        let n = self.matches.len();
+        let n = self.observations.len();
         if out.len() != n || jac.len() != n {
             return false;
         }
@@ -203,7 +204,7 @@ pub fn refine_readout_scale(
     let problem = ReadoutProblem {
         views: (view1, view2),
         indices: (0..kept.len()).collect(),
-        matches: kept,
+        observations: observe_matches(&view1.camera, &view2.camera, &kept).ok()?,
         loss: Loss::Cauchy(options.loss_px / f),
         ln_range: (lo.ln(), hi.ln()),
     };

@@ -40,10 +40,10 @@ use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 pub const DIM: usize = 11;
 
 /// The reference duration `T` of the displacements: the longer of the two frames' readouts
-/// (`height × readout`), seconds; 0 for two global-shutter cameras (no velocity is
+/// (`lines × readout`), seconds; 0 for two global-shutter cameras (no velocity is
 /// observable then).
 pub fn reference_duration(view1: &View, view2: &View) -> f64 {
-    let d = |v: &View| v.camera.height * v.camera.readout;
+    let d = |v: &View| v.camera.frame_readout();
     d(view1).max(d(view2))
 }
 
@@ -427,7 +427,7 @@ mod tests {
         })
         .unwrap();
         let (v1, v2) = pair.views().unwrap();
-        let d = PointData::new(&v1, &v2, &pair.matches);
+        let d = PointData::new(&v1, &v2, &pair.matches).unwrap();
         (pair, v1, v2, d)
     }
 

@@ -135,7 +135,9 @@ pub fn scene_trial(
     };
     match simulate(&level_simulation(level, seed)) {
         Ok(mut pair) => {
-            pair.camera.readout *= level.readout_factor;
+            for camera in &mut pair.cameras {
+                camera.readout *= level.readout_factor;
+            }
             let mut out = run_methods(&pair, methods, &options_for);
             out.extend(label(run_methods(&pair, variant, refined)));
             out

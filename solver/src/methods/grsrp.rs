@@ -28,7 +28,7 @@ pub fn estimate(
     options: &EstimateOptions,
     plus: bool,
 ) -> Result<Estimate, EstimateError> {
-    let data = point_data(view1, view2, matches, &options.robust);
+    let data = point_data(view1, view2, matches, &options.robust)?;
     let r0 = match options.r0_source {
         R0Source::Gsrp => gsrp::run_on(&data, view1, view2, options)?.rotation,
         R0Source::Rectified => rectified::run_on(&data, view1, view2, options)?.rotation,

@@ -40,7 +40,7 @@ struct GravityRansac<'a> {
     exact: EssentialRansac<'a>,
     /// The views' gravity directions.
     gravity: [Vector3<f64>; 2],
-    /// The views' numbers of rows.
+    /// The views' numbers of lines per frame.
     rows: [f64; 2],
     solver: GravitySolver,
     sols: Vec<(Matrix3<f64>, Vector3<f64>)>,
@@ -104,7 +104,7 @@ pub fn estimate(
             view: if view1.gravity.is_none() { 1 } else { 2 },
         });
     };
-    let data = point_data(view1, view2, matches, &options.robust);
+    let data = point_data(view1, view2, matches, &options.robust)?;
     let (kind, thr_sq) = threshold(view1, view2, options.robust.threshold);
     let exact = |data| EssentialRansac::exact(data, kind, options);
     // Stage 1: the consensus set of the gravity hypotheses, with the threshold widened by
@@ -113,7 +113,7 @@ pub fn estimate(
     let mut est = GravityRansac {
         exact: exact(&data),
         gravity: [g1, g2],
-        rows: [view1.camera.height, view2.camera.height],
+        rows: [view1.camera.lines(), view2.camera.lines()],
         solver: options.gravity_solver,
         sols: Vec::new(),
     };

@@ -71,6 +71,6 @@ pub fn estimate(
     matches: &[Match],
     options: &EstimateOptions,
 ) -> Result<Estimate, EstimateError> {
-    let data = PointData::new(view1, view2, matches);
+    let data = PointData::new(view1, view2, matches)?;
     run_on(&data, view1, view2, options)
 }

@@ -462,6 +462,17 @@ pub enum EstimateError {
         /// What is wrong.
         source: CameraError,
     },
+    /// A pixel lies where its camera's distortion is not invertible (or its undistortion
+    /// does not converge), so it has no bearing.
+    #[error("match {index}: image {image}'s pixel has no bearing: {source}")]
+    Unobservable {
+        /// Index of the match.
+        index: usize,
+        /// 1 or 2.
+        image: usize,
+        /// Why ([`CameraError::NotInvertible`] or [`CameraError::NotConverged`]).
+        source: CameraError,
+    },
     /// A pixel coordinate is NaN or infinite.
     #[error("match {index}: non-finite pixel coordinate in image {image}")]
     NonFinitePixel {
@@ -509,6 +520,16 @@ pub enum EstimateError {
         /// What is wrong.
         reason: String,
     },
+}
+
+impl From<crate::model::epipolar::UnobservableMatch> for EstimateError {
+    fn from(e: crate::model::epipolar::UnobservableMatch) -> Self {
+        EstimateError::Unobservable {
+            index: e.index,
+            image: e.image,
+            source: e.source,
+        }
+    }
 }
 
 fn distinct_matches(matches: &[Match]) -> usize {
@@ -630,6 +651,7 @@ pub(crate) fn validate_input(
             }
         }
     }
+    crate::model::epipolar::observe_matches(&view1.camera, &view2.camera, matches)?;
     let method = options.method;
     let needed = method.min_matches(options.essential_solver);
     if matches.len() < needed {
@@ -653,7 +675,8 @@ pub(crate) fn validate_input(
 /// Estimate the relative pose of two rolling-shutter views from pixel matches
 /// `[[u1, v1], [u2, v2]]` with `options.method` (see the module documentation).
 ///
-/// Errors: invalid camera/gyro, non-finite pixels, too few (distinct) matches, invalid
+/// Errors: invalid camera/gyro, non-finite pixels, pixels without a bearing (where a
+/// camera's distortion is not invertible), too few (distinct) matches, invalid
 /// options, or no solution (degenerate geometry). Never panics and never
 /// returns non-finite poses.
 pub fn estimate_relative_pose(

@@ -349,7 +349,7 @@ mod tests {
                 let (v1, v2) = pair.views().unwrap();
                 let gt = pair.ground_truth.as_ref().unwrap();
                 let (r, t) = (gt.rotation_matrix(), gt.translation_vector());
-                let data = PointData::new(&v1, &v2, &pair.matches);
+                let data = PointData::new(&v1, &v2, &pair.matches).unwrap();
                 let s = fit_noise(
                     &data,
                     (&v1, &v2),
@@ -375,7 +375,7 @@ mod tests {
         let (mut v1, mut v2) = pair.views().unwrap();
         v1.camera.readout = 0.0;
         v2.camera.readout = 0.0;
-        let data = PointData::new(&v1, &v2, &pair.matches);
+        let data = PointData::new(&v1, &v2, &pair.matches).unwrap();
         let (r, t) = (Matrix3::identity(), Vector3::x());
         let fit = fit_noise(
             &data,

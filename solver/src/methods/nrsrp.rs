@@ -20,14 +20,14 @@ pub fn estimate(
     matches: &[Match],
     options: &EstimateOptions,
 ) -> Result<Estimate, EstimateError> {
-    // No gyro: bearings and rows only.
+    // No gyro: bearings and line coordinates only.
     let still1 = View::new(view1.camera, Vector3::zeros());
     let still2 = View::new(view2.camera, Vector3::zeros());
-    let data = PointData::new(&still1, &still2, matches);
+    let data = PointData::new(&still1, &still2, matches)?;
     // The original views only size the initialisation's inlier threshold
     // (`RobustOptions::rolling_shutter_allowance`); the estimation itself uses no gyro.
     let init = gsrp::run_on(&data, view1, view2, options)?;
-    let height = view1.camera.height;
+    let lines = [view1.camera.lines(), view2.camera.lines()];
     let f = 0.5 * (view1.camera.mean_focal() + view2.camera.mean_focal());
     let start = NrsrpState {
         pose: Pose::new(&init.rotation, &init.translation),
@@ -38,23 +38,24 @@ pub fn estimate(
         max_iterations: options.refinement.max_iterations.max(100),
         ..options.refinement.clone()
     };
-    let res = refine_nrsrp(&data, height, options.nrsrp_cauchy_px / f, start, &lm);
+    let res = refine_nrsrp(&data, lines, options.nrsrp_cauchy_px / f, start, &lm);
     let s = res.state;
     let r = s.pose.matrix();
     // Cheirality on bearings undistorted with the estimated per-frame rotations: under
     // strong rolling-shutter distortion the raw bearings can put most points behind a
     // camera for the right sign of t.
-    let undistort = |m: &[Vector3<f64>], v: &[f64], phi: &Vector3<f64>| -> Vec<Vector3<f64>> {
-        m.iter()
-            .zip(v)
-            .map(|(m, v)| exp_so3(&(phi * (v / height))).transpose() * m)
-            .collect()
-    };
-    let b1 = undistort(&data.m1, &data.v1, &s.phi[0]);
-    let b2 = undistort(&data.m2, &data.v2, &s.phi[1]);
+    let undistort =
+        |m: &[Vector3<f64>], v: &[f64], phi: &Vector3<f64>, height: f64| -> Vec<Vector3<f64>> {
+            m.iter()
+                .zip(v)
+                .map(|(m, v)| exp_so3(&(phi * (v / height))).transpose() * m)
+                .collect()
+        };
+    let b1 = undistort(&data.m1, &data.v1, &s.phi[0], lines[0]);
+    let b2 = undistort(&data.m2, &data.v2, &s.phi[1], lines[1]);
     let t = orient(&r, &s.pose.translation, &b1, &b2, &indices(&init.inliers));
-    let per_frame1 = height * view1.camera.readout;
-    let per_frame2 = height * view2.camera.readout;
+    let per_frame1 = lines[0] * view1.camera.readout;
+    let per_frame2 = lines[1] * view2.camera.readout;
     Ok(Estimate {
         method: Method::Nrsrp,
         rotation: r,

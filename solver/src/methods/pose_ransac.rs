@@ -63,7 +63,7 @@ pub(crate) fn gs_threshold(view1: &View, view2: &View, o: &RobustOptions) -> (Re
     match o.global_shutter_threshold {
         Threshold::SampsonPixels(px) => {
             let rs = |v: &View| {
-                v.camera.mean_focal() * v.camera.readout * v.camera.height * v.omega.norm()
+                v.camera.mean_focal() * v.camera.readout * v.camera.lines() * v.omega.norm()
             };
             let px = px + o.rolling_shutter_allowance * rs(view1).max(rs(view2));
             threshold(view1, view2, Threshold::SampsonPixels(px))
@@ -79,12 +79,12 @@ pub(crate) fn point_data(
     view2: &View,
     matches: &[crate::data::pair_file::Match],
     o: &RobustOptions,
-) -> PointData {
-    let mut data = PointData::new(view1, view2, matches);
+) -> Result<PointData, crate::model::epipolar::UnobservableMatch> {
+    let mut data = PointData::new(view1, view2, matches)?;
     if matches!(o.threshold, Threshold::SampsonPixels(_)) {
         data.set_row_noise(row_noise(view1, view2, o.pixel_noise, o.gyro_noise));
     }
-    data
+    Ok(data)
 }
 
 /// The per-match noise model of pixel noise `pixel_noise` (px) and gyro-rate noise

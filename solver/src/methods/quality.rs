@@ -116,7 +116,10 @@ pub fn assess(
     let n = idx.len();
     let step = n.div_ceil(MAX_POINTS).max(1);
     let sub: Vec<Match> = idx.iter().step_by(step).map(|&i| matches[i]).collect();
-    let data = PointData::new(view1, view2, &sub);
+    // Every match was observed when the input was validated.
+    let Ok(data) = PointData::new(view1, view2, &sub) else {
+        return Quality::default();
+    };
     let all: Vec<usize> = (0..sub.len()).collect();
     let lm = LmOptions {
         max_iterations: 10,

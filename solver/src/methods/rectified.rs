@@ -90,6 +90,6 @@ pub fn estimate(
     matches: &[Match],
     options: &EstimateOptions,
 ) -> Result<Estimate, EstimateError> {
-    let data = point_data(view1, view2, matches, &options.robust);
+    let data = point_data(view1, view2, matches, &options.robust)?;
     run_on(&data, view1, view2, options)
 }

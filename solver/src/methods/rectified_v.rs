@@ -268,7 +268,7 @@ pub fn estimate(
     matches: &[Match],
     options: &EstimateOptions,
 ) -> Result<Estimate, EstimateError> {
-    let data = point_data(view1, view2, matches, &options.robust);
+    let data = point_data(view1, view2, matches, &options.robust)?;
     let base = Estimate {
         method: Method::RectifiedV,
         ..rectified::run_on(&data, view1, view2, options)?

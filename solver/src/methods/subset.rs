@@ -108,7 +108,12 @@ fn classify_chunks(
 ) -> Vec<bool> {
     let mut inliers = Vec::with_capacity(matches.len());
     for chunk in matches.chunks(CHUNK) {
-        let mut data = point_data(view1, view2, chunk, robust);
+        // Every match was observed when the input was validated; a chunk that could not be
+        // is classified as outliers.
+        let Ok(mut data) = point_data(view1, view2, chunk, robust) else {
+            inliers.extend(chunk.iter().map(|_| false));
+            continue;
+        };
         if let Some(fit) = fit {
             data.set_row_noise(fit.row_noise(view1, view2, robust.pixel_noise));
         }

@@ -1,7 +1,8 @@
 //! Per-point epipolar residuals of the three two-view models used by the estimator.
 //!
-//! All bearings are `m = K^-1 [u, v, 1]^T` (third component 1), rows `v` in pixels. `Ω(v)`
-//! is a view's row rotation ([`View::row_rotation`]: `exp(−[v λ ω]×)` for a constant gyro
+//! All bearings are undistorted normalised coordinates `m = (x, y, 1)` (`K^-1 [u, v, 1]^T`
+//! for a pinhole), and `v` is a pixel's line coordinate (its row for a top-to-bottom
+//! readout; [`crate::model::camera::Camera::observe`]). `Ω(v)` is a view's line rotation ([`View::row_rotation`]: `exp(−[v λ ω]×)` for a constant gyro
 //! rate `ω`, or integrated from gyro samples), and `w = −λ ω` (rad/row) the paper's per-row
 //! rate ([`View::paper_rate_per_row`]). For a relative pose `(R, t)` (`|t| = 1`,
 //! `E = [t]× R`):
@@ -18,11 +19,12 @@
 //! pixels).
 
 use crate::data::pair_file::Match;
-use crate::model::camera::View;
+use crate::model::camera::{Camera, CameraError, Observation, View};
 use crate::model::geometry::skew;
 use crate::model::sampson_kernel::{msac_sampson, BearingColumns};
 use nalgebra::{Matrix3, Vector3};
 use std::sync::OnceLock;
+use thiserror::Error;
 
 /// Which two-view model a residual follows (see the module documentation).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -44,20 +46,58 @@ pub enum ResidualKind {
     Sampson,
 }
 
-/// Matches converted to bearings, with the per-point row quantities every model needs.
+/// A match with a pixel that has no bearing in its camera ([`CameraError::NotInvertible`],
+/// [`CameraError::NotConverged`]).
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("match {index}, image {image}: {source}")]
+pub struct UnobservableMatch {
+    /// Index of the match.
+    pub index: usize,
+    /// 1 or 2.
+    pub image: usize,
+    /// Why the pixel has no bearing.
+    pub source: CameraError,
+}
+
+/// Each match's two pixels observed by their cameras ([`crate::model::camera::Camera::observe`]):
+/// bearing and line coordinate. Errors name the first match with a pixel that has no
+/// bearing.
+pub fn observe_matches(
+    camera1: &Camera,
+    camera2: &Camera,
+    matches: &[Match],
+) -> Result<Vec<[Observation; 2]>, UnobservableMatch> {
+    matches
+        .iter()
+        .enumerate()
+        .map(|(index, m)| {
+            let observe = |camera: &Camera, k: usize| {
+                camera.observe(m[k]).map_err(|source| UnobservableMatch {
+                    index,
+                    image: k + 1,
+                    source,
+                })
+            };
+            Ok([observe(camera1, 0)?, observe(camera2, 1)?])
+        })
+        .collect()
+}
+
+/// Matches converted to bearings, with the per-point line quantities every model needs.
 ///
 /// Built by [`PointData::new`] or [`PointData::select`]; the fields are public for reading
 /// and must not be changed afterwards (the scores read a copy of `m1` and `m2` by
 /// coordinate).
 #[derive(Debug, Clone)]
 pub struct PointData {
-    /// Bearings in image 1, `K^-1 [u1, v1, 1]`.
+    /// Bearings in image 1, undistorted normalised coordinates (`K^-1 [u1, v1, 1]` for a
+    /// pinhole).
     pub m1: Vec<Vector3<f64>>,
     /// Bearings in image 2.
     pub m2: Vec<Vector3<f64>>,
-    /// Rows in image 1 (pixels).
+    /// Line coordinates in image 1 (pixels; the row for a top-to-bottom readout).
     pub v1: Vec<f64>,
-    /// Rows in image 2 (pixels).
+    /// Line coordinates in image 2 (pixels).
     pub v2: Vec<f64>,
     /// `w1 = −λ ω1`, rad/row (the paper's sign).
     pub w1: Vector3<f64>,
@@ -98,9 +138,20 @@ pub struct RowNoise {
 }
 
 impl PointData {
-    /// Build from two views and pixel matches (inputs assumed validated and finite).
-    pub fn new(view1: &View, view2: &View, matches: &[Match]) -> Self {
-        let n = matches.len();
+    /// Build from two views and pixel matches (inputs assumed validated and finite): each
+    /// pixel's bearing and line coordinate from its camera ([`Camera::observe`]). Errors
+    /// name the first match with a pixel that has no bearing (outside the region where its
+    /// camera's distortion is invertible).
+    ///
+    /// [`Camera::observe`]: crate::model::camera::Camera::observe
+    pub fn new(view1: &View, view2: &View, matches: &[Match]) -> Result<Self, UnobservableMatch> {
+        let obs = observe_matches(&view1.camera, &view2.camera, matches)?;
+        Ok(Self::from_observations(view1, view2, &obs))
+    }
+
+    /// Build from two views and their matches' observations ([`observe_matches`]).
+    pub fn from_observations(view1: &View, view2: &View, obs: &[[Observation; 2]]) -> Self {
+        let n = obs.len();
         let mut d = PointData {
             m1: Vec::with_capacity(n),
             m2: Vec::with_capacity(n),
@@ -116,20 +167,19 @@ impl PointData {
             scale: [Vec::new(), Vec::new()],
             columns: OnceLock::new(),
         };
-        for m in matches {
-            let m1 = view1.camera.bearing(m[0][0], m[0][1]);
-            let m2 = view2.camera.bearing(m[1][0], m[1][1]);
-            let o1 = view1.row_rotation(m[0][1]);
-            let o2 = view2.row_rotation(m[1][1]);
+        for [p1, p2] in obs {
+            let (m1, m2) = (p1.bearing, p2.bearing);
+            let o1 = view1.row_rotation(p1.line);
+            let o2 = view2.row_rotation(p2.line);
             d.b1.push(o1.transpose() * m1);
             d.b2.push(o2.transpose() * m2);
-            d.l1.push(m1 - (d.w1 * m[0][1]).cross(&m1));
+            d.l1.push(m1 - (d.w1 * p1.line).cross(&m1));
             d.omega1.push(o1);
             d.omega2.push(o2);
             d.m1.push(m1);
             d.m2.push(m2);
-            d.v1.push(m[0][1]);
-            d.v2.push(m[1][1]);
+            d.v1.push(p1.line);
+            d.v2.push(p2.line);
         }
         d
     }
@@ -435,7 +485,7 @@ mod tests {
         .unwrap();
         let gt = pair.ground_truth.clone().unwrap();
         let (v1, v2) = pair.views().unwrap();
-        let d = PointData::new(&v1, &v2, &pair.matches);
+        let d = PointData::new(&v1, &v2, &pair.matches).unwrap();
         let (r, t) = (gt.rotation_matrix(), gt.translation_vector());
         let e = skew(&t) * r;
         for i in 0..d.len() {
@@ -476,7 +526,7 @@ mod tests {
         }
         // With zero angular velocity all three coincide.
         let still = View::new(Camera::paper(), Vector3::zeros());
-        let d0 = PointData::new(&still, &still, &pair.matches);
+        let d0 = PointData::new(&still, &still, &pair.matches).unwrap();
         let r = exp_so3(&Vector3::new(0.1, 0.2, -0.1));
         for i in 0..10 {
             let a = d0.residual(
@@ -526,7 +576,7 @@ mod tests {
         .unwrap();
         let gt = pair.ground_truth.clone().unwrap();
         let (v1, v2) = pair.views().unwrap();
-        let d = PointData::new(&v1, &v2, &pair.matches);
+        let d = PointData::new(&v1, &v2, &pair.matches).unwrap();
         let r = gt.rotation_matrix() * exp_so3(&Vector3::new(0.003, -0.002, 0.001));
         let t = gt.translation_vector();
         let e = skew(&t) * r;
@@ -573,7 +623,7 @@ mod tests {
         let base: Match = [[700.0, 300.0], [900.0, 500.0]];
         // Gradient w.r.t. x1 of the linear model with the rows held fixed: perturb u1 only
         // (u changes x but not the row).
-        let d = PointData::new(&v1, &v2, &[base]);
+        let d = PointData::new(&v1, &v2, &[base]).unwrap();
         let h = 1e-3;
         let mut plus = base;
         plus[0][0] += h;
@@ -584,8 +634,8 @@ mod tests {
             PoseModel::ExactAngular,
             PoseModel::PaperLinear,
         ] {
-            let dp = PointData::new(&v1, &v2, &[plus]);
-            let dm = PointData::new(&v1, &v2, &[minus]);
+            let dp = PointData::new(&v1, &v2, &[plus]).unwrap();
+            let dm = PointData::new(&v1, &v2, &[minus]).unwrap();
             let fd = (dp.residual(model, ResidualKind::Algebraic, 0, &r, &t, &e)
                 - dm.residual(model, ResidualKind::Algebraic, 0, &r, &t, &e))
                 / (2.0 * h / cam.fx);

@@ -2,6 +2,7 @@
 //! the residuals of two views under it.
 
 pub mod camera;
+pub mod camera_model;
 pub mod epipolar;
 pub mod geometry;
 pub mod gyro_log;

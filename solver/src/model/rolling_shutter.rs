@@ -1,6 +1,8 @@
 //! Rolling-shutter row model.
 //!
-//! Row `v` of a view is exposed `v λ` seconds after row 0. The gyro convention is the
+//! Row `v` of a view is exposed `v λ` seconds after row 0; throughout, "row `v`" is the
+//! line coordinate of a raw pixel along the camera's readout direction
+//! ([`Camera::readout_line`]; the image row for the default top-to-bottom readout). The gyro convention is the
 //! physical one: `ω` is what a gyroscope reports, rotated into camera axes (x right, y down,
 //! z forward; rad/s, bias removed), i.e. the camera's angular velocity in its own frame,
 //! `Ṙ_wc = R_wc [ω]×` for the camera-to-world rotation `R_wc`. So the world-to-camera
@@ -18,7 +20,7 @@
 //! world point straight ahead drifts left in the image as later rows are read: a vertical
 //! world line images with `u` decreasing down the image (tested below).
 
-use crate::model::camera::{Camera, View};
+use crate::model::camera::{Camera, CameraError, View};
 use crate::model::geometry::exp_so3;
 use nalgebra::{Matrix3, Vector2, Vector3};
 use thiserror::Error;
@@ -29,12 +31,13 @@ pub fn row_rotation(v: f64, readout: f64, omega: &Vector3<f64>) -> Matrix3<f64> 
     exp_so3(&(omega * (-v * readout)))
 }
 
-/// Bearing of pixel `(u, v)` expressed in the row-0 camera frame: `Ω(v)^T K^-1 [u, v, 1]^T`
-/// with the view's row rotation ([`View::row_rotation`]: from its gyro samples where it
-/// has them, else from its constant rate); not rescaled (its third component is generally
-/// not 1).
-pub fn undistort_bearing(view: &View, u: f64, v: f64) -> Vector3<f64> {
-    view.row_rotation(v).transpose() * view.camera.bearing(u, v)
+/// Bearing of pixel `(u, v)` expressed in the line-0 camera frame: `Ω(l)^T m` with `m` the
+/// pixel's undistorted bearing and `l` its line coordinate ([`Camera::observe`]) and the
+/// view's line rotation ([`View::row_rotation`]: from its gyro samples where it has them,
+/// else from its constant rate); not rescaled (its third component is generally not 1).
+pub fn undistort_bearing(view: &View, u: f64, v: f64) -> Result<Vector3<f64>, CameraError> {
+    let o = view.camera.observe([u, v])?;
+    Ok(view.row_rotation(o.line).transpose() * o.bearing)
 }
 
 /// Pose of a moving rolling-shutter camera at row 0: `rotation = R_c` (world-to-camera),
@@ -55,8 +58,11 @@ pub struct RsPose {
 /// Why a world point has no rolling-shutter projection.
 #[derive(Debug, Clone, Copy, PartialEq, Error)]
 pub enum ProjectionError {
-    /// At some iterate the point is behind the camera (or the input is not finite).
-    #[error("point is behind the camera or not finite")]
+    /// At some iterate the point is behind the camera, outside the region where the
+    /// camera's distortion is invertible, or the input is not finite.
+    #[error(
+        "point is behind the camera, outside the camera model's invertible region, or not finite"
+    )]
     BehindCamera,
     /// The row fixed-point iteration did not converge within the iteration bound.
     #[error("rolling-shutter row fixed point did not converge in {0} iterations")]
@@ -66,26 +72,29 @@ pub enum ProjectionError {
 /// Maximum number of fixed-point iterations used by [`project_rs`].
 pub const MAX_ROW_ITERATIONS: usize = 100;
 
-/// Project world point `x` through the pose of the row it lands on: find `v` with
-/// `v = row of K Ω(v) R (x - C - v λ d)` by fixed-point iteration starting at the principal
-/// row (tolerance 1e-9 px, at most [`MAX_ROW_ITERATIONS`] iterations). Returns the pixel
-/// `(u, v)`; the caller checks whether it lies inside the image.
+/// Project world point `x` through the pose of the line it lands on: find the line
+/// coordinate `l` with `l = line of K d(Ω(l) R (x - C - l λ d))` (`d(·)` the camera's
+/// distortion, the line that of the raw distorted pixel, [`Camera::readout_line`]) by
+/// fixed-point iteration starting at the principal point's line (tolerance 1e-9 px, at
+/// most [`MAX_ROW_ITERATIONS`] iterations). Returns the pixel `(u, v)`; the caller checks
+/// whether it lies inside the image.
 pub fn project_rs(
     camera: &Camera,
     pose: &RsPose,
     x: &Vector3<f64>,
 ) -> Result<Vector2<f64>, ProjectionError> {
-    let mut v = camera.cy;
+    let mut v = camera.readout_line(camera.cx, camera.cy);
     for _ in 0..MAX_ROW_ITERATIONS {
         let s = v * camera.readout;
         let r = row_rotation(v, camera.readout, &pose.omega) * pose.rotation;
         let xc = r * (x - pose.centre - pose.velocity * s);
         let p = camera.project(&xc).ok_or(ProjectionError::BehindCamera)?;
-        if (p.y - v).abs() < 1e-9 {
+        let line = camera.readout_line(p.x, p.y);
+        if (line - v).abs() < 1e-9 {
             return Ok(p);
         }
         // Guard against run-away iterates (far outside any image): keep them bounded.
-        v = p.y.clamp(-1e7, 1e7);
+        v = line.clamp(-1e7, 1e7);
     }
     Err(ProjectionError::NotConverged(MAX_ROW_ITERATIONS))
 }
@@ -125,8 +134,8 @@ mod tests {
             // Fixed point: the row used equals the row landed on.
             let xc = row_rotation(p1.y, cam.readout, &pose1.omega) * x;
             assert!((cam.project(&xc).unwrap() - p1).norm() < 1e-6);
-            let b1 = undistort_bearing(&View::new(cam, pose1.omega), p1.x, p1.y);
-            let b2 = undistort_bearing(&View::new(cam, pose2.omega), p2.x, p2.y);
+            let b1 = undistort_bearing(&View::new(cam, pose1.omega), p1.x, p1.y).unwrap();
+            let b2 = undistort_bearing(&View::new(cam, pose2.omega), p2.x, p2.y).unwrap();
             assert!((b1.normalize() - x.normalize()).norm() < 1e-9);
             assert!((b2.transpose() * e * b1)[0].abs() < 1e-9);
         }
@@ -175,7 +184,7 @@ mod tests {
                 assert!(p.x < q.x, "u must decrease down the image: {q} then {p}");
             }
             last = Some(p);
-            let b = undistort_bearing(&view, p.x, p.y);
+            let b = undistort_bearing(&view, p.x, p.y).unwrap();
             assert!(
                 (b.x / b.z - 0.03).abs() < 1e-9,
                 "undistorted line is vertical"

@@ -56,7 +56,7 @@ pub(crate) mod tests {
         .unwrap();
         let gt = pair.ground_truth.clone().unwrap();
         let (v1, v2) = pair.views().unwrap();
-        let data = PointData::new(&v1, &v2, &pair.matches);
+        let data = PointData::new(&v1, &v2, &pair.matches).unwrap();
         let start = perturbed(&gt.rotation_matrix(), &gt.translation_vector());
         (data, v1.camera.height, start)
     }

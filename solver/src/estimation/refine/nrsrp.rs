@@ -11,8 +11,8 @@ use nalgebra::{SVector, Vector3};
 /// `R1 = I, C1 = 0`): relative pose `(R, t)`, and per camera the rotation and displacement
 /// accumulated over one full frame, `phi_c = −H λ ω_c` (rad, camera frame; `ω_c` the
 /// physical angular velocity, so `exp([s phi]×)` is the row rotation at fraction `s`) and
-/// `delta_c = H λ d_c` (units of the baseline |t| = 1, camera-1 frame), with `H` the image
-/// height in rows. Scaling by the frame duration keeps the 17 unknowns commensurate.
+/// `delta_c = H λ d_c` (units of the baseline |t| = 1, camera-1 frame), with `H` the lines per
+/// frame (the image height for a row readout). Scaling by the frame duration keeps the 17 unknowns commensurate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NrsrpState {
     /// Relative pose.
@@ -26,13 +26,13 @@ pub struct NrsrpState {
 /// The NRSRP problem: generalized epipolar residual per point
 /// `r = (c2(v2) - c1(v1)) · (f1 × f2)` with unit ray directions in camera-1 row-0 frame
 /// `f1 = normalise(exp([s1 phi1]×)^T m1)`, `f2 = normalise(R^T exp([s2 phi2]×)^T m2)`,
-/// centres `c1 = s1 delta1`, `c2 = -R^T t + s2 delta2`, `s = v / H` (fraction of the frame).
+/// centres `c1 = s1 delta1`, `c2 = -R^T t + s2 delta2`, `s = v / H` (fraction of the frame; `v` the line coordinate, `H` the lines per frame).
 /// This is the coplanarity of the two rays (zero iff they intersect).
 pub struct NrsrpProblem<'a> {
     /// Bearings and rows.
     pub data: &'a PointData,
-    /// Image height `H` in rows.
-    pub height: f64,
+    /// Lines per frame `H` of image 1 and image 2 ([`crate::model::camera::Camera::lines`]).
+    pub lines: [f64; 2],
     /// Cauchy scale.
     pub cauchy_scale: f64,
 }
@@ -46,8 +46,8 @@ impl LmProblem<17> for NrsrpProblem<'_> {
         let r = s.pose.matrix();
         let c2_0 = -(r.transpose() * s.pose.translation);
         for (i, o) in out.iter_mut().enumerate() {
-            let s1 = self.data.v1[i] / self.height;
-            let s2 = self.data.v2[i] / self.height;
+            let s1 = self.data.v1[i] / self.lines[0];
+            let s2 = self.data.v2[i] / self.lines[1];
             let f1 = SmallRotation::new(&(s.phi[0] * s1)).apply_transpose(&self.data.m1[i]);
             let h2 = SmallRotation::new(&(s.phi[1] * s2)).apply_transpose(&self.data.m2[i]);
             let f2 = r.tr_mul(&h2.normalize());
@@ -87,8 +87,8 @@ impl LmProblem<17> for NrsrpProblem<'_> {
         let rb2 = r.tr_mul(&tb2);
         let d = self.data;
         for (i, (o, j)) in out.iter_mut().zip(jac.iter_mut()).enumerate() {
-            let s1 = d.v1[i] / self.height;
-            let s2 = d.v2[i] / self.height;
+            let s1 = d.v1[i] / self.lines[0];
+            let s2 = d.v2[i] / self.lines[1];
             let q1 = SmallRotation::new(&(s.phi[0] * s1));
             let q2 = SmallRotation::new(&(s.phi[1] * s2));
             let f1 = q1.apply_transpose(&d.m1[i]).normalize();
@@ -158,14 +158,14 @@ impl SmallRotation {
 /// Refine the NRSRP model on all points with the Cauchy loss (see [`NrsrpProblem`]).
 pub fn refine_nrsrp(
     data: &PointData,
-    height: f64,
+    lines: [f64; 2],
     cauchy_scale: f64,
     start: NrsrpState,
     options: &LmOptions,
 ) -> LmResult<NrsrpState> {
     let p = NrsrpProblem {
         data,
-        height,
+        lines,
         cauchy_scale,
     };
     levenberg_marquardt(&p, start, options)
@@ -183,7 +183,7 @@ mod tests {
         let (d, height, start) = jacobian_scene();
         let p = NrsrpProblem {
             data: &d,
-            height,
+            lines: [height; 2],
             cauchy_scale: 0.01,
         };
         let state = NrsrpState {
@@ -211,10 +211,10 @@ mod tests {
         })
         .unwrap();
         let gt = pair.ground_truth.clone().unwrap();
-        let cam = pair.camera;
+        let cam = pair.cameras[0];
         // NRSRP uses no gyro: bearings only.
         let still = crate::model::camera::View::new(cam, Vector3::zeros());
-        let d = PointData::new(&still, &still, &pair.matches);
+        let d = PointData::new(&still, &still, &pair.matches).unwrap();
         let (gr, gtt) = (gt.rotation_matrix(), gt.translation_vector());
         let start_pose = perturbed(&gr, &gtt);
         let start = NrsrpState {
@@ -224,7 +224,7 @@ mod tests {
         };
         let res = refine_nrsrp(
             &d,
-            cam.height,
+            [cam.height; 2],
             2.0 / cam.fx,
             start,
             &LmOptions {

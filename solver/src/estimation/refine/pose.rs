@@ -268,7 +268,7 @@ mod tests {
         .unwrap();
         let gt = pair.ground_truth.clone().unwrap();
         let (v1, v2) = pair.views().unwrap();
-        let d = PointData::new(&v1, &v2, &pair.matches);
+        let d = PointData::new(&v1, &v2, &pair.matches).unwrap();
         let idx: Vec<usize> = (0..d.len()).collect();
         let (gr, gtt) = (gt.rotation_matrix(), gt.translation_vector());
         let res = refine_pose(
@@ -293,7 +293,7 @@ mod tests {
         .unwrap();
         let gt = pair.ground_truth.clone().unwrap();
         let (v1, v2) = pair.views().unwrap();
-        let d = PointData::new(&v1, &v2, &pair.matches);
+        let d = PointData::new(&v1, &v2, &pair.matches).unwrap();
         let idx: Vec<usize> = (0..d.len()).collect();
         let (gr, gtt) = (gt.rotation_matrix(), gt.translation_vector());
         let start = perturbed(&gr, &gtt);

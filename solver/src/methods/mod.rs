@@ -25,6 +25,7 @@ pub mod rectified_v;
 mod subset;
 
 use crate::data::pair_file::Match;
+use crate::estimation::gyro_bias::{refine_gyro_bias, unbiased_view, GyroBiasOptions};
 use crate::estimation::readout::{refine_readout_scale, ReadoutOptions};
 use crate::estimation::refine::LmOptions;
 use crate::minimal::{EssentialSolver, GravitySolver, GrsrpSolver};
@@ -277,6 +278,13 @@ pub struct EstimateOptions {
     /// method's inliers) and report it in [`Estimate::readout_scale`]. Gyro-aided methods
     /// only (not `gsrp` or `nrsrp`); default `None` (the readout is taken as given).
     pub readout: Option<ReadoutOptions>,
+    /// For a gyro with an unknown constant bias: after the method (and after the readout
+    /// refinement, with its scale), refine the pose together with one bias of both views'
+    /// rates, their row rotations recomputed from rate − bias
+    /// ([`crate::estimation::gyro_bias::refine_gyro_bias`], exact angular model, on the
+    /// method's inliers), and report it in [`Estimate::gyro_bias`]. Gyro-aided methods only
+    /// (not `gsrp` or `nrsrp`); default `None` (the rates are taken as unbiased).
+    pub gyro_bias: Option<GyroBiasOptions>,
 }
 
 impl EstimateOptions {
@@ -358,6 +366,7 @@ impl Default for EstimateOptions {
             quality: QualityOptions::default(),
             velocity: VelocityOptions::default(),
             readout: None,
+            gyro_bias: None,
         }
     }
 }
@@ -400,6 +409,11 @@ pub struct Estimate {
     /// the views' nominal one (`None` if the refinement could not run: fewer than 8
     /// inliers or a non-finite result; the method's pose is then kept).
     pub readout_scale: Option<f64>,
+    /// With [`EstimateOptions::gyro_bias`]: the bias of the views' gyro rates the pose was
+    /// refined with, camera axes, rad/s (true rate = the views' rate − this; `None` if the
+    /// refinement could not run: fewer than 8 inliers or a non-finite result; the
+    /// method's pose is then kept).
+    pub gyro_bias: Option<Vector3<f64>>,
 }
 
 impl Estimate {
@@ -412,7 +426,8 @@ impl Estimate {
     /// command's own `seconds` and the pair file's reference errors): `method`, `rotation`
     /// (row-major rows), `translation`, `inliers` (the count), `iterations`, `inlier_ratio`,
     /// `ransac_score`, `refinement_iterations`, `refinement_cost`, `quality`, `flags`, and
-    /// where present `linear_velocity`, `velocity_fit` and `noise_fit`. The Python package's
+    /// where present `linear_velocity`, `velocity_fit`, `noise_fit`, `readout_scale` and
+    /// `gyro_bias` (`[bx, by, bz]`, camera axes, rad/s). The Python package's
     /// `Estimate.to_dict()` is this object.
     pub fn report_json(&self) -> serde_json::Value {
         let rows: Vec<[f64; 3]> = (0..3)
@@ -446,6 +461,9 @@ impl Estimate {
         }
         if let Some(k) = self.readout_scale {
             obj["readout_scale"] = k.into();
+        }
+        if let Some(b) = self.gyro_bias {
+            obj["gyro_bias"] = serde_json::json!([b.x, b.y, b.z]);
         }
         obj
     }
@@ -617,6 +635,17 @@ fn validate_options(o: &EstimateOptions) -> Result<(), EstimateError> {
             return bad(option, reason);
         }
     }
+    if let Some(bo) = &o.gyro_bias {
+        if matches!(o.method, Method::Gsrp | Method::Nrsrp) {
+            return bad(
+                "gyro_bias",
+                "refining the gyro bias needs a gyro-aided method (not gsrp or nrsrp)",
+            );
+        }
+        if let Some((option, reason)) = bo.invalid() {
+            return bad(option, reason);
+        }
+    }
     Ok(())
 }
 
@@ -727,6 +756,34 @@ pub fn estimate_relative_pose(
             est.readout_scale = Some(fit.scale);
         }
     }
+    // With a bias fitted, the views with it removed (and the readout scaled, as the bias
+    // was refined with): the final classification and quality report use them.
+    let mut corrected: Option<(View, View)> = None;
+    if let Some(bo) = &options.gyro_bias {
+        let (mut w1, mut w2) = (view1.clone(), view2.clone());
+        if let Some(k) = est.readout_scale {
+            w1.camera.readout *= k;
+            w2.camera.readout *= k;
+        }
+        if let Some(fit) = refine_gyro_bias(
+            &w1,
+            &w2,
+            working,
+            &est.inliers,
+            &est.rotation,
+            &est.translation,
+            bo,
+        ) {
+            est.rotation = fit.rotation;
+            est.translation = fit.translation;
+            est.gyro_bias = Some(fit.bias);
+            corrected = Some((unbiased_view(&w1, &fit.bias), unbiased_view(&w2, &fit.bias)));
+        }
+    }
+    let (view1, view2) = match &corrected {
+        Some((w1, w2)) => (w1, w2),
+        None => (view1, view2),
+    };
     if large {
         est.inliers = subset::classify_all(view1, view2, matches, &est, options);
     }

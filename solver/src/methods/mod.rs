@@ -19,14 +19,15 @@ pub mod gsrp;
 pub mod noise_fit;
 pub mod nrsrp;
 mod pose_ransac;
+mod post_refine;
 pub mod quality;
 pub mod rectified;
 pub mod rectified_v;
 mod subset;
 
 use crate::data::pair_file::Match;
-use crate::estimation::gyro_bias::{refine_gyro_bias, unbiased_view, GyroBiasOptions};
-use crate::estimation::readout::{refine_readout_scale, ReadoutOptions};
+use crate::estimation::gyro_bias::GyroBiasOptions;
+use crate::estimation::readout::ReadoutOptions;
 use crate::estimation::refine::LmOptions;
 use crate::minimal::{EssentialSolver, GravitySolver, GrsrpSolver};
 use crate::model::camera::{CameraError, View};
@@ -737,49 +738,7 @@ pub fn estimate_relative_pose(
         Method::GrsrpPlus => grsrp::estimate(view1, view2, working, options, true),
         Method::Nrsrp => nrsrp::estimate(view1, view2, working, options),
     }?;
-    if let Some(ro) = &options.readout {
-        // On the method's own matches (the subset of a large input, before every match is
-        // classified against the result). The method's inliers stay: they were classified
-        // at the nominal readout, with a threshold that already allows for the rows' gyro
-        // error.
-        if let Some(fit) = refine_readout_scale(
-            view1,
-            view2,
-            working,
-            &est.inliers,
-            &est.rotation,
-            &est.translation,
-            ro,
-        ) {
-            est.rotation = fit.rotation;
-            est.translation = fit.translation;
-            est.readout_scale = Some(fit.scale);
-        }
-    }
-    // With a bias fitted, the views with it removed (and the readout scaled, as the bias
-    // was refined with): the final classification and quality report use them.
-    let mut corrected: Option<(View, View)> = None;
-    if let Some(bo) = &options.gyro_bias {
-        let (mut w1, mut w2) = (view1.clone(), view2.clone());
-        if let Some(k) = est.readout_scale {
-            w1.camera.readout *= k;
-            w2.camera.readout *= k;
-        }
-        if let Some(fit) = refine_gyro_bias(
-            &w1,
-            &w2,
-            working,
-            &est.inliers,
-            &est.rotation,
-            &est.translation,
-            bo,
-        ) {
-            est.rotation = fit.rotation;
-            est.translation = fit.translation;
-            est.gyro_bias = Some(fit.bias);
-            corrected = Some((unbiased_view(&w1, &fit.bias), unbiased_view(&w2, &fit.bias)));
-        }
-    }
+    let corrected = post_refine::refine(view1, view2, working, &mut est, options);
     let (view1, view2) = match &corrected {
         Some((w1, w2)) => (w1, w2),
         None => (view1, view2),

@@ -8,7 +8,8 @@
 //! several per-view gyro noise levels. `rectified` (library defaults) runs once as it
 //! stands and once with the bias refinement. Printed per noise level: the median and mean
 //! rotation / translation errors of both, the median error of the estimated bias and its
-//! 10th-90th percentile range, against the bias's norm.
+//! 10th-90th percentile range, against the bias's norm, and the median of the standard
+//! deviation the fit reports (the norm of its three components).
 
 use nalgebra::Vector3;
 use rspose::estimation::gyro_bias::GyroBiasOptions;
@@ -46,11 +47,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "{scenes} scenes a row, 2.5 rad/s, {points} matches, {pixel_noise} px, gyro bias {BIAS:?} rad/s (norm {:.4})",
         bias.norm()
     );
-    println!("| gyro noise (rad/s per axis) | `rectified` rotation / translation error, median (mean), deg | with the bias refined | bias error, median (10-90 %), rad/s |");
-    println!("|---|---|---|---|");
+    println!("| gyro noise (rad/s per axis) | `rectified` rotation / translation error, median (mean), deg | with the bias refined | bias error, median (10-90 %), rad/s | reported bias std (norm), median |");
+    println!("|---|---|---|---|---|");
     for noise in [0.0, 0.002, 0.005, 0.01, 0.1] {
-        let (mut rot, mut tra, mut rot_b, mut tra_b, mut err) =
-            (vec![], vec![], vec![], vec![], vec![]);
+        let (mut rot, mut tra, mut rot_b, mut tra_b, mut err, mut stds) =
+            (vec![], vec![], vec![], vec![], vec![], vec![]);
         for seed in 0..scenes {
             let mut pair = simulate(&SimulationOptions {
                 angular_velocity: 2.5,
@@ -80,9 +81,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             ) else {
                 continue;
             };
-            let Some(estimated) = b.gyro_bias else {
+            let Some(fit) = b.gyro_bias else {
                 continue;
             };
+            let estimated = fit.bias;
+            stds.push(fit.std.norm());
             rot.push(rotation_error_deg(&r, &a.rotation));
             tra.push(translation_error_deg(&t, &a.translation));
             rot_b.push(rotation_error_deg(&r, &b.rotation));
@@ -94,13 +97,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let me = median(&mut err);
         let q = |p: f64| err[((p * (n.max(1) - 1) as f64).round()) as usize];
         println!(
-            "| {noise} | {:.4} / {:.3} ({mr:.4} / {mt:.3}) | {:.4} / {:.3} ({mrb:.4} / {mtb:.3}) | {me:.4} ({:.4}-{:.4}) |",
+            "| {noise} | {:.4} / {:.3} ({mr:.4} / {mt:.3}) | {:.4} / {:.3} ({mrb:.4} / {mtb:.3}) | {me:.4} ({:.4}-{:.4}) | {:.4} |",
             median(&mut rot),
             median(&mut tra),
             median(&mut rot_b),
             median(&mut tra_b),
             q(0.1),
             q(0.9),
+            median(&mut stds),
         );
     }
     Ok(())

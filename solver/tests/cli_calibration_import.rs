@@ -265,7 +265,10 @@ fn estimate_and_compare_refine_the_gyro_bias() {
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let b = v["gyro_bias"].as_array().unwrap();
     assert_eq!(b.len(), 3);
-    assert!(b.iter().all(|x| x.as_f64().unwrap().abs() < 0.5));
+    assert!(b.iter().all(|x| x.as_f64().unwrap().abs() <= 0.5));
+    let s = v["gyro_bias_std"].as_array().unwrap();
+    assert_eq!(s.len(), 3);
+    assert!(s.iter().all(|x| x.as_f64().unwrap() > 0.0));
     let o = rspose(&["estimate", &pair, "--method", "rectified", "--json"]);
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert!(v.get("gyro_bias").is_none());

@@ -209,10 +209,12 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 v1.camera.readout * v1.camera.lines() * 1e3
             );
         }
-        if let Some(b) = est.gyro_bias {
+        if let Some(rspose::estimation::gyro_bias::EstimatedBias { bias: b, std: s }) =
+            est.gyro_bias
+        {
             println!(
-                "gyro bias    [{:.5} {:.5} {:.5}] rad/s (camera axes, subtracted from the rates)",
-                b.x, b.y, b.z
+                "gyro bias    [{:.5} {:.5} {:.5}] ± [{:.5} {:.5} {:.5}] rad/s (camera axes, subtracted from the rates)",
+                b.x, b.y, b.z, s.x, s.y, s.z
             );
         }
         if let Some([d1, d2]) = est.linear_velocity {

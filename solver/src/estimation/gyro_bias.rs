@@ -82,6 +82,21 @@ pub struct GyroBiasFit {
     pub cost: f64,
     /// LM iterations.
     pub iterations: usize,
+    /// Standard deviation of each bias component, rad/s, from the Gauss-Newton covariance
+    /// at the fit, `σ² (JᵀJ)⁻¹` with `σ²` the residuals' mean square over `n − 8` (the
+    /// robust loss ignored): how well the pair determines the bias. Infinite when `JᵀJ` is
+    /// singular.
+    pub std: Vector3<f64>,
+}
+
+/// The bias reported in an [`crate::methods::Estimate`]: the value and its standard
+/// deviation per axis ([`GyroBiasFit::bias`], [`GyroBiasFit::std`]), camera axes, rad/s.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EstimatedBias {
+    /// The bias of the views' rates (true rate = the views' rate − this).
+    pub bias: Vector3<f64>,
+    /// Its standard deviation per axis.
+    pub std: Vector3<f64>,
 }
 
 /// `view` with its rate, and its integrated track where it has one, less `bias` (camera
@@ -190,6 +205,26 @@ impl LmProblem<8> for BiasProblem<'_> {
     }
 }
 
+/// The bias's standard deviation at `state` (see [`GyroBiasFit::std`]).
+fn bias_std(problem: &BiasProblem, state: &(Pose, Vector3<f64>)) -> Vector3<f64> {
+    let n = problem.num_residuals();
+    let mut r = vec![0.0; n];
+    let mut jac = vec![SVector::<f64, 8>::zeros(); n];
+    let unknown = Vector3::repeat(f64::INFINITY);
+    if n <= 8 || !problem.residuals_and_jacobian(state, &mut r, &mut jac) {
+        return unknown;
+    }
+    let mut h = nalgebra::SMatrix::<f64, 8, 8>::zeros();
+    for j in &jac {
+        h += j * j.transpose();
+    }
+    let sigma2 = r.iter().map(|x| x * x).sum::<f64>() / (n - 8) as f64;
+    match h.try_inverse() {
+        Some(cov) => Vector3::from_fn(|i, _| (sigma2 * cov[(5 + i, 5 + i)]).max(0.0).sqrt()),
+        None => unknown,
+    }
+}
+
 /// Refines the pose `(rotation, translation)` of `view1`/`view2` together with a gyro bias
 /// common to both views (camera axes, rad/s), over the matches flagged in `inliers` (see the
 /// module documentation). `None` with fewer than 8 inliers, an `inliers` mask of the wrong
@@ -229,6 +264,7 @@ pub fn refine_gyro_bias(
         &options.lm,
     );
     let (pose, bias) = res.state;
+    let std = bias_std(&problem, &res.state);
     let fit = GyroBiasFit {
         bias,
         rotation: pose.matrix(),
@@ -236,6 +272,7 @@ pub fn refine_gyro_bias(
         cost_initial: res.initial_cost,
         cost: res.cost,
         iterations: res.iterations,
+        std,
     };
     let finite = fit.bias.iter().all(|x| x.is_finite())
         && fit.rotation.iter().all(|x| x.is_finite())

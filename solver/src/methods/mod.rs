@@ -26,7 +26,7 @@ pub mod rectified_v;
 mod subset;
 
 use crate::data::pair_file::Match;
-use crate::estimation::gyro_bias::GyroBiasOptions;
+use crate::estimation::gyro_bias::{EstimatedBias, GyroBiasOptions};
 use crate::estimation::readout::ReadoutOptions;
 use crate::estimation::refine::LmOptions;
 use crate::minimal::{EssentialSolver, GravitySolver, GrsrpSolver};
@@ -411,10 +411,10 @@ pub struct Estimate {
     /// inliers or a non-finite result; the method's pose is then kept).
     pub readout_scale: Option<f64>,
     /// With [`EstimateOptions::gyro_bias`]: the bias of the views' gyro rates the pose was
-    /// refined with, camera axes, rad/s (true rate = the views' rate − this; `None` if the
-    /// refinement could not run: fewer than 8 inliers or a non-finite result; the
-    /// method's pose is then kept).
-    pub gyro_bias: Option<Vector3<f64>>,
+    /// refined with and its standard deviation, camera axes, rad/s (true rate = the views'
+    /// rate − the bias; `None` if the refinement could not run: fewer than 8 inliers or a
+    /// non-finite result; the method's pose is then kept).
+    pub gyro_bias: Option<EstimatedBias>,
 }
 
 impl Estimate {
@@ -428,7 +428,8 @@ impl Estimate {
     /// (row-major rows), `translation`, `inliers` (the count), `iterations`, `inlier_ratio`,
     /// `ransac_score`, `refinement_iterations`, `refinement_cost`, `quality`, `flags`, and
     /// where present `linear_velocity`, `velocity_fit`, `noise_fit`, `readout_scale` and
-    /// `gyro_bias` (`[bx, by, bz]`, camera axes, rad/s). The Python package's
+    /// `gyro_bias` (`[bx, by, bz]`, camera axes, rad/s) with `gyro_bias_std` (its standard
+    /// deviation per axis; `null` where infinite). The Python package's
     /// `Estimate.to_dict()` is this object.
     pub fn report_json(&self) -> serde_json::Value {
         let rows: Vec<[f64; 3]> = (0..3)
@@ -463,8 +464,9 @@ impl Estimate {
         if let Some(k) = self.readout_scale {
             obj["readout_scale"] = k.into();
         }
-        if let Some(b) = self.gyro_bias {
+        if let Some(EstimatedBias { bias: b, std: s }) = self.gyro_bias {
             obj["gyro_bias"] = serde_json::json!([b.x, b.y, b.z]);
+            obj["gyro_bias_std"] = serde_json::json!([s.x, s.y, s.z]);
         }
         obj
     }

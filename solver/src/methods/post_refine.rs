@@ -4,7 +4,7 @@
 
 use super::{Estimate, EstimateOptions};
 use crate::data::pair_file::Match;
-use crate::estimation::gyro_bias::{refine_gyro_bias, unbiased_view};
+use crate::estimation::gyro_bias::{refine_gyro_bias, unbiased_view, EstimatedBias};
 use crate::estimation::readout::refine_readout_scale;
 use crate::model::camera::View;
 
@@ -59,7 +59,10 @@ pub(super) fn refine(
         ) {
             est.rotation = fit.rotation;
             est.translation = fit.translation;
-            est.gyro_bias = Some(fit.bias);
+            est.gyro_bias = Some(EstimatedBias {
+                bias: fit.bias,
+                std: fit.std,
+            });
             corrected = Some((unbiased_view(&w1, &fit.bias), unbiased_view(&w2, &fit.bias)));
         }
     }

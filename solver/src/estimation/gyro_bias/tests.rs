@@ -115,8 +115,9 @@ fn the_bias_is_clamped_and_bad_input_refused() {
 }
 
 /// Pose and bias errors of `rectified` with and without the bias refinement on a biased
-/// pair: (rotation error without, with, bias error), degrees and rad/s.
-fn errors(pair: &PairFile) -> (f64, f64, f64) {
+/// pair: (rotation error without, with, bias error, reported bias std), degrees and rad/s
+/// (norms of the bias vectors).
+fn errors(pair: &PairFile) -> (f64, f64, f64, f64) {
     let gt = pair.ground_truth.clone().unwrap();
     let (v1, v2) = pair.views().unwrap();
     let plain = EstimateOptions::for_method(Method::Rectified);
@@ -127,7 +128,8 @@ fn errors(pair: &PairFile) -> (f64, f64, f64) {
     let a = estimate_relative_pose(&v1, &v2, &pair.matches, &plain).unwrap();
     let b = estimate_relative_pose(&v1, &v2, &pair.matches, &refined).unwrap();
     assert_eq!(a.gyro_bias, None);
-    let bias = b.gyro_bias.unwrap();
+    let fit = b.gyro_bias.unwrap();
+    let bias = fit.bias;
     let json = b.report_json();
     assert_eq!(
         json["gyro_bias"],
@@ -137,6 +139,7 @@ fn errors(pair: &PairFile) -> (f64, f64, f64) {
         rotation_error_deg(&gt.rotation_matrix(), &a.rotation),
         rotation_error_deg(&gt.rotation_matrix(), &b.rotation),
         (bias - Vector3::from(BIAS)).norm(),
+        fit.std.norm(),
     )
 }
 
@@ -144,18 +147,25 @@ fn errors(pair: &PairFile) -> (f64, f64, f64) {
 fn on_seeded_scenes_the_refined_bias_and_pose_beat_the_biased_ones() {
     // The bias is weakly observable (module documentation): 1000 matches at 0.5 px, and a
     // per-view rate error of 0.002 rad/s per axis, well below the bias.
-    let (mut without, mut with, mut bias_err) = (vec![], vec![], vec![]);
+    let (mut without, mut with, mut bias_err, mut stds) = (vec![], vec![], vec![], vec![]);
     for seed in 0..12 {
-        let (a, b, e) = errors(&biased_pair_of(100 + seed, 1000, 0.5, 0.002));
+        let (a, b, e, s) = errors(&biased_pair_of(100 + seed, 1000, 0.5, 0.002));
         without.push(a);
         with.push(b);
         bias_err.push(e);
+        stds.push(s);
     }
     let norm = Vector3::from(BIAS).norm();
     let (a, b, e) = (median(&without), median(&with), median(&bias_err));
     eprintln!("median rotation error {a:.4}° without, {b:.4}° with; bias error {e:.4} rad/s");
     assert!(e < 0.5 * norm, "median bias error {e} rad/s, bias {norm}");
     assert!(b < a, "median rotation error {b}° with, {a}° without");
+    // The reported standard deviation matches the errors' size (within a factor of 2).
+    let s = median(&stds);
+    assert!(
+        (0.5 * e..2.0 * e).contains(&s),
+        "std {s} rad/s, error {e} rad/s"
+    );
 }
 
 #[test]

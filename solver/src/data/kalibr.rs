@@ -65,6 +65,7 @@ pub struct ImportedRig {
     pub time_offset: f64,
 }
 
+/// An [`CalibrationImportError::Invalid`] for `key` (shared with the OpenCV reader).
 pub(crate) fn invalid(key: &str, reason: impl Into<String>) -> CalibrationImportError {
     CalibrationImportError::Invalid {
         key: key.to_string(),
@@ -72,6 +73,8 @@ pub(crate) fn invalid(key: &str, reason: impl Into<String>) -> CalibrationImport
     }
 }
 
+/// A [`CalibrationImportError::Missing`] for `key`, with `hint` appended to the message
+/// (empty or starting with a space).
 pub(crate) fn missing(key: &str, hint: &str) -> CalibrationImportError {
     CalibrationImportError::Missing {
         key: key.to_string(),

@@ -45,6 +45,7 @@ fn spec_of(
             None => rspose_core::data::pair_file::rows_of_matrix(&nalgebra::Matrix3::identity()),
         },
         time_offset,
+        gyro_bias: None,
     })
 }
 
@@ -282,6 +283,7 @@ impl Pair {
         let pair = PairFile {
             cameras,
             gyro,
+            gyro_bias: None,
             gyro_log,
             gravity,
             matches,

@@ -178,3 +178,37 @@ fn per_pair_readout_refinement_agrees_with_the_calibration() {
         "{median} vs nominal {nominal}"
     );
 }
+
+#[test]
+fn the_gyro_bias_is_not_determined_by_these_pairs_and_says_so() {
+    use rspose::estimation::gyro_bias::GyroBiasOptions;
+    // Slow rates (a dashboard), frames 1 to 5 apart: a bias warps both images alike, so a
+    // pair barely sees it. The fit must say so through its standard deviation (far above
+    // any plausible MEMS bias) rather than report a precise wrong value, and must leave the
+    // rotation as good as `rectified`'s.
+    let options = EstimateOptions {
+        gyro_bias: Some(GyroBiasOptions::default()),
+        ..EstimateOptions::for_method(Method::Rectified)
+    };
+    let mut stds = Vec::new();
+    let mut differences = Vec::new();
+    for p in pairs() {
+        let (v1, v2) = p.views().unwrap();
+        let est = estimate_relative_pose(&v1, &v2, &p.matches, &options).unwrap();
+        let fit = est.gyro_bias.unwrap();
+        stds.push(fit.std.norm());
+        let reference = p.gyro_relative_rotation().unwrap();
+        differences.push(rotation_error_deg(&reference, &est.rotation));
+    }
+    stds.sort_by(f64::total_cmp);
+    differences.sort_by(f64::total_cmp);
+    let n = stds.len();
+    eprintln!(
+        "bias std: min {:.3}, median {:.3} rad/s; rotation difference median {:.4}°",
+        stds[0],
+        stds[n / 2],
+        differences[n / 2]
+    );
+    assert!(stds[0] > 0.1, "{stds:?}");
+    assert!(differences[n / 2] < 0.05, "{differences:?}");
+}

@@ -4,10 +4,14 @@
 use super::estimate::{apply_r0, GrsrpModelChoice, R0Choice, Rows};
 use super::{CliError, Preset, ALL_METHODS};
 use rspose::data::pair_file::PairFile;
+use rspose::estimation::gyro_bias::GyroBiasOptions;
 use rspose::estimation::readout::ReadoutOptions;
 use rspose::experiment::real::{reference_rotation, run_real, to_markdown};
 use rspose::experiment::READOUT_REFINED_LABEL;
 use std::path::{Path, PathBuf};
+
+/// The `compare` row of `rectified` with the gyro bias refined.
+const BIAS_REFINED_LABEL: &str = "rectified+b";
 
 /// Options of `rspose compare`.
 #[derive(Debug, clap::Args)]
@@ -37,6 +41,10 @@ pub struct Args {
     /// each pair's pose (for a camera whose readout time is known only roughly).
     #[arg(long)]
     refine_readout: bool,
+    /// Add a row `rectified+b`: `rectified` with a constant gyro bias shared by both views
+    /// refined with each pair's pose (for an uncalibrated gyro).
+    #[arg(long)]
+    refine_gyro_bias: bool,
 }
 
 /// Pair files named on the command line: files as given, directories expanded to their
@@ -123,6 +131,17 @@ pub fn run(a: Args) -> Result<(), CliError> {
         let mut extra = run_real(&pairs, &[rspose::Method::Rectified], refined, constant);
         for r in &mut extra {
             r.method = READOUT_REFINED_LABEL.to_string();
+        }
+        rows.extend(extra);
+    }
+    if a.refine_gyro_bias {
+        let refined = |method, pair: &PairFile| rspose::EstimateOptions {
+            gyro_bias: Some(GyroBiasOptions::default()),
+            ..options_for(method, pair)
+        };
+        let mut extra = run_real(&pairs, &[rspose::Method::Rectified], refined, constant);
+        for r in &mut extra {
+            r.method = BIAS_REFINED_LABEL.to_string();
         }
         rows.extend(extra);
     }

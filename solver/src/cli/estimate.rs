@@ -39,6 +39,10 @@ pub struct Args {
     /// readout; gyro-aided methods only) and print it.
     #[arg(long)]
     refine_readout: bool,
+    /// Refine a constant gyro bias shared by both views with the pose (gyro-aided methods
+    /// only) and print it (camera axes, rad/s; JSON `gyro_bias`).
+    #[arg(long)]
+    refine_gyro_bias: bool,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -126,6 +130,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
     if a.refine_readout {
         options.readout = Some(rspose::estimation::readout::ReadoutOptions::default());
     }
+    if a.refine_gyro_bias {
+        options.gyro_bias = Some(rspose::estimation::gyro_bias::GyroBiasOptions::default());
+    }
     let start = Instant::now();
     let est = estimate_relative_pose(&v1, &v2, &pair.matches, &options).map_err(|e| match e {
         EstimateError::NoSolution => CliError::failed(format!("{}: {e}", a.pair.display())),
@@ -200,6 +207,14 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 "readout      {:.2} ms (nominal {:.2} ms, x{k:.3})",
                 k * v1.camera.readout * v1.camera.lines() * 1e3,
                 v1.camera.readout * v1.camera.lines() * 1e3
+            );
+        }
+        if let Some(rspose::estimation::gyro_bias::EstimatedBias { bias: b, std: s }) =
+            est.gyro_bias
+        {
+            println!(
+                "gyro bias    [{:.5} {:.5} {:.5}] ± [{:.5} {:.5} {:.5}] rad/s (camera axes, subtracted from the rates)",
+                b.x, b.y, b.z, s.x, s.y, s.z
             );
         }
         if let Some([d1, d2]) = est.linear_velocity {

@@ -2,6 +2,8 @@
 //! timestamps, a rig calibration and the matches of two frames.
 
 use super::{check_output_dir, CliError};
+use rspose::data::kalibr::{parse_kalibr, CalibrationImportError, ImportedRig};
+use rspose::data::opencv_calibration::parse_opencv_calibration;
 use rspose::data::pair_file::{matrix_from_rows, GyroLogSpec, Match, PairFile, PairFileError};
 use rspose::model::camera::Camera;
 use rspose::model::gyro_log::{parse_gyro_csv, GyroLog, GyroLogError, MAX_SAMPLE_GAP};
@@ -14,9 +16,27 @@ pub struct Args {
     /// Rig calibration (JSON): `camera` (as in a pair file), `camera_from_gyro` (3x3 rows,
     /// ω_cam = M ω_gyro; default identity), `time_offset` (s, gyro time of a frame's row 0
     /// minus its frame time; default 0), `gyro_time_column` (0-based column of the time in
-    /// the gyro CSV; default 3, for `gx,gy,gz,t`).
+    /// the gyro CSV; default 3, for `gx,gy,gz,t`), `gyro_bias` (the gyro's known constant
+    /// bias in its own axes, rad/s, subtracted from every sample; default none). One of
+    /// --calibration, --kalibr and --opencv-calibration is required.
     #[arg(long)]
-    calibration: PathBuf,
+    calibration: Option<PathBuf>,
+    /// Rig calibration from Kalibr's camera-IMU calibration (`camchain-imucam.yaml`): the
+    /// camera, `camera_from_gyro` (rotation of `T_cam_imu`), `time_offset`
+    /// (`timeshift_cam_imu`) and the readout time per line (`line_delay`, else --readout).
+    #[arg(long)]
+    kalibr: Option<PathBuf>,
+    /// The camera of the Kalibr file to read.
+    #[arg(long, default_value = "cam0", requires = "kalibr")]
+    cam: String,
+    /// The camera from an OpenCV calibration (`cv::FileStorage` YAML or ROS camera_info),
+    /// with --readout; the gyro's axes are taken as the camera's and the time offset as 0.
+    #[arg(long = "opencv-calibration")]
+    opencv_calibration: Option<PathBuf>,
+    /// Readout time per line, s, for --kalibr (over the file's `line_delay`) and
+    /// --opencv-calibration (required there).
+    #[arg(long)]
+    readout: Option<f64>,
     /// Gyro log: one sample per line, four numbers separated by commas or spaces (the time
     /// in seconds and the rates in rad/s in the gyro's axes); `#` comments and a header line
     /// allowed.
@@ -56,6 +76,10 @@ pub struct RigCalibration {
     /// 0-based column of the time in the gyro CSV.
     #[serde(default = "default_time_column")]
     pub gyro_time_column: usize,
+    /// A known constant bias of the gyro, in its own axes (rad/s), written into the pair's
+    /// `gyro_log.gyro_bias` (subtracted from every sample before `camera_from_gyro`).
+    #[serde(default)]
+    pub gyro_bias: Option<[f64; 3]>,
 }
 
 fn identity() -> [[f64; 3]; 3] {
@@ -82,6 +106,68 @@ fn parse_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, CliError
         .map_err(|e| CliError::input(format!("{}: {e}", path.display())))
 }
 
+/// The rig calibration the arguments name (JSON, Kalibr or OpenCV) and its file; errors
+/// name the file and the key.
+fn rig_calibration(a: &Args) -> Result<(RigCalibration, PathBuf), CliError> {
+    let given = [&a.calibration, &a.kalibr, &a.opencv_calibration]
+        .iter()
+        .filter(|p| p.is_some())
+        .count();
+    if given != 1 {
+        return Err(CliError::input(
+            "give the rig's calibration with exactly one of --calibration, --kalibr and --opencv-calibration",
+        ));
+    }
+    if a.readout.is_some() && a.calibration.is_some() {
+        return Err(CliError::input(
+            "--readout is for --kalibr and --opencv-calibration; a JSON calibration has its camera's `readout`",
+        ));
+    }
+    if let Some(r) = a.readout {
+        if !(r.is_finite() && r > 0.0) {
+            return Err(CliError::input(
+                "--readout must be a finite positive time per line, s",
+            ));
+        }
+    }
+    if let Some(path) = &a.calibration {
+        return Ok((load_calibration(path)?, path.clone()));
+    }
+    let imported = |path: &PathBuf, rig: Result<ImportedRig, CalibrationImportError>| {
+        let rig = rig.map_err(|e| CliError::input(format!("{}: {e}", path.display())))?;
+        Ok((
+            RigCalibration {
+                camera: rig.camera,
+                camera_from_gyro: rig.camera_from_gyro,
+                time_offset: rig.time_offset,
+                gyro_time_column: default_time_column(),
+                gyro_bias: None,
+            },
+            path.clone(),
+        ))
+    };
+    if let Some(path) = &a.kalibr {
+        return imported(path, parse_kalibr(&read(path)?, &a.cam, a.readout));
+    }
+    let Some(path) = &a.opencv_calibration else {
+        return Err(CliError::input("no calibration given"));
+    };
+    let Some(readout) = a.readout else {
+        return Err(CliError::input(format!(
+            "{}: an OpenCV calibration has no readout time; give it with --readout (s per line)",
+            path.display()
+        )));
+    };
+    imported(
+        path,
+        parse_opencv_calibration(&read(path)?, readout).map(|camera| ImportedRig {
+            camera,
+            camera_from_gyro: identity(),
+            time_offset: 0.0,
+        }),
+    )
+}
+
 /// Reads a rig calibration and checks it (camera parameters, rotation, time column).
 pub fn load_calibration(path: &Path) -> Result<RigCalibration, CliError> {
     let c: RigCalibration = parse_json(path)?;
@@ -92,6 +178,12 @@ pub fn load_calibration(path: &Path) -> Result<RigCalibration, CliError> {
     }
     if !c.time_offset.is_finite() {
         return Err(bad("time_offset must be finite".into()));
+    }
+    if let Some(b) = c.gyro_bias {
+        let n = nalgebra::Vector3::from(b).norm();
+        if !(n.is_finite() && n <= rspose::model::camera::MAX_ANGULAR_VELOCITY) {
+            return Err(bad("gyro_bias must be finite and at most 100 rad/s".into()));
+        }
     }
     GyroLog::new(
         &[[0.0; 4], [1.0; 4]],
@@ -182,7 +274,7 @@ pub fn load_frame_times(path: &Path) -> Result<Vec<f64>, CliError> {
 
 pub fn run(a: Args) -> Result<(), CliError> {
     check_output_dir(&a.output)?;
-    let calibration = load_calibration(&a.calibration)?;
+    let (calibration, calibration_path) = rig_calibration(&a)?;
     let camera = calibration.camera;
     let duration = camera.frame_readout();
     let (csv, full_log) = load_gyro_csv(&a.gyro, &calibration)?;
@@ -220,7 +312,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     if !(a.margin.is_finite() && a.margin >= 0.0) {
         return Err(CliError::input("--margin must be finite and non-negative"));
     }
-    let spec = GyroLogSpec::excerpt(
+    let mut spec = GyroLogSpec::excerpt(
         &csv.samples,
         calibration.camera_from_gyro,
         calibration.time_offset,
@@ -228,9 +320,11 @@ pub fn run(a: Args) -> Result<(), CliError> {
         duration,
         a.margin,
     );
+    spec.gyro_bias = calibration.gyro_bias;
     let mut pair = PairFile {
         cameras: [camera; 2],
         gyro: None,
+        gyro_bias: None,
         gyro_log: Some(spec),
         gravity: None,
         matches: m.matches,
@@ -249,7 +343,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     // The mean rates beside the samples, for readers that take one rate per frame.
     pair.gyro = Some([v1.omega.into(), v2.omega.into()]);
     let inputs = [
-        a.calibration.as_path(),
+        calibration_path.as_path(),
         a.gyro.as_path(),
         a.frame_times.as_path(),
         a.matches.as_path(),

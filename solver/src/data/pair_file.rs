@@ -11,11 +11,16 @@
 //!   // or "cameras": [camera1, camera2]
 //!   "gyro": [[wx, wy, wz], [wx, wy, wz]],   // ω of view 1 and view 2 (see below); optional
 //!                                          // when "gyro_log" is given
+//!   "gyro_bias": [bx, by, bz],             // optional, without "gyro_log" only: a known
+//!                                          // constant bias of "gyro", camera axes (rad/s),
+//!                                          // subtracted from both readings
 //!   "gyro_log": {                          // optional: gyro samples instead of (or beside) "gyro"
 //!     "camera_from_gyro": [[..3..], [..3..], [..3..]],  // M, ω_cam = M ω_gyro (default I)
 //!     "time_offset": f64,                  // s (default 0): row 0 of an image is read at
 //!                                          // gyro time frame_time + time_offset
 //!     "frame_times": [t1, t2],             // frame times of image 1 and 2, s
+//!     "gyro_bias": [bx, by, bz],           // optional: a known constant bias, gyro axes
+//!                                          // (rad/s): ω_cam = M (ω_gyro − b)
 //!     "samples": [[t, wx, wy, wz], ...]    // gyro clock (s), gyro axes (rad/s), increasing t
 //!   },
 //!   "gravity": [[gx, gy, gz], [gx, gy, gz]],  // optional: gravity in camera axes at row 0
@@ -33,7 +38,8 @@
 //!
 //! `gyro` and the samples are what a gyroscope reports: the camera's angular velocity in its
 //! own axes (x right, y down, z forward once rotated by `camera_from_gyro`; rad/s, bias
-//! removed), `Ṙ_wc = R_wc [ω]×`, so row `v`'s world-to-camera rotation is
+//! removed, or a known constant bias given as `gyro_bias`), `Ṙ_wc = R_wc [ω]×`, so row
+//! `v`'s world-to-camera rotation is
 //! `exp(−[v λ ω]×) R_cw(0)` for a constant rate. With a log, each view's row rotations are
 //! integrated from the samples over its readout `[t_k + offset, t_k + offset + H λ]` (which
 //! the samples must cover, with no gap longer than `H λ`), and its constant rate is the mean
@@ -107,6 +113,11 @@ pub struct GyroLogSpec {
     pub frame_times: [f64; 2],
     /// Samples `[t, ωx, ωy, ωz]`: gyro clock (s), gyro axes (rad/s), increasing `t`.
     pub samples: Vec<[f64; 4]>,
+    /// A known constant bias of the samples, in the gyro's own axes (rad/s), subtracted
+    /// from every sample before `camera_from_gyro` is applied: `ω_cam = M (ω_gyro − b)`
+    /// (default none: the samples are taken as unbiased).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gyro_bias: Option<[f64; 3]>,
 }
 
 fn identity_rows() -> [[f64; 3]; 3] {
@@ -124,14 +135,20 @@ pub fn rows_of_matrix(m: &Matrix3<f64>) -> [[f64; 3]; 3] {
 }
 
 impl GyroLogSpec {
-    /// The samples as a validated [`GyroLog`] in camera axes.
+    /// The samples as a validated [`GyroLog`] in camera axes, [`gyro_bias`](Self::gyro_bias)
+    /// removed.
     pub fn log(&self) -> Result<GyroLog, GyroLogError> {
-        GyroLog::new(&self.samples, &matrix_from_rows(&self.camera_from_gyro))
+        let m = matrix_from_rows(&self.camera_from_gyro);
+        match self.gyro_bias {
+            Some(b) => GyroLog::with_bias(&self.samples, &m, &Vector3::from(b)),
+            None => GyroLog::new(&self.samples, &m),
+        }
     }
 
     /// The part of a long log a pair needs: the samples within `margin` seconds of the two
     /// frames' readouts (`[t_k + offset, t_k + offset + duration]`, `duration = H λ`) and
     /// everything between them, plus one sample beyond each end. `samples` must be sorted.
+    /// No bias is set (`gyro_bias` is `None`); a caller with a known bias sets it.
     pub fn excerpt(
         samples: &[[f64; 4]],
         camera_from_gyro: [[f64; 3]; 3],
@@ -149,6 +166,7 @@ impl GyroLogSpec {
             time_offset,
             frame_times,
             samples: samples[lo..hi.max(lo)].to_vec(),
+            gyro_bias: None,
         }
     }
 
@@ -171,6 +189,10 @@ pub struct PairFile {
     /// Angular velocities of view 1 and view 2 (rad/s, camera axes, as a gyroscope reports
     /// them), constant over each frame. Optional when `gyro_log` is given.
     pub gyro: Option<[[f64; 3]; 2]>,
+    /// A known constant bias of the `gyro` readings, camera axes (rad/s), subtracted from
+    /// both before use. Only without a `gyro_log` (a log's bias is
+    /// [`GyroLogSpec::gyro_bias`], in the gyro's axes); default none.
+    pub gyro_bias: Option<[f64; 3]>,
     /// Gyro samples: exact row rotations, and the rotation between the frames.
     pub gyro_log: Option<GyroLogSpec>,
     /// Gravity in the camera axes of view 1 and view 2 at row 0 (accelerometer readings).
@@ -192,6 +214,8 @@ struct PairFileJson {
     #[serde(default)]
     gyro: Option<[[f64; 3]; 2]>,
     #[serde(default)]
+    gyro_bias: Option<[f64; 3]>,
+    #[serde(default)]
     gyro_log: Option<GyroLogSpec>,
     #[serde(default, deserialize_with = "gravity_field")]
     gravity: Option<[[f64; 3]; 2]>,
@@ -209,6 +233,8 @@ struct PairFileOut<'a> {
     cameras: Option<&'a [Camera; 2]>,
     #[serde(skip_serializing_if = "Option::is_none")]
     gyro: Option<&'a [[f64; 3]; 2]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    gyro_bias: Option<&'a [f64; 3]>,
     #[serde(skip_serializing_if = "Option::is_none")]
     gyro_log: Option<&'a GyroLogSpec>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -247,6 +273,7 @@ impl TryFrom<PairFileJson> for PairFile {
         Ok(PairFile {
             cameras,
             gyro: j.gyro,
+            gyro_bias: j.gyro_bias,
             gyro_log: j.gyro_log,
             gravity: j.gravity,
             matches: j.matches,
@@ -273,6 +300,7 @@ impl Serialize for PairFile {
             camera: shared.then_some(&self.cameras[0]),
             cameras: (!shared).then_some(&self.cameras),
             gyro: self.gyro.as_ref(),
+            gyro_bias: self.gyro_bias.as_ref(),
             gyro_log: self.gyro_log.as_ref(),
             gravity: self.gravity.as_ref(),
             matches: &self.matches,
@@ -396,6 +424,17 @@ fn camera_field(key: &str, camera: &Camera, e: &CameraError) -> String {
     }
 }
 
+/// A gyro bias must be finite and below the plausible rate (a larger one is a unit or
+/// sign mistake, not a bias).
+fn check_bias(field: &str, b: &[f64; 3]) -> Result<(), PairFileError> {
+    let n = Vector3::from(*b).norm();
+    if n.is_finite() && n <= crate::model::camera::MAX_ANGULAR_VELOCITY {
+        Ok(())
+    } else {
+        Err(invalid(field, "must be finite and at most 100 rad/s"))
+    }
+}
+
 fn invalid(field: impl Into<String>, reason: impl Into<String>) -> PairFileError {
     PairFileError::InvalidField {
         field: field.into(),
@@ -423,9 +462,10 @@ impl PairFile {
             let Some(g) = self.gyro else {
                 return Err(invalid("gyro", "missing (give `gyro` or `gyro_log`)"));
             };
+            let bias = self.gyro_bias.map_or_else(Vector3::zeros, Vector3::from);
             return Ok((
-                View::new(self.cameras[0], Vector3::from(g[0])),
-                View::new(self.cameras[1], Vector3::from(g[1])),
+                View::new(self.cameras[0], Vector3::from(g[0]) - bias),
+                View::new(self.cameras[1], Vector3::from(g[1]) - bias),
             ));
         };
         let log = spec.log().map_err(log_error)?;
@@ -489,6 +529,18 @@ impl PairFile {
             }
             if !spec.time_offset.is_finite() {
                 return Err(invalid("gyro_log.time_offset", "non-finite value"));
+            }
+            if let Some(b) = spec.gyro_bias {
+                check_bias("gyro_log.gyro_bias", &b)?;
+            }
+        }
+        if let Some(b) = &self.gyro_bias {
+            check_bias("gyro_bias", b)?;
+            if self.gyro_log.is_some() {
+                return Err(invalid(
+                    "gyro_bias",
+                    "applies to `gyro` without a log; with `gyro_log` give the bias as `gyro_log.gyro_bias`, in the gyro's axes",
+                ));
             }
         }
         if let Some(g) = &self.gravity {

@@ -310,6 +310,7 @@ pub fn simulate(options: &SimulationOptions) -> Result<PairFile, SimulationError
     Ok(PairFile {
         cameras: [cam, cam2],
         gyro: Some([gyro[0].into(), gyro[1].into()]),
+        gyro_bias: None,
         gyro_log: None,
         gravity: Some(gravity),
         matches,

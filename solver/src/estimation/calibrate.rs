@@ -504,12 +504,14 @@ mod tests {
                 ..cam
             }; 2],
             gyro: None,
+            gyro_bias: None,
             gravity: None,
             gyro_log: Some(GyroLogSpec {
                 camera_from_gyro: identity,
                 time_offset: 0.0,
                 frame_times,
                 samples,
+                gyro_bias: None,
             }),
             matches,
             ground_truth: None,

@@ -100,5 +100,6 @@ pub fn estimate(
         velocity_fit: None,
         noise_fit,
         readout_scale: None,
+        gyro_bias: None,
     })
 }

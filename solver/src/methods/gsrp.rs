@@ -61,6 +61,7 @@ pub(crate) fn run_on(
         velocity_fit: None,
         noise_fit: None,
         readout_scale: None,
+        gyro_bias: None,
     })
 }
 

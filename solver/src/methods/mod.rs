@@ -19,13 +19,15 @@ pub mod gsrp;
 pub mod noise_fit;
 pub mod nrsrp;
 mod pose_ransac;
+mod post_refine;
 pub mod quality;
 pub mod rectified;
 pub mod rectified_v;
 mod subset;
 
 use crate::data::pair_file::Match;
-use crate::estimation::readout::{refine_readout_scale, ReadoutOptions};
+use crate::estimation::gyro_bias::{EstimatedBias, GyroBiasOptions};
+use crate::estimation::readout::ReadoutOptions;
 use crate::estimation::refine::LmOptions;
 use crate::minimal::{EssentialSolver, GravitySolver, GrsrpSolver};
 use crate::model::camera::{CameraError, View};
@@ -277,6 +279,13 @@ pub struct EstimateOptions {
     /// method's inliers) and report it in [`Estimate::readout_scale`]. Gyro-aided methods
     /// only (not `gsrp` or `nrsrp`); default `None` (the readout is taken as given).
     pub readout: Option<ReadoutOptions>,
+    /// For a gyro with an unknown constant bias: after the method (and after the readout
+    /// refinement, with its scale), refine the pose together with one bias of both views'
+    /// rates, their row rotations recomputed from rate − bias
+    /// ([`crate::estimation::gyro_bias::refine_gyro_bias`], exact angular model, on the
+    /// method's inliers), and report it in [`Estimate::gyro_bias`]. Gyro-aided methods only
+    /// (not `gsrp` or `nrsrp`); default `None` (the rates are taken as unbiased).
+    pub gyro_bias: Option<GyroBiasOptions>,
 }
 
 impl EstimateOptions {
@@ -358,6 +367,7 @@ impl Default for EstimateOptions {
             quality: QualityOptions::default(),
             velocity: VelocityOptions::default(),
             readout: None,
+            gyro_bias: None,
         }
     }
 }
@@ -400,6 +410,11 @@ pub struct Estimate {
     /// the views' nominal one (`None` if the refinement could not run: fewer than 8
     /// inliers or a non-finite result; the method's pose is then kept).
     pub readout_scale: Option<f64>,
+    /// With [`EstimateOptions::gyro_bias`]: the bias of the views' gyro rates the pose was
+    /// refined with and its standard deviation, camera axes, rad/s (true rate = the views'
+    /// rate − the bias; `None` if the refinement could not run: fewer than 8 inliers or a
+    /// non-finite result; the method's pose is then kept).
+    pub gyro_bias: Option<EstimatedBias>,
 }
 
 impl Estimate {
@@ -412,7 +427,9 @@ impl Estimate {
     /// command's own `seconds` and the pair file's reference errors): `method`, `rotation`
     /// (row-major rows), `translation`, `inliers` (the count), `iterations`, `inlier_ratio`,
     /// `ransac_score`, `refinement_iterations`, `refinement_cost`, `quality`, `flags`, and
-    /// where present `linear_velocity`, `velocity_fit` and `noise_fit`. The Python package's
+    /// where present `linear_velocity`, `velocity_fit`, `noise_fit`, `readout_scale` and
+    /// `gyro_bias` (`[bx, by, bz]`, camera axes, rad/s) with `gyro_bias_std` (its standard
+    /// deviation per axis; `null` where infinite). The Python package's
     /// `Estimate.to_dict()` is this object.
     pub fn report_json(&self) -> serde_json::Value {
         let rows: Vec<[f64; 3]> = (0..3)
@@ -446,6 +463,10 @@ impl Estimate {
         }
         if let Some(k) = self.readout_scale {
             obj["readout_scale"] = k.into();
+        }
+        if let Some(EstimatedBias { bias: b, std: s }) = self.gyro_bias {
+            obj["gyro_bias"] = serde_json::json!([b.x, b.y, b.z]);
+            obj["gyro_bias_std"] = serde_json::json!([s.x, s.y, s.z]);
         }
         obj
     }
@@ -617,6 +638,17 @@ fn validate_options(o: &EstimateOptions) -> Result<(), EstimateError> {
             return bad(option, reason);
         }
     }
+    if let Some(bo) = &o.gyro_bias {
+        if matches!(o.method, Method::Gsrp | Method::Nrsrp) {
+            return bad(
+                "gyro_bias",
+                "refining the gyro bias needs a gyro-aided method (not gsrp or nrsrp)",
+            );
+        }
+        if let Some((option, reason)) = bo.invalid() {
+            return bad(option, reason);
+        }
+    }
     Ok(())
 }
 
@@ -708,25 +740,11 @@ pub fn estimate_relative_pose(
         Method::GrsrpPlus => grsrp::estimate(view1, view2, working, options, true),
         Method::Nrsrp => nrsrp::estimate(view1, view2, working, options),
     }?;
-    if let Some(ro) = &options.readout {
-        // On the method's own matches (the subset of a large input, before every match is
-        // classified against the result). The method's inliers stay: they were classified
-        // at the nominal readout, with a threshold that already allows for the rows' gyro
-        // error.
-        if let Some(fit) = refine_readout_scale(
-            view1,
-            view2,
-            working,
-            &est.inliers,
-            &est.rotation,
-            &est.translation,
-            ro,
-        ) {
-            est.rotation = fit.rotation;
-            est.translation = fit.translation;
-            est.readout_scale = Some(fit.scale);
-        }
-    }
+    let corrected = post_refine::refine(view1, view2, working, &mut est, options);
+    let (view1, view2) = match &corrected {
+        Some((w1, w2)) => (w1, w2),
+        None => (view1, view2),
+    };
     if large {
         est.inliers = subset::classify_all(view1, view2, matches, &est, options);
     }

@@ -75,5 +75,6 @@ pub fn estimate(
         velocity_fit: None,
         noise_fit: None,
         readout_scale: None,
+        gyro_bias: None,
     })
 }

@@ -80,6 +80,7 @@ pub(crate) fn refine_exact(
         velocity_fit: None,
         noise_fit,
         readout_scale: None,
+        gyro_bias: None,
     }
 }
 

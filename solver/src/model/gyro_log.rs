@@ -151,6 +151,20 @@ impl GyroLog {
         Ok(GyroLog { times, rates })
     }
 
+    /// [`new`](Self::new) with a constant `bias` (rad/s, the gyro's axes) subtracted from
+    /// every sample before the rotation: `ω_cam = M (ω_gyro − b)`. The plausibility check
+    /// applies to the raw samples (what the gyroscope reported).
+    pub fn with_bias(
+        samples: &[[f64; 4]],
+        camera_from_gyro: &Matrix3<f64>,
+        bias: &Vector3<f64>,
+    ) -> Result<Self, GyroLogError> {
+        let mut log = Self::new(samples, camera_from_gyro)?;
+        let b = camera_from_gyro * bias;
+        log.rates.iter_mut().for_each(|r| *r -= b);
+        Ok(log)
+    }
+
     /// Number of samples.
     pub fn len(&self) -> usize {
         self.times.len()
@@ -308,6 +322,26 @@ impl RowTrack {
         self.orient[k] * exp_so3(&(self.rates[k] * (s - self.offsets[k])))
     }
 
+    /// The same track integrated from the rates minus a constant `bias` (rad/s, camera
+    /// axes): `Q(s)` recomputed knot by knot with `ω_k − b`, for refining a gyro bias without
+    /// the samples (the rate between knots is constant, so this is exact for the track).
+    pub fn with_bias(&self, bias: &Vector3<f64>) -> RowTrack {
+        let mut orient = Vec::with_capacity(self.orient.len());
+        let mut q = Matrix3::identity();
+        let rates: Vec<Vector3<f64>> = self.rates.iter().map(|r| r - bias).collect();
+        for (k, rate) in rates.iter().enumerate() {
+            orient.push(q);
+            if let Some(&next) = self.offsets.get(k + 1) {
+                q *= exp_so3(&(rate * (next - self.offsets[k])));
+            }
+        }
+        RowTrack {
+            offsets: self.offsets.clone(),
+            orient,
+            rates,
+        }
+    }
+
     /// Row rotation `Ω(v) = Q(v λ)^T` (row-0 camera frame to row-`v` camera frame) for row
     /// `v` and readout `λ` s/row; equals `exp(−[v λ ω]×)` for a constant rate `ω`.
     pub fn row_rotation(&self, v: f64, readout: f64) -> Matrix3<f64> {
@@ -407,6 +441,28 @@ mod tests {
         let q = log.rotation_between(0.05, 0.3);
         assert!((q - exp_so3(&(w * 0.25))).norm() < 1e-12);
         assert!((log.rotation_between(0.3, 0.05) - q.transpose()).norm() < 1e-12);
+    }
+
+    #[test]
+    fn a_bias_is_subtracted_in_gyro_axes_and_from_a_track() {
+        let m = Matrix3::new(0.0, -1.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, -1.0);
+        let s = [[0.0, 1.0, 2.0, 3.0], [1.0, 1.0, 2.0, 3.0]];
+        let b = Vector3::new(0.5, 0.25, -1.0);
+        let log = GyroLog::with_bias(&s, &m, &b).unwrap();
+        // M ((1, 2, 3) − b) = M (0.5, 1.75, 4) = (−1.75, −0.5, −4).
+        assert_eq!(log.rate_at(0.5), Vector3::new(-1.75, -0.5, -4.0));
+        let w = Vector3::new(0.3, -1.2, 0.7);
+        let cb = Vector3::new(0.02, -0.03, 0.01);
+        let track = constant_log(w, 0.0025, 200).row_track(0.1013, 0.03);
+        let unbiased = constant_log(w - cb, 0.0025, 200).row_track(0.1013, 0.03);
+        let readout = 0.03 / 600.0;
+        for v in [0.0, 13.5, 300.0, 599.0] {
+            let a = track.with_bias(&cb).row_rotation(v, readout);
+            assert!(
+                (a - unbiased.row_rotation(v, readout)).norm() < 1e-12,
+                "row {v}"
+            );
+        }
     }
 
     #[test]

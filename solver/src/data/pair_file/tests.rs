@@ -5,6 +5,7 @@ fn sample() -> PairFile {
     PairFile {
         cameras: [Camera::paper(); 2],
         gyro: Some([[0.1, 0.2, 0.3], [0.0, -1.0, 0.5]]),
+        gyro_bias: None,
         gyro_log: None,
         gravity: Some([[0.0, 9.8, 0.1], [0.2, 9.7, -0.3]]),
         matches: vec![[[1.0, 2.0], [3.0, 4.0]], [[5.0, 6.0], [7.0, 8.0]]],
@@ -53,6 +54,7 @@ fn unknown_keys_are_refused_with_their_name() {
         time_offset: 0.0,
         frame_times: [0.0, 0.1],
         samples: vec![[0.0, 0.0, 0.0, 0.0], [0.2, 0.0, 0.0, 0.0]],
+        gyro_bias: None,
     });
     let text = with_log
         .to_json_string()
@@ -120,6 +122,7 @@ fn errors_name_the_field() {
         samples: (0..100)
             .map(|i| [i as f64 * 0.002, 0.1, 0.2, 0.3])
             .collect(),
+        gyro_bias: None,
     });
     assert!(with_log.validate().is_ok());
     assert!(with_log.gyro_relative_rotation().is_some());
@@ -212,4 +215,65 @@ fn cameras_old_form_model_form_and_one_per_view() {
         matches!(&e, PairFileError::InvalidField { field, .. } if field == "cameras[1].readout"),
         "{e}"
     );
+}
+
+#[test]
+fn a_known_gyro_bias_is_subtracted_from_readings_and_samples() {
+    // Plain readings: the bias is in camera axes.
+    let mut p = sample();
+    let (v1, _) = p.views().unwrap();
+    p.gyro_bias = Some([0.01, -0.02, 0.03]);
+    let text = p.to_json_string();
+    assert!(text.contains("\"gyro_bias\""), "{text}");
+    let back = PairFile::from_json_str(&text, Path::new("p.json")).unwrap();
+    assert_eq!(back, p);
+    let (b1, b2) = back.views().unwrap();
+    assert!((v1.omega - b1.omega - Vector3::new(0.01, -0.02, 0.03)).norm() < 1e-15);
+    assert!(
+        (Vector3::new(0.0, -1.0, 0.5) - b2.omega - Vector3::new(0.01, -0.02, 0.03)).norm() < 1e-15
+    );
+    // A log: the bias is in the gyro's axes, subtracted before camera_from_gyro.
+    let m = [[0.0, -1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, -1.0]];
+    let mut with_log = sample();
+    with_log.gyro = None;
+    with_log.gyro_log = Some(GyroLogSpec {
+        camera_from_gyro: m,
+        time_offset: 0.0,
+        frame_times: [0.0, 0.1],
+        samples: (0..100)
+            .map(|i| [i as f64 * 0.002, 0.1, 0.2, 0.3])
+            .collect(),
+        gyro_bias: Some([0.1, 0.05, 0.3]),
+    });
+    let text = with_log.to_json_string();
+    let back = PairFile::from_json_str(&text, Path::new("p.json")).unwrap();
+    let (w1, _) = back.views().unwrap();
+    // M (0, 0.15, 0) = (−0.15, 0, 0).
+    assert!(
+        (w1.omega - Vector3::new(-0.15, 0.0, 0.0)).norm() < 1e-12,
+        "{}",
+        w1.omega
+    );
+    // A top-level bias beside a log is ambiguous (which axes?) and refused.
+    let mut both = back.clone();
+    both.gyro_bias = Some([0.0; 3]);
+    let e = both.validate().unwrap_err().to_string();
+    assert!(
+        e.contains("`gyro_bias`") && e.contains("gyro_log.gyro_bias"),
+        "{e}"
+    );
+    // Non-finite values name their field.
+    let text = with_log.to_json_string().replace("0.05", "1e999");
+    let e = PairFile::from_json_str(&text, Path::new("p.json"));
+    assert!(e.is_err());
+    let mut bad = with_log.clone();
+    bad.gyro_log.as_mut().unwrap().gyro_bias = Some([f64::NAN, 0.0, 0.0]);
+    let e = bad.validate().unwrap_err().to_string();
+    assert!(e.contains("gyro_log.gyro_bias"), "{e}");
+    // A misspelt key is refused with its name.
+    let text = p.to_json_string().replace("gyro_bias", "gyro_bais");
+    let e = PairFile::from_json_str(&text, Path::new("p.json"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("gyro_bais"), "{e}");
 }

@@ -162,19 +162,10 @@ impl VelocityModel {
         let (mut front, mut behind) = (0, 0);
         for &i in indices {
             let k = self.rays(data, i);
-            // o1 + a f1 ≈ o2 + b f2 in least squares: a f1 − b f2 = D.
-            let (aa, ab, bb) = (k.f1.dot(&k.f1), k.f1.dot(&k.f2), k.f2.dot(&k.f2));
-            let (ad, bd) = (k.f1.dot(&k.d), k.f2.dot(&k.d));
-            let det = aa * bb - ab * ab;
-            if det.is_nan() || det.abs() <= 1e-14 * aa * bb {
-                continue;
-            }
-            let a = (ad * bb - ab * bd) / det;
-            let b = (ab * ad - aa * bd) / det;
-            if a > 0.0 && b > 0.0 {
-                front += 1;
-            } else if a < 0.0 && b < 0.0 {
-                behind += 1;
+            match crate::model::geometry::ray_depths(&k.f1, &k.f2, &k.d) {
+                Some((a, b)) if a > 0.0 && b > 0.0 => front += 1,
+                Some((a, b)) if a < 0.0 && b < 0.0 => behind += 1,
+                _ => {}
             }
         }
         (front, behind)

@@ -8,6 +8,9 @@
 use rspose::model::geometry::rotation_error_deg;
 use rspose::{estimate_relative_pose, simulate, EstimateOptions, Method, SimulationOptions};
 
+/// The options of a preset for a method.
+type Preset = fn(Method) -> EstimateOptions;
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let scenes: u64 = std::env::args()
         .nth(1)
@@ -16,7 +19,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .unwrap_or(100);
     println!("| preset | outliers | method | mean rotation (deg) | median | > 90° |");
     println!("|---|---|---|---|---|---|");
-    let presets: [(&str, fn(Method) -> EstimateOptions); 2] = [
+    let presets: [(&str, Preset); 2] = [
         ("paper", EstimateOptions::paper),
         ("default", EstimateOptions::for_method),
     ];

@@ -87,10 +87,11 @@ pub fn estimate(
         iterations += res.iterations;
         // 17 unknowns fitted to a few dozen matches can leave the scene (a wrong basin that
         // explains its own points at the cost of the others): a state is kept only if it
-        // explains all the matches better than the one it started from, as judged by MSAC,
-        // so the result is never worse than the initialisation by that measure.
+        // explains all the matches better, by MSAC, than the best state so far (at first the
+        // initialisation), so the result is never worse than the initialisation by that
+        // measure.
         let c = msac(&res.state);
-        if !(c < best) {
+        if c >= best {
             break;
         }
         (s, best, cost) = (res.state, c, Some(res.cost));

@@ -151,6 +151,26 @@ impl VelocityModel {
         }
     }
 
+    /// Cheirality of the model over the points `indices`: the numbers of points whose two
+    /// rays, from the moving centres `o1`, `o2` (see the module documentation), meet in front
+    /// of both cameras, and behind both. The model is homogeneous in `(t, δ1, δ2)`: negating
+    /// all three negates `D = o2 − o1` and with it both depths, so the second count is the
+    /// first count of the mirrored state. The rigid test on the row-0 centres alone is not
+    /// equivalent: when the cameras move a sizeable fraction of the baseline during the
+    /// readout it can prefer the mirrored state.
+    pub fn cheirality_counts(&self, data: &PointData, indices: &[usize]) -> (usize, usize) {
+        let (mut front, mut behind) = (0, 0);
+        for &i in indices {
+            let k = self.rays(data, i);
+            match crate::model::geometry::ray_depths(&k.f1, &k.f2, &k.d) {
+                Some((a, b)) if a > 0.0 && b > 0.0 => front += 1,
+                Some((a, b)) if a < 0.0 && b < 0.0 => behind += 1,
+                _ => {}
+            }
+        }
+        (front, behind)
+    }
+
     /// `Σ_i min(r_i², τ²)` over every point (Sampson residuals; non-finite ones count `τ²`).
     pub fn truncated_cost(&self, data: &PointData, threshold_sq: f64) -> f64 {
         truncated(data.len(), threshold_sq, |i| {
@@ -505,5 +525,46 @@ mod tests {
         assert!(s > 0.0, "{s}");
         assert!(residuals(s).iter().all(|r| r.abs() < 1e-10));
         assert!(a.iter().any(|r| r.abs() > 1e-4), "the velocity must matter");
+    }
+
+    /// At the true pose and velocities every point meets in front of both moving cameras,
+    /// and in the mirrored state `(−t, −δ1, −δ2)` behind both.
+    #[test]
+    fn cheirality_with_moving_centres() {
+        let (pair, v1, v2, d) = scene(20.0, 34);
+        let gt = pair.ground_truth.clone().unwrap();
+        let tt = reference_duration(&v1, &v2);
+        let idx: Vec<usize> = (0..d.len()).collect();
+        // `δ_c = T d_c / |C2|` with the baseline solved for as in
+        // `true_velocities_zero_the_residuals`.
+        let state_at = |s: f64| VelocityState {
+            pose: Pose::new(&gt.rotation_matrix(), &gt.translation_vector()),
+            delta: [0, 1].map(|c| Vector3::from(gt.velocity[c]) * tt * s),
+        };
+        let residuals = |s: f64| -> Vec<f64> {
+            let m = VelocityModel::new(&state_at(s), row_time(&v1, &v2));
+            idx.iter()
+                .map(|&i| m.residual(&d, ResidualKind::Algebraic, i))
+                .collect()
+        };
+        let (a, b1) = (residuals(0.0), residuals(1.0));
+        let b: Vec<f64> = b1.iter().zip(&a).map(|(y, x)| y - x).collect();
+        let s = -a.iter().zip(&b).map(|(x, y)| x * y).sum::<f64>()
+            / b.iter().map(|y| y * y).sum::<f64>();
+        for sign in [1.0, -1.0] {
+            let truth = state_at(s);
+            let state = VelocityState {
+                pose: Pose::new(&gt.rotation_matrix(), &(gt.translation_vector() * sign)),
+                delta: truth.delta.map(|x| x * sign),
+            };
+            let (front, behind) =
+                VelocityModel::new(&state, row_time(&v1, &v2)).cheirality_counts(&d, &idx);
+            let expected = if sign > 0.0 {
+                (d.len(), 0)
+            } else {
+                (0, d.len())
+            };
+            assert_eq!((front, behind), expected);
+        }
     }
 }

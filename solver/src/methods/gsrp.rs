@@ -6,7 +6,9 @@
 //! the Sampson error over the inliers. Also the initialiser of `nrsrp` and (by default) the
 //! source of `R_0` for `grsrp`.
 
-use super::pose_ransac::{gs_threshold, indices, orient, run, EssentialRansac, Hypothesis};
+use super::pose_ransac::{
+    decompose_on_inliers, gs_threshold, indices, run, EssentialRansac, Hypothesis,
+};
 use super::{Estimate, EstimateError, EstimateOptions, Method};
 use crate::data::pair_file::Match;
 use crate::estimation::refine::{refine_pose, Loss};
@@ -45,10 +47,10 @@ pub(crate) fn run_on(
             *f = x * x < thr_sq;
         }
     }
-    let t = orient(&h.r, &h.t, &data.m1, &data.m2, &indices(&inliers));
+    let (rotation, t) = decompose_on_inliers(&h, &data.m1, &data.m2, &indices(&inliers));
     Ok(Estimate {
         method: Method::Gsrp,
-        rotation: h.r,
+        rotation,
         translation: t,
         inliers,
         iterations: res.iterations,

@@ -381,7 +381,7 @@ pub struct Estimate {
     pub rotation: Matrix3<f64>,
     /// Unit relative translation `t`.
     pub translation: Vector3<f64>,
-    /// Inlier mask, one flag per match (for `nrsrp`: the `gsrp` initialisation's inliers).
+    /// Inlier mask, one flag per match.
     pub inliers: Vec<bool>,
     /// RANSAC iterations of the final RANSAC stage.
     pub iterations: usize,

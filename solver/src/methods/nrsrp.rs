@@ -1,17 +1,28 @@
 //! `nrsrp`: the nonlinear rolling-shutter relative pose of Dai, Li and Kneip (CVPR 2016)
 //! with the uniform RS model, as used by the paper: initialise `(R, t)` with `gsrp`, zero
-//! velocities, then minimise the generalized epipolar (ray coplanarity) residual over all
-//! points by LM with a Cauchy loss, unknowns `R, t, ω1, d1, ω2, d2` (17 parameters; see
+//! velocities, then minimise the generalized epipolar (ray coplanarity) residual by LM with a
+//! Cauchy loss, unknowns `R, t, ω1, d1, ω2, d2` (17 parameters; see
 //! [`crate::estimation::refine::NrsrpProblem`]). The gyro is not used.
+//!
+//! The refinement runs on the initialisation's inliers only, then the matches are
+//! re-classified with the refined model (the rolling-shutter-aware threshold,
+//! [`super::RobustOptions::threshold`], on [`crate::estimation::refine::nrsrp_residual`]) and the refinement repeated
+//! until the inliers settle: a Cauchy loss over every match bounds each outlier's pull but
+//! not their number, and with a third or more outliers their sum drags the 17 unknowns far
+//! from the initialisation.
 
-use super::pose_ransac::{indices, orient};
+use super::pose_ransac::{indices, threshold};
 use super::{gsrp, Estimate, EstimateError, EstimateOptions, Method};
 use crate::data::pair_file::Match;
-use crate::estimation::refine::{refine_nrsrp, LmOptions, NrsrpState, Pose};
+use crate::estimation::refine::{
+    nrsrp_cheirality, nrsrp_residual, refine_nrsrp, LmOptions, NrsrpState, Pose,
+};
 use crate::model::camera::View;
-use crate::model::epipolar::PointData;
-use crate::model::geometry::exp_so3;
+use crate::model::epipolar::{PointData, ResidualKind};
 use nalgebra::Vector3;
+
+/// Refine / re-classify rounds at most: the inliers settle within two or three.
+const ROUNDS: usize = 4;
 
 /// Estimate with `nrsrp` (inputs already validated by the caller).
 pub fn estimate(
@@ -38,40 +49,101 @@ pub fn estimate(
         max_iterations: options.refinement.max_iterations.max(100),
         ..options.refinement.clone()
     };
-    let res = refine_nrsrp(&data, lines, options.nrsrp_cauchy_px / f, start, &lm);
-    let s = res.state;
+    let cauchy = options.nrsrp_cauchy_px / f;
+    // Always on the Sampson error: the algebraic residual scales with the distance between
+    // the rays' centres, which the fitted displacements can shrink for some rows until
+    // every match there passes. An algebraic threshold is applied as the same distance
+    // in normalised image units (what it bounds for a unit epipolar-line normal).
+    let (_, thr_sq) = threshold(view1, view2, options.robust.threshold);
+    let needed = Method::Nrsrp.min_matches(options.essential_solver);
+    let sampson =
+        |st: &NrsrpState, i: usize| nrsrp_residual(&data, lines, st, ResidualKind::Sampson, i);
+    // MSAC cost over every match (non-finite residuals count as outliers).
+    let msac = |st: &NrsrpState| -> f64 {
+        (0..data.len())
+            .map(|i| {
+                let x = sampson(st, i);
+                let x = x * x;
+                if x < thr_sq {
+                    x
+                } else {
+                    thr_sq
+                }
+            })
+            .sum()
+    };
+    let mut idx = indices(&init.inliers);
+    let mut s = start;
+    let mut best = msac(&start);
+    let (mut iterations, mut cost) = (0, None);
+    for _ in 0..ROUNDS {
+        if idx.len() < needed {
+            // Too few for the 17 unknowns: the initialisation stands.
+            break;
+        }
+        // Each round starts from the initialisation: a state fitted to the previous inlier
+        // set carries that set's errors into the next.
+        let res = refine_nrsrp(&data, &idx, lines, cauchy, start, &lm);
+        iterations += res.iterations;
+        // 17 unknowns fitted to a few dozen matches can leave the scene (a wrong basin that
+        // explains its own points at the cost of the others): a state is kept only if it
+        // explains all the matches better, by MSAC, than the best state so far (at first the
+        // initialisation), so the result is never worse than the initialisation by that
+        // measure.
+        let c = msac(&res.state);
+        if c >= best {
+            break;
+        }
+        (s, best, cost) = (res.state, c, Some(res.cost));
+        let next: Vec<usize> = (0..data.len())
+            .filter(|&i| {
+                let x = sampson(&s, i);
+                x * x < thr_sq
+            })
+            .collect();
+        // A model that keeps fewer matches than the minimum has lost the scene: keep the
+        // inliers it was refined on.
+        if next == idx || next.len() < needed {
+            break;
+        }
+        idx = next;
+    }
     let r = s.pose.matrix();
-    // Cheirality on bearings undistorted with the estimated per-frame rotations: under
-    // strong rolling-shutter distortion the raw bearings can put most points behind a
-    // camera for the right sign of t.
-    let undistort =
-        |m: &[Vector3<f64>], v: &[f64], phi: &Vector3<f64>, height: f64| -> Vec<Vector3<f64>> {
-            m.iter()
-                .zip(v)
-                .map(|(m, v)| exp_so3(&(phi * (v / height))).transpose() * m)
-                .collect()
-        };
-    let b1 = undistort(&data.m1, &data.v1, &s.phi[0], lines[0]);
-    let b2 = undistort(&data.m2, &data.v2, &s.phi[1], lines[1]);
-    let t = orient(&r, &s.pose.translation, &b1, &b2, &indices(&init.inliers));
+    // Cheirality on bearings undistorted with the estimated rotations: under strong
+    // rolling-shutter distortion the raw bearings can put most points behind a camera for
+    // the right sign of t. The centres stay at row 0: the displacements have no prior here
+    // and spurious ones (a still camera fitted with a baseline per frame) can turn the
+    // vote. The model is homogeneous in (t, δ1, δ2), so the three change sign together.
+    let rigid = NrsrpState {
+        delta: [Vector3::zeros(); 2],
+        ..s
+    };
+    let (front, behind) = nrsrp_cheirality(&data, lines, &rigid, &idx);
+    let sign = if behind > front { -1.0 } else { 1.0 };
+    let t = s.pose.translation * sign;
+    let delta = s.delta.map(|d| d * sign);
+    let mut inliers = vec![false; data.len()];
+    for &i in &idx {
+        inliers[i] = true;
+    }
     let per_frame1 = lines[0] * view1.camera.readout;
     let per_frame2 = lines[1] * view2.camera.readout;
     Ok(Estimate {
         method: Method::Nrsrp,
         rotation: r,
         translation: t,
-        inliers: init.inliers,
+        inliers,
         iterations: init.iterations,
         ransac_score: init.ransac_score,
-        refinement_iterations: res.iterations,
-        refinement_cost: Some(res.cost),
+        refinement_iterations: iterations,
+        refinement_cost: cost,
         quality: Default::default(),
         // The model's per-frame rotation is `−H λ ω` (see `NrsrpState`); a global-shutter
         // camera (readout 0) has no rates to report.
         angular_velocity: (per_frame1 > 0.0 && per_frame2 > 0.0)
             .then(|| [-s.phi[0] / per_frame1, -s.phi[1] / per_frame2]),
         linear_velocity: (per_frame1 > 0.0 && per_frame2 > 0.0)
-            .then(|| [s.delta[0] / per_frame1, s.delta[1] / per_frame2]),
+            .then(|| [delta[0] / per_frame1, delta[1] / per_frame2]),
         velocity_fit: None,
         noise_fit: None,
         readout_scale: None,

@@ -318,6 +318,25 @@ pub(crate) fn indices(mask: &[bool]) -> Vec<usize> {
         .collect()
 }
 
+/// The pose of `h`'s essential matrix `[t]× R` that the most inliers triangulate in front of
+/// both cameras, on bearings `b1`, `b2`: of its four decompositions, the twisted pair (the
+/// rotation turned 180° about `t`) included, not only the sign of `t`. RANSAC scores an
+/// essential matrix, which both rotations of the pair share, and picks between them by
+/// cheirality on its minimal sample alone; with a few noisy or mismatched points there, the
+/// pair's wrong rotation can win. If `E` cannot be decomposed, `h`'s rotation with the sign
+/// of `t` by cheirality.
+pub(crate) fn decompose_on_inliers(
+    h: &Hypothesis,
+    b1: &[Vector3<f64>],
+    b2: &[Vector3<f64>],
+    inliers: &[usize],
+) -> (Matrix3<f64>, Vector3<f64>) {
+    let s1: Vec<Vector3<f64>> = inliers.iter().map(|&i| b1[i]).collect();
+    let s2: Vec<Vector3<f64>> = inliers.iter().map(|&i| b2[i]).collect();
+    pose_from_essential(&(skew(&h.t) * h.r), &s1, &s2)
+        .unwrap_or_else(|| (h.r, fix_translation_sign(&h.r, &h.t, &s1, &s2)))
+}
+
 /// Fix the sign of `t` by cheirality over the inliers, using bearings `b1`, `b2`.
 pub(crate) fn orient(
     r: &Matrix3<f64>,

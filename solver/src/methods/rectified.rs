@@ -6,7 +6,7 @@
 
 use super::noise_fit::{refine_and_classify, Refined};
 use super::pose_ransac::{
-    indices, orient, point_data, run, threshold, EssentialRansac, Hypothesis,
+    decompose_on_inliers, indices, point_data, run, threshold, EssentialRansac, Hypothesis,
 };
 use super::{Estimate, EstimateError, EstimateOptions, Method};
 use crate::data::pair_file::Match;
@@ -40,7 +40,7 @@ pub(crate) fn run_on(
 
 /// `rectified`'s refinement of a RANSAC result: `(R, t)` by LM on the Sampson error of the
 /// exact angular model over the inliers, the inliers re-classified with the threshold
-/// `(kind, thr_sq)`, the sign of `t` by cheirality.
+/// `(kind, thr_sq)`, the decomposition of `[t]× R` by cheirality over the inliers.
 pub(crate) fn refine_exact(
     data: &PointData,
     (view1, view2): (&View, &View),
@@ -64,10 +64,10 @@ pub(crate) fn refine_exact(
         (&h0, &res.inliers),
         options,
     );
-    let t = orient(&h.r, &h.t, &data.b1, &data.b2, &indices(&inliers));
+    let (rotation, t) = decompose_on_inliers(&h, &data.b1, &data.b2, &indices(&inliers));
     Estimate {
         method,
-        rotation: h.r,
+        rotation,
         translation: t,
         inliers,
         iterations: res.iterations,

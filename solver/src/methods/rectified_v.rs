@@ -26,7 +26,7 @@
 //!   did ([`VelocityFit::GyroErrorExplains`] otherwise). Either way, and for global-shutter
 //!   views or too few inliers, `rectified`'s estimate is returned with no velocities.
 
-use super::pose_ransac::{indices, orient, point_data, threshold};
+use super::pose_ransac::{indices, point_data, threshold};
 use super::{rectified, Estimate, EstimateError, EstimateOptions, Method};
 use crate::data::pair_file::Match;
 use crate::estimation::refine::{levenberg_marquardt, LmOptions, Loss, Pose};
@@ -156,6 +156,13 @@ pub enum VelocityFit {
         /// Decrease by the velocities.
         statistic: f64,
     },
+    /// Fallback to `rectified`: a camera's fitted displacement over the reference duration
+    /// exceeds 4 prior standard deviations ([`VelocityOptions::prior_std`]): the refinement
+    /// left the starting pose's basin.
+    Implausible {
+        /// The larger displacement, baselines.
+        displacement: f64,
+    },
     /// Fallback to `rectified`: a constant gyro-rate error explains the data nearly as well
     /// as the velocities, or better ([`VelocityOptions::rate_margin`]).
     GyroErrorExplains {
@@ -198,6 +205,9 @@ impl VelocityFit {
             VelocityFit::NotSignificant { statistic } => {
                 format!("fallback to rectified: velocities not significant ({statistic:.1})")
             }
+            VelocityFit::Implausible { displacement } => format!(
+                "fallback to rectified: implausible displacement ({displacement:.2} baselines per frame)"
+            ),
             VelocityFit::GyroErrorExplains {
                 statistic,
                 rate_statistic,
@@ -208,6 +218,14 @@ impl VelocityFit {
         }
     }
 }
+
+/// Largest displacement over the reference duration, in [`VelocityOptions::prior_std`]s,
+/// that the velocity stage accepts. The prior is per axis, so the norm of a displacement it
+/// supports exceeds 4 of them with probability about 0.1 %; beyond that the refinement has
+/// left the basin of the starting pose (it can turn `t` around and fit the misfit with
+/// velocities several baselines per frame), which cheirality cannot detect: that state is
+/// self-consistent.
+const IMPLAUSIBLE_DISPLACEMENT: f64 = 4.0;
 
 /// `λ_c / T` of each view ([`crate::estimation::velocity::VelocityModel::new`]); `None` for two
 /// global-shutter views.
@@ -344,6 +362,10 @@ pub fn estimate(
             rate_statistic,
         });
     }
+    let displacement = state.delta[0].norm().max(state.delta[1].norm());
+    if displacement > IMPLAUSIBLE_DISPLACEMENT * vo.prior_std {
+        return fallback(VelocityFit::Implausible { displacement });
+    }
     let fit = match stage.prior_dominated(&idx, &state) {
         0 => VelocityFit::Estimated {
             statistic,
@@ -356,9 +378,11 @@ pub fn estimate(
         },
     };
     let r = state.pose.matrix();
-    let t = orient(&r, &state.pose.translation, &data.b1, &data.b2, &idx);
-    // The model is homogeneous in (t, δ1, δ2): flipping t flips the displacements.
-    let sign = t.dot(&state.pose.translation).signum();
+    // The model is homogeneous in (t, δ1, δ2), so the refinement cannot decide their common
+    // sign: cheirality does, with the rays from the moving centres the velocities give.
+    let (front, behind) = VelocityModel::new(&state, row_time).cheirality_counts(&data, &idx);
+    let sign = if behind > front { -1.0 } else { 1.0 };
+    let t = state.pose.translation * sign;
     let duration = reference_duration(view1, view2);
     let mut inliers = vec![false; data.len()];
     for &i in &idx {

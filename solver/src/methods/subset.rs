@@ -8,10 +8,10 @@ use super::noise_fit::NoiseFit;
 use super::pose_ransac::{gs_threshold, point_data, threshold};
 use super::{Estimate, EstimateOptions, Method, RobustOptions};
 use crate::data::pair_file::Match;
-use crate::estimation::refine::Pose;
+use crate::estimation::refine::{nrsrp_residual, NrsrpState, Pose};
 use crate::estimation::velocity::{VelocityModel, VelocityState};
 use crate::model::camera::View;
-use crate::model::epipolar::{PointData, PoseModel};
+use crate::model::epipolar::{PointData, PoseModel, ResidualKind};
 use crate::model::geometry::skew;
 use nalgebra::Vector3;
 use rand::SeedableRng;
@@ -79,13 +79,28 @@ pub(crate) fn classify_all(
             threshold(view1, view2, robust.threshold),
         ),
         Method::Nrsrp => {
+            // With the model and test `nrsrp` classified its own matches with: its rotations and
+            // displacements over a frame (`NrsrpState`), the Sampson error, the
+            // rolling-shutter-aware threshold.
+            let lines = [view1.camera.lines(), view2.camera.lines()];
+            let frame = [
+                lines[0] * view1.camera.readout,
+                lines[1] * view2.camera.readout,
+            ];
             let [w1, w2] = est.angular_velocity.unwrap_or([Vector3::zeros(); 2]);
-            (
-                View::new(view1.camera, w1),
-                View::new(view2.camera, w2),
-                PoseModel::ExactAngular,
-                gs_threshold(view1, view2, robust),
-            )
+            let [d1, d2] = est.linear_velocity.unwrap_or([Vector3::zeros(); 2]);
+            let state = NrsrpState {
+                pose: Pose::new(&est.rotation, &est.translation),
+                phi: [-w1 * frame[0], -w2 * frame[1]],
+                delta: [d1 * frame[0], d2 * frame[1]],
+            };
+            let (_, thr_sq) = threshold(view1, view2, robust.threshold);
+            let still1 = View::new(view1.camera, Vector3::zeros());
+            let still2 = View::new(view2.camera, Vector3::zeros());
+            return classify_chunks(&still1, &still2, matches, robust, None, |data, i| {
+                let x = nrsrp_residual(data, lines, &state, ResidualKind::Sampson, i);
+                x * x < thr_sq
+            });
         }
     };
     let (r, t) = (est.rotation, est.translation);

@@ -173,6 +173,19 @@ pub fn triangulate_depths(
     Some((d1, d2))
 }
 
+/// Depths `(a, b)` along two rays `o1 + a g1` and `o2 + b g2` at their closest approach
+/// (least squares of `a g1 − b g2 = d`, `d = o2 − o1`); `None` if the rays are parallel.
+/// A point in front of both cameras has both positive.
+pub fn ray_depths(g1: &Vector3<f64>, g2: &Vector3<f64>, d: &Vector3<f64>) -> Option<(f64, f64)> {
+    let (aa, ab, bb) = (g1.dot(g1), g1.dot(g2), g2.dot(g2));
+    let (ad, bd) = (g1.dot(d), g2.dot(d));
+    let det = aa * bb - ab * ab;
+    if det.is_nan() || det.abs() <= 1e-14 * aa * bb {
+        return None;
+    }
+    Some(((ad * bb - ab * bd) / det, (ab * ad - aa * bd) / det))
+}
+
 /// Cheirality: the triangulated point lies in front of both cameras (both depths positive).
 pub fn cheirality(
     r: &Matrix3<f64>,

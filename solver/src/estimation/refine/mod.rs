@@ -32,7 +32,7 @@ mod nrsrp;
 mod pose;
 
 pub use lm::{levenberg_marquardt, LmOptions, LmProblem, LmResult, Loss};
-pub use nrsrp::{refine_nrsrp, NrsrpProblem, NrsrpState};
+pub use nrsrp::{nrsrp_cheirality, nrsrp_residual, refine_nrsrp, NrsrpProblem, NrsrpState};
 pub use pose::{refine_pose, Pose, PoseProblem};
 
 #[cfg(test)]

@@ -1,9 +1,9 @@
 //! Dai et al.'s generalized epipolar constraint for the uniform rolling-shutter model
-//! (`nrsrp`): unknowns `R, t, ω1, d1, ω2, d2`, Cauchy loss over all points.
+//! (`nrsrp`): unknowns `R, t, ω1, d1, ω2, d2`, Cauchy loss over the given points.
 
 use super::lm::{levenberg_marquardt, LmOptions, LmProblem, LmResult, Loss};
 use super::pose::Pose;
-use crate::model::epipolar::PointData;
+use crate::model::epipolar::{PointData, ResidualKind};
 use crate::model::geometry::tangent_basis;
 use nalgebra::{SVector, Vector3};
 
@@ -31,6 +31,8 @@ pub struct NrsrpState {
 pub struct NrsrpProblem<'a> {
     /// Bearings and rows.
     pub data: &'a PointData,
+    /// The points refined on (indices into `data`).
+    pub indices: &'a [usize],
     /// Lines per frame `H` of image 1 and image 2 ([`crate::model::camera::Camera::lines`]).
     pub lines: [f64; 2],
     /// Cauchy scale.
@@ -40,12 +42,12 @@ pub struct NrsrpProblem<'a> {
 impl LmProblem<17> for NrsrpProblem<'_> {
     type State = NrsrpState;
     fn num_residuals(&self) -> usize {
-        self.data.len()
+        self.indices.len()
     }
     fn residuals(&self, s: &NrsrpState, out: &mut [f64]) {
         let r = s.pose.matrix();
         let c2_0 = -(r.transpose() * s.pose.translation);
-        for (i, o) in out.iter_mut().enumerate() {
+        for (o, &i) in out.iter_mut().zip(self.indices) {
             let s1 = self.data.v1[i] / self.lines[0];
             let s2 = self.data.v2[i] / self.lines[1];
             let f1 = SmallRotation::new(&(s.phi[0] * s1)).apply_transpose(&self.data.m1[i]);
@@ -86,7 +88,7 @@ impl LmProblem<17> for NrsrpProblem<'_> {
         let rb1 = r.tr_mul(&tb1);
         let rb2 = r.tr_mul(&tb2);
         let d = self.data;
-        for (i, (o, j)) in out.iter_mut().zip(jac.iter_mut()).enumerate() {
+        for ((o, j), &i) in out.iter_mut().zip(jac.iter_mut()).zip(self.indices) {
             let s1 = d.v1[i] / self.lines[0];
             let s2 = d.v2[i] / self.lines[1];
             let q1 = SmallRotation::new(&(s.phi[0] * s1));
@@ -142,6 +144,12 @@ impl SmallRotation {
         SmallRotation { phi: *phi, a, b, c }
     }
 
+    /// `exp([φ]×) v`.
+    fn apply(&self, v: &Vector3<f64>) -> Vector3<f64> {
+        let pv = self.phi.cross(v);
+        v + pv * self.a + self.phi.cross(&pv) * self.b
+    }
+
     /// `exp([φ]×)^T v = exp([-φ]×) v`.
     fn apply_transpose(&self, v: &Vector3<f64>) -> Vector3<f64> {
         let pv = self.phi.cross(v);
@@ -155,9 +163,81 @@ impl SmallRotation {
     }
 }
 
-/// Refine the NRSRP model on all points with the Cauchy loss (see [`NrsrpProblem`]).
+/// The rays of point `i` under `state` in camera 1's row-0 frame: unnormalised directions
+/// `g1 = exp([s1 φ1]×)^T m1`, `g2 = R^T exp([s2 φ2]×)^T m2`, the vector between the centres
+/// `D = c2 − c1`, and the row rotations `exp([s φ]×)` of both.
+fn rays(
+    data: &PointData,
+    lines: [f64; 2],
+    state: &NrsrpState,
+    i: usize,
+) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>, [SmallRotation; 2]) {
+    let r = state.pose.matrix();
+    let s1 = data.v1[i] / lines[0];
+    let s2 = data.v2[i] / lines[1];
+    let q1 = SmallRotation::new(&(state.phi[0] * s1));
+    let q2 = SmallRotation::new(&(state.phi[1] * s2));
+    let g1 = q1.apply_transpose(&data.m1[i]);
+    let g2 = r.tr_mul(&q2.apply_transpose(&data.m2[i]));
+    let d = -r.tr_mul(&state.pose.translation) + state.delta[1] * s2 - state.delta[0] * s1;
+    (g1, g2, d, [q1, q2])
+}
+
+/// Residual of point `i` under `state` for an inlier test. Algebraic: `D · (g1 × g2)` with
+/// the unnormalised rays of [`NrsrpProblem`] (at zero velocities `∓m2^T [t]× R m1`, the
+/// global-shutter algebraic residual, so the same threshold applies). Sampson: that divided
+/// by the norm of its gradient with respect to the normalised image points,
+/// `∂r/∂m1 = Q1 (g2 × D)`, `∂r/∂m2 = Q2 R (D × g1)` (`Q` the row rotations; the first-order
+/// distance in normalised image units). Non-finite for a degenerate point.
+pub fn nrsrp_residual(
+    data: &PointData,
+    lines: [f64; 2],
+    state: &NrsrpState,
+    kind: ResidualKind,
+    i: usize,
+) -> f64 {
+    let (g1, g2, d, [q1, q2]) = rays(data, lines, state, i);
+    let res = d.dot(&g1.cross(&g2));
+    if kind == ResidualKind::Algebraic {
+        return res;
+    }
+    let grad1 = q1.apply(&g2.cross(&d));
+    let grad2 = q2.apply(&(state.pose.matrix() * d.cross(&g1)));
+    let ss = grad1.x * grad1.x + grad1.y * grad1.y + grad2.x * grad2.x + grad2.y * grad2.y;
+    if ss > 0.0 {
+        res / ss.sqrt()
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// Cheirality of `state` over the points `indices`: the numbers of points whose two rays,
+/// from the moving centres `c1`, `c2`, meet in front of both cameras, and behind both. The
+/// model is homogeneous in `(t, δ1, δ2)`: negating all three negates both depths, so the
+/// second count is the first of the mirrored state.
+pub fn nrsrp_cheirality(
+    data: &PointData,
+    lines: [f64; 2],
+    state: &NrsrpState,
+    indices: &[usize],
+) -> (usize, usize) {
+    let (mut front, mut behind) = (0, 0);
+    for &i in indices {
+        let (g1, g2, d, _) = rays(data, lines, state, i);
+        match crate::model::geometry::ray_depths(&g1, &g2, &d) {
+            Some((a, b)) if a > 0.0 && b > 0.0 => front += 1,
+            Some((a, b)) if a < 0.0 && b < 0.0 => behind += 1,
+            _ => {}
+        }
+    }
+    (front, behind)
+}
+
+/// Refine the NRSRP model on the points `indices` with the Cauchy loss (see
+/// [`NrsrpProblem`]).
 pub fn refine_nrsrp(
     data: &PointData,
+    indices: &[usize],
     lines: [f64; 2],
     cauchy_scale: f64,
     start: NrsrpState,
@@ -165,6 +245,7 @@ pub fn refine_nrsrp(
 ) -> LmResult<NrsrpState> {
     let p = NrsrpProblem {
         data,
+        indices,
         lines,
         cauchy_scale,
     };
@@ -181,8 +262,10 @@ mod tests {
     #[test]
     fn nrsrp_analytic_jacobian_matches_finite_differences() {
         let (d, height, start) = jacobian_scene();
+        let idx: Vec<usize> = (0..d.len()).collect();
         let p = NrsrpProblem {
             data: &d,
+            indices: &idx,
             lines: [height; 2],
             cauchy_scale: 0.01,
         };
@@ -222,8 +305,10 @@ mod tests {
             phi: [Vector3::zeros(); 2],
             delta: [Vector3::zeros(); 2],
         };
+        let idx: Vec<usize> = (0..d.len()).collect();
         let res = refine_nrsrp(
             &d,
+            &idx,
             [cam.height; 2],
             2.0 / cam.fx,
             start,

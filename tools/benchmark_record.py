@@ -12,7 +12,8 @@ markers.
 planned, also those the test skips for their planning time). Each problem's report row is
 kept in target/benchmark_rows/NAME.json; --only NAME ... plans just those problems (e.g.
 one whose wall-clock budget ran out on a busy machine) and takes the others' rows from
-there, so the table stays whole. Run from anywhere; builds mingen in release first.
+there, so the table stays whole; --table-only plans nothing and writes the table from those
+rows. Run from anywhere; builds mingen in release first.
 """
 import argparse
 import concurrent.futures
@@ -54,13 +55,17 @@ def markdown(rows):
     head = ["problem", "unknowns", "solutions", "template", "published", "area / std",
             "area / std whole",
             "area / best", "audit: median / p99 log10 residual / failures",
-            "before polishing", "seconds"]
+            "other polishing", "seconds"]
     out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     def audit(a, figures):
         if a is None or figures is None:
             return "—"
-        return (f"{figures['median_log10_residual']:.2f} / {figures['p99_log10_residual']:.2f}"
+        text = (f"{figures['median_log10_residual']:.2f} / {figures['p99_log10_residual']:.2f}"
                 f" / {figures['failures']} of {a['instances']}")
+        if "newton_steps" in figures:
+            steps = figures["newton_steps"]
+            text += " (unpolished)" if steps == 0 else f" (newton {steps})"
+        return text
     for r in rows:
         a = r["audit"]
         unknowns = ", ".join(r["unknowns"])
@@ -72,7 +77,7 @@ def markdown(rows):
             size_text(r) or "none",
             r["published"] or "—", ratio(r["area_over_std"]),
             ratio(r["area_over_std_whole"]), ratio(r["area_over_best"]),
-            audit(a, a), audit(a, a and a.get("unpolished")),
+            audit(a, a), audit(a, a and a.get("other_polishing")),
             f"{r['seconds']:.2f}",
         ]
         out.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
@@ -102,6 +107,8 @@ def main():
     ap.add_argument("--max-seconds", type=float, default=None,
                     help="planning budget per problem (default: mingen's)")
     ap.add_argument("--jobs", type=int, default=2, help="problems planned at a time")
+    ap.add_argument("--table-only", action="store_true",
+                    help="plan nothing: the table from the last run's rows, recorded lines as they are")
     ap.add_argument("--only", nargs="+", metavar="NAME",
                     help="plan only these problems (file stems); the other rows come from "
                          "the last run's target/benchmark_rows/")
@@ -118,7 +125,7 @@ def main():
 
     def one(f):
         cached = ROWS / f"{f.stem}.json"
-        if a.only and f.stem not in a.only:
+        if a.table_only or (a.only and f.stem not in a.only):
             if not cached.exists():
                 sys.exit(f"{cached} missing: run without --only first")
             return json.loads(cached.read_text())

@@ -108,15 +108,23 @@ pub struct AuditReport {
     pub mean_real_solutions: f64,
     /// Recovery of the planted solutions, if the instances came with them.
     pub planted: Option<PlantedStats>,
-    /// The same residual figures before Gauss-Newton polishing (what the action matrix
-    /// alone gives), if the solver polishes (`newton_steps > 0`).
-    pub unpolished: Option<UnpolishedStats>,
+    /// The same figures with the other polishing: before polishing if the solver polishes
+    /// (`newton_steps > 0`), else after [`COMPARISON_NEWTON_STEPS`] Gauss-Newton steps
+    /// (what `option newton` would give). `None` when no instance was run.
+    pub other_polishing: Option<PolishingStats>,
 }
 
-/// Residual figures of the solutions as read off the action matrix, before polishing: over
-/// the same instances and with the same definitions as [`AuditReport`]'s.
+/// Gauss-Newton steps the audit of a solver that does not polish applies to a copy of each
+/// solution, to show what `option newton` would give ([`AuditReport::other_polishing`]).
+pub const COMPARISON_NEWTON_STEPS: usize = 2;
+
+/// Residual figures of the same instances' solutions with other polishing than the
+/// solver's ([`AuditReport::other_polishing`]), with the same definitions as
+/// [`AuditReport`]'s.
 #[derive(Clone, Debug, PartialEq)]
-pub struct UnpolishedStats {
+pub struct PolishingStats {
+    /// Gauss-Newton steps applied (0: the solutions as read off the action matrix).
+    pub newton_steps: usize,
     /// Median log10 of the worst normalised residual, see
     /// [`AuditReport::median_log10_residual`].
     pub median_log10_residual: f64,
@@ -215,8 +223,8 @@ fn worst_residual(equations: &[Poly<f64>], s: &[f64]) -> f64 {
 struct Outcome {
     /// log10 of the worst residual over the real solutions (clamped), `None` without any.
     log10_residual: Option<f64>,
-    /// The same before polishing.
-    log10_unpolished: Option<f64>,
+    /// The same with the other polishing ([`AuditReport::other_polishing`]).
+    log10_other: Option<f64>,
     /// Real solutions returned.
     real: usize,
     /// Real eigenpairs that gave no solution (rejected read-out or no eliminated unknowns).
@@ -230,7 +238,7 @@ struct Outcome {
 fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<Outcome> {
     let solved = solve_template(template, &inst.equations).ok()?;
     let mut worst: Option<f64> = None;
-    let mut worst_unpolished: Option<f64> = None;
+    let mut worst_other: Option<f64> = None;
     let mut real = 0;
     let mut returned = Vec::new();
     for s in &solved.solutions {
@@ -262,10 +270,15 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
                 r
             }
         };
-        let r = residual(&full);
-        worst_unpolished = Some(worst_unpolished.map_or(r, |w| w.max(r)));
         if inst.newton_steps > 0 {
+            let r = residual(&full);
+            worst_other = Some(worst_other.map_or(r, |w| w.max(r)));
             newton_polish_polys(&inst.original, &mut full, inst.newton_steps);
+        } else {
+            let mut polished = full.clone();
+            newton_polish_polys(&inst.original, &mut polished, COMPARISON_NEWTON_STEPS);
+            let r = residual(&polished);
+            worst_other = Some(worst_other.map_or(r, |w| w.max(r)));
         }
         real += 1;
         let r = residual(&full);
@@ -280,7 +293,7 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
         .map_or(&[][..], |e| e.positions.as_slice());
     Some(Outcome {
         log10_residual: worst.map(clamped_log10),
-        log10_unpolished: worst_unpolished.map(clamped_log10),
+        log10_other: worst_other.map(clamped_log10),
         real,
         missed: solved.eigenpairs - real,
         planted_error: inst
@@ -312,23 +325,25 @@ pub fn audit(
     let mut rng = ChaCha8Rng::seed_from_u64(opts.seed);
     let instances = opts.instances.min(MAX_INSTANCES);
     let mut logs = Vec::with_capacity(instances);
-    let mut unpolished_logs = Vec::with_capacity(instances);
-    let mut unpolished_failures = 0;
-    let mut polishes = false;
+    let mut other_logs = Vec::with_capacity(instances);
+    let mut other_failures = 0;
+    let mut other_steps = COMPARISON_NEWTON_STEPS;
     let (mut failures, mut solve_errors, mut missed, mut no_real) = (0, 0, 0, 0);
     let (mut real_total, mut solved) = (0usize, 0usize);
     let mut planted_logs = Vec::new();
     for _ in 0..instances {
         let inst = make_instance(&mut rng);
-        polishes |= inst.newton_steps > 0;
+        if inst.newton_steps > 0 {
+            other_steps = 0;
+        }
         let has_planted = inst.planted.is_some();
         match run_instance(template, &inst) {
             None => {
                 solve_errors += 1;
                 failures += 1;
-                unpolished_failures += 1;
+                other_failures += 1;
                 logs.push(LOG10_CEIL);
-                unpolished_logs.push(LOG10_CEIL);
+                other_logs.push(LOG10_CEIL);
                 if has_planted {
                     planted_logs.push(LOG10_CEIL);
                 }
@@ -347,10 +362,10 @@ pub fn audit(
                 if miss || bad(o.log10_residual) {
                     failures += 1;
                 }
-                if miss || bad(o.log10_unpolished) {
-                    unpolished_failures += 1;
+                if miss || bad(o.log10_other) {
+                    other_failures += 1;
                 }
-                unpolished_logs.extend(o.log10_unpolished);
+                other_logs.extend(o.log10_other);
                 match o.log10_residual {
                     Some(lg) => logs.push(lg),
                     None => no_real += 1,
@@ -359,7 +374,7 @@ pub fn audit(
         }
     }
     logs.sort_by(f64::total_cmp);
-    unpolished_logs.sort_by(f64::total_cmp);
+    other_logs.sort_by(f64::total_cmp);
     planted_logs.sort_by(f64::total_cmp);
     let planted = (!planted_logs.is_empty()).then(|| PlantedStats {
         instances: planted_logs.len(),
@@ -386,10 +401,11 @@ pub fn audit(
             0.0
         },
         planted,
-        unpolished: polishes.then(|| UnpolishedStats {
-            median_log10_residual: median(&unpolished_logs),
-            p99_log10_residual: quantile(&unpolished_logs, 0.99),
-            failures: unpolished_failures,
+        other_polishing: (instances > 0).then(|| PolishingStats {
+            newton_steps: other_steps,
+            median_log10_residual: median(&other_logs),
+            p99_log10_residual: quantile(&other_logs, 0.99),
+            failures: other_failures,
         }),
     }
 }
@@ -435,9 +451,9 @@ impl AuditReport {
     /// `{"lower_edge": e, "count": n}` for the bins `[e, e + 1)` of log10 residual), plus
     /// `solutions_expected`, `solve_errors`, `missed_solutions`, `no_real_solutions`,
     /// `mean_real_solutions`, `planted` (`null`, or `{"instances", "recovered",
-    /// "median_log10_error", "p99_log10_error"}`, see [`PlantedStats`]) and `unpolished`
-    /// (`null`, or `{"median_log10_residual", "p99_log10_residual", "failures"}` before
-    /// polishing, see [`UnpolishedStats`]).
+    /// "median_log10_error", "p99_log10_error"}`, see [`PlantedStats`]) and
+    /// `other_polishing` (`null`, or `{"newton_steps", "median_log10_residual",
+    /// "p99_log10_residual", "failures"}`, see [`PolishingStats`]).
     pub fn to_json(&self) -> serde_json::Value {
         serde_json::json!({
             "instances": self.instances,
@@ -460,7 +476,8 @@ impl AuditReport {
                 "median_log10_error": p.median_log10_error,
                 "p99_log10_error": p.p99_log10_error,
             })),
-            "unpolished": self.unpolished.as_ref().map(|u| serde_json::json!({
+            "other_polishing": self.other_polishing.as_ref().map(|u| serde_json::json!({
+                "newton_steps": u.newton_steps,
                 "median_log10_residual": u.median_log10_residual,
                 "p99_log10_residual": u.p99_log10_residual,
                 "failures": u.failures,
@@ -504,10 +521,14 @@ impl fmt::Display for AuditReport {
             "failures:               {} ({pct:.2} %; {} unsolved, {} with missed solutions)",
             self.failures, self.solve_errors, self.missed_solutions
         )?;
-        if let Some(u) = &self.unpolished {
+        if let Some(u) = &self.other_polishing {
+            let label = match u.newton_steps {
+                0 => "before polishing:".to_string(),
+                n => format!("with newton = {n}:"),
+            };
             writeln!(
                 f,
-                "before polishing:       median {:.2}, p99 {:.2}, {} failures",
+                "{label:<24}median {:.2}, p99 {:.2}, {} failures",
                 u.median_log10_residual, u.p99_log10_residual, u.failures
             )?;
         }

@@ -142,7 +142,7 @@ struct SearchArgs {
     #[arg(long, value_name = "standard|selected", value_parser = ["standard", "selected"])]
     basis: Option<String>,
     /// Gauss-Newton steps polishing every solution on the original equations (0 to 8;
-    /// default: the file's `option newton`, else 2).
+    /// default: the file's `option newton`, else 0).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=8))]
     newton: Option<u32>,
     /// Solve unknowns from affine equations and substitute them, or else eliminate the
@@ -642,7 +642,8 @@ fn audit(
         format!(
             "hint: the median residual is far above rounding level; Gauss-Newton polishing \
              (`option newton = 2` in the problem file, or --newton 2 here) usually brings it \
-             there: `mingen audit {} --newton 2` shows the effect\n",
+             there: the `with newton = {}:` line above is what it gives ({})\n",
+            mingen::audit::COMPARISON_NEWTON_STEPS,
             file.display()
         )
     } else {

@@ -181,13 +181,12 @@ pub struct UnknownSymbol {
 }
 
 /// Gauss-Newton steps an emitted solver polishes each solution with when the problem file
-/// does not say (`option newton`). Solutions read off an action matrix are as accurate as
-/// the template's elimination, which on larger templates leaves some far above rounding
-/// level; a step roughly squares the error of a simple root, two bring such solutions to
-/// rounding level, and a solution already there costs one evaluation of the equations
-/// (`mingen_runtime::AT_ROUNDING_LEVEL`). `option newton = 0` turns it off (a caller that
-/// refines every hypothesis itself, as rspose's RANSAC does).
-pub const DEFAULT_NEWTON_STEPS: u32 = 2;
+/// does not say (`option newton`): none. Polishing costs a few evaluations of the original
+/// equations and their gradients per solution, which for a small template is several
+/// times the solve itself; `mingen audit` shows what it would give
+/// (`audit::AuditReport::other_polishing`), and a problem whose template leaves solutions
+/// far from rounding level asks for it with `option newton = 2`.
+pub const DEFAULT_NEWTON_STEPS: u32 = 0;
 
 /// Template-search options given in the problem file (`option NAME = VALUE`); the
 /// command line overrides them.

@@ -279,7 +279,8 @@ impl ReportRow {
                 "median_log10_residual": a.median_log10_residual,
                 "p99_log10_residual": a.p99_log10_residual,
                 "failures": a.failures,
-                "unpolished": a.unpolished.as_ref().map(|u| json!({
+                "other_polishing": a.other_polishing.as_ref().map(|u| json!({
+                    "newton_steps": u.newton_steps,
                     "median_log10_residual": u.median_log10_residual,
                     "p99_log10_residual": u.p99_log10_residual,
                     "failures": u.failures,
@@ -338,11 +339,18 @@ impl ReportRow {
             }),
             self.audit
                 .as_ref()
-                .and_then(|a| Some((a, a.unpolished.as_ref()?)))
+                .and_then(|a| Some((a, a.other_polishing.as_ref()?)))
                 .map_or_else(dash, |(a, u)| {
                     format!(
-                        "{:.2} / {:.2} / {} of {}",
-                        u.median_log10_residual, u.p99_log10_residual, u.failures, a.instances
+                        "{:.2} / {:.2} / {} of {} ({})",
+                        u.median_log10_residual,
+                        u.p99_log10_residual,
+                        u.failures,
+                        a.instances,
+                        match u.newton_steps {
+                            0 => "unpolished".to_string(),
+                            n => format!("newton {n}"),
+                        }
                     )
                 }),
             format!("{:.2}", self.seconds),
@@ -369,7 +377,7 @@ pub fn to_markdown(rows: &[ReportRow]) -> String {
         "area / best",
         "action",
         "audit: median / p99 log10 residual / failures",
-        "before polishing",
+        "other polishing",
         "seconds",
     ];
     let mut out = format!("| {} |\n", header.join(" | "));

@@ -56,19 +56,23 @@ fn audit_reads_instances_from_a_file() {
     let json: Value = serde_json::from_slice(&run.stdout).unwrap();
     let want = audit_plan_on(&plan, &data).to_json();
     assert_eq!(json["instances"], 40);
-    // serde_json's float parsing may be one ulp off: the floats to rounding, the rest exactly.
-    for (key, value) in want.as_object().unwrap() {
-        match value.as_f64() {
-            Some(w) if !value.is_u64() => {
-                let got = json[key].as_f64().unwrap();
-                assert!(
-                    (got - w).abs() <= 1e-12 * w.abs().max(1.0),
-                    "{key}: {got} vs {w}"
-                );
+    // serde_json's float parsing may be one ulp off: the floats to rounding (in nested
+    // objects too), the rest exactly.
+    fn same(got: &Value, want: &Value, key: &str) {
+        match (want.as_f64(), want.as_object()) {
+            (Some(w), _) if !want.is_u64() => {
+                let g = got.as_f64().unwrap();
+                assert!((g - w).abs() <= 1e-12 * w.abs().max(1.0), "{key}: {g} vs {w}");
             }
-            _ => assert_eq!(&json[key], value, "{key}"),
+            (_, Some(fields)) => {
+                for (k, v) in fields {
+                    same(&got[k], v, &format!("{key}.{k}"));
+                }
+            }
+            _ => assert_eq!(got, want, "{key}"),
         }
     }
+    same(&json, &want, "audit");
     assert_eq!(json["failures"], 0, "{json}");
 
     let inspect = mingen(&["inspect", problem().to_str().unwrap(), "--json"]);

@@ -152,21 +152,22 @@ fn an_exhausted_budget_is_a_clear_error() {
 #[test]
 fn newton_polishes_solutions_in_the_audit_and_the_emitted_solver() {
     // A circle and a hyperbola (4 solutions): polishing may only lower the residuals, and
-    // the emitted solver carries the steps; by default (no `option newton`) it polishes
-    // with DEFAULT_NEWTON_STEPS, `option newton = 0` turns it off.
+    // the emitted solver carries the steps; by default (no `option newton`) it does not
+    // polish, and the audit shows what polishing would give.
     let src = "problem c\nunknown x, y\ndata a: scalar, b: scalar\nx*x + y*y = a\nx*y = b\n";
-    let plain = planned(
-        &format!("{src}option newton = 0\n"),
+    let plain = planned(src, &TemplateOptions::default()).unwrap();
+    assert_eq!(plain.problem.layout.options.newton, None);
+    assert_eq!(
+        plain.problem.layout.options.newton_steps(),
+        mingen::problem::DEFAULT_NEWTON_STEPS
+    );
+    assert_eq!(mingen::problem::DEFAULT_NEWTON_STEPS, 0);
+    let polished = planned(
+        &format!("{src}option newton = 2\n"),
         &TemplateOptions::default(),
     )
     .unwrap();
-    let polished = planned(src, &TemplateOptions::default()).unwrap();
-    assert_eq!(polished.problem.layout.options.newton, None);
-    assert_eq!(
-        polished.problem.layout.options.newton_steps(),
-        mingen::problem::DEFAULT_NEWTON_STEPS
-    );
-    assert_eq!(mingen::problem::DEFAULT_NEWTON_STEPS, 2);
+    assert_eq!(polished.problem.layout.options.newton, Some(2));
     let audit = |p: &mingen::pipeline::SolverPlan| {
         mingen::audit::audit_plan(
             p,
@@ -182,10 +183,20 @@ fn newton_polishes_solutions_in_the_audit_and_the_emitted_solver() {
         "{a} {b}"
     );
     assert!(b.failures <= a.failures, "{a} {b}");
-    // The polished audit's figures before polishing are the unpolished audit's own (same
-    // instances); the unpolished one has none.
-    assert!(a.unpolished.is_none());
-    let before = b.unpolished.as_ref().expect("figures before polishing");
+    // Each audit's other figures are the other's own (same instances): the unpolished
+    // audit shows what two steps give, the polished one what the action matrix gave.
+    let with_steps = a.other_polishing.as_ref().expect("figures with polishing");
+    assert_eq!(
+        with_steps.newton_steps,
+        mingen::audit::COMPARISON_NEWTON_STEPS
+    );
+    assert_eq!(with_steps.median_log10_residual, b.median_log10_residual);
+    assert_eq!(with_steps.failures, b.failures);
+    let before = b
+        .other_polishing
+        .as_ref()
+        .expect("figures before polishing");
+    assert_eq!(before.newton_steps, 0);
     assert_eq!(before.median_log10_residual, a.median_log10_residual);
     assert_eq!(before.p99_log10_residual, a.p99_log10_residual);
     assert_eq!(before.failures, a.failures);

@@ -8,8 +8,7 @@
 //! for rank-deficient directions) and takes `x + δ` only if it lowers `Σ f_i²`; otherwise
 //! polishing stops. Near a simple root each step roughly squares the error, so the one or
 //! two steps a solution from an inaccurate action matrix needs bring it to rounding level;
-//! a solution already at rounding level ([`AT_ROUNDING_LEVEL`]) takes no step, so
-//! polishing costs an accurate solver one evaluation of its equations per solution.
+//! a solution already at rounding level ([`AT_ROUNDING_LEVEL`]) takes no step.
 //! No heap allocation: at most [`MAX_NEWTON_UNKNOWNS`] unknowns.
 
 /// One term of an equation: the index of its coefficient and the exponent of each unknown.
@@ -120,8 +119,7 @@ fn value_and_gradient(
 
 /// A solution whose every equation has `|f_i| <= AT_ROUNDING_LEVEL * Σ_terms |c x^e|` is
 /// at the rounding level of evaluating the equations in f64: no step can make it more
-/// accurate, so polishing stops there (a solution from an accurate action matrix costs one
-/// evaluation of the equations, not a step).
+/// accurate, so polishing stops there.
 pub const AT_ROUNDING_LEVEL: f64 = 16.0 * f64::EPSILON;
 
 /// The sum of squares `Σ_i f_i(x)²` and whether every equation is at rounding level

@@ -62,7 +62,10 @@ fn audit_reads_instances_from_a_file() {
         match (want.as_f64(), want.as_object()) {
             (Some(w), _) if !want.is_u64() => {
                 let g = got.as_f64().unwrap();
-                assert!((g - w).abs() <= 1e-12 * w.abs().max(1.0), "{key}: {g} vs {w}");
+                assert!(
+                    (g - w).abs() <= 1e-12 * w.abs().max(1.0),
+                    "{key}: {g} vs {w}"
+                );
             }
             (_, Some(fields)) => {
                 for (k, v) in fields {

@@ -603,16 +603,13 @@ pub fn emit_plan_in(
     let tracer = Tracer::new();
     let data = tracer.inputs(layout.data_slot_count());
     let (equations, elimination) = plan.equations(&data);
-    // Polishing the file asks for must be emitted (or be an error); the default is
-    // dropped where the runtime cannot polish these equations.
     let polish = match layout.options.newton_steps() {
         0 => None,
         steps => Some(PolishSpec {
             steps: steps as usize,
             equations: plan.visible_equations(&data),
             unknowns: plan.visible_unknowns(),
-        })
-        .filter(|p| layout.options.newton.is_some() || p.is_supported()),
+        }),
     };
     let spec = SolverSpec {
         layout: layout.clone(),

@@ -89,20 +89,6 @@ pub struct PolishSpec {
     pub unknowns: usize,
 }
 
-impl PolishSpec {
-    /// Whether `mingen_runtime::newton_polish` can polish these equations: at most
-    /// `MAX_NEWTON_UNKNOWNS` unknowns, at least as many equations as unknowns, exponents
-    /// up to 255. Emitting an unsupported spec is an error ([`EmitError::Unsupported`]).
-    pub fn is_supported(&self) -> bool {
-        self.unknowns <= mingen_runtime::MAX_NEWTON_UNKNOWNS
-            && self.equations.len() >= self.unknowns
-            && self.equations.iter().all(|eq| {
-                eq.terms()
-                    .all(|(m, _)| m.0[..self.unknowns].iter().all(|&d| d <= 255))
-            })
-    }
-}
-
 /// Everything needed to emit one solver.
 #[derive(Clone, Debug)]
 pub struct SolverSpec {

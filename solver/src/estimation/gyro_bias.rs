@@ -21,11 +21,12 @@
 //! bias is indistinguishable from it; the fit then returns the mean of bias and noise.
 
 use crate::data::pair_file::Match;
+use crate::estimation::readout::inlier_observations;
 use crate::estimation::refine::{
     levenberg_marquardt, LmOptions, LmProblem, Loss, Pose, PoseProblem,
 };
 use crate::model::camera::{Observation, View};
-use crate::model::epipolar::{observe_matches, PointData, PoseModel, ResidualKind};
+use crate::model::epipolar::{PointData, PoseModel, ResidualKind};
 use nalgebra::{Matrix3, SVector, Vector3};
 use std::sync::Arc;
 
@@ -242,19 +243,11 @@ pub fn refine_gyro_bias(
     if inliers.len() != matches.len() || options.invalid().is_some() {
         return None;
     }
-    let kept: Vec<Match> = matches
-        .iter()
-        .zip(inliers)
-        .filter_map(|(m, &i)| i.then_some(*m))
-        .collect();
-    if kept.len() < 8 {
-        return None;
-    }
-    let f = 0.5 * (view1.camera.mean_focal() + view2.camera.mean_focal());
+    let (observations, f) = inlier_observations(view1, view2, matches, inliers)?;
     let problem = BiasProblem {
         views: (view1, view2),
-        indices: (0..kept.len()).collect(),
-        observations: observe_matches(&view1.camera, &view2.camera, &kept).ok()?,
+        indices: (0..observations.len()).collect(),
+        observations,
         loss: Loss::Cauchy(options.loss_px / f),
         max_bias: options.max_bias,
     };

@@ -174,6 +174,29 @@ impl LmProblem<6> for ReadoutProblem<'_> {
     }
 }
 
+/// The observations (bearing and readout line in each image) of the matches flagged in
+/// `inliers`, and the two cameras' mean focal length (pixels, to express a loss in pixels):
+/// what a refinement of the pose with a rolling-shutter parameter works on. `None` with
+/// fewer than 8 inliers or a pixel without a bearing.
+pub(crate) fn inlier_observations(
+    view1: &View,
+    view2: &View,
+    matches: &[Match],
+    inliers: &[bool],
+) -> Option<(Vec<[Observation; 2]>, f64)> {
+    let kept: Vec<Match> = matches
+        .iter()
+        .zip(inliers)
+        .filter_map(|(m, &i)| i.then_some(*m))
+        .collect();
+    if kept.len() < 8 {
+        return None;
+    }
+    let observations = observe_matches(&view1.camera, &view2.camera, &kept).ok()?;
+    let f = 0.5 * (view1.camera.mean_focal() + view2.camera.mean_focal());
+    Some((observations, f))
+}
+
 /// Refines the pose `(rotation, translation)` of `view1`/`view2` (their cameras' readout
 /// times nominal) together with a common scale of the readout times, over the matches
 /// flagged in `inliers` (see the module documentation). `None` with fewer than 8 inliers,
@@ -192,19 +215,11 @@ pub fn refine_readout_scale(
         return None;
     }
     let (lo, hi) = options.scale_range;
-    let kept: Vec<Match> = matches
-        .iter()
-        .zip(inliers)
-        .filter_map(|(m, &i)| i.then_some(*m))
-        .collect();
-    if kept.len() < 8 {
-        return None;
-    }
-    let f = 0.5 * (view1.camera.mean_focal() + view2.camera.mean_focal());
+    let (observations, f) = inlier_observations(view1, view2, matches, inliers)?;
     let problem = ReadoutProblem {
         views: (view1, view2),
-        indices: (0..kept.len()).collect(),
-        observations: observe_matches(&view1.camera, &view2.camera, &kept).ok()?,
+        indices: (0..observations.len()).collect(),
+        observations,
         loss: Loss::Cauchy(options.loss_px / f),
         ln_range: (lo.ln(), hi.ln()),
     };

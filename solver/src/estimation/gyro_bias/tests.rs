@@ -4,6 +4,7 @@ use crate::data::simulate::{simulate, SimulationOptions};
 use crate::estimation::refine::tests::{check_jacobian, perturbed};
 use crate::experiment::median;
 use crate::methods::{estimate_relative_pose, EstimateOptions, Method};
+use crate::model::epipolar::observe_matches;
 use crate::model::geometry::{rotation_error_deg, translation_error_deg};
 
 /// The bias the tests add to the simulated gyro readings: 0.03 rad/s per axis.

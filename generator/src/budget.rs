@@ -110,6 +110,17 @@ impl Deadline {
     pub fn elapsed(&self) -> f64 {
         self.started.elapsed().as_secs_f64()
     }
+    /// The same start with `fraction` (in `(0, 1]`) of the wall-clock budget: a step that
+    /// may stop early without starving the steps after it.
+    pub fn portion(&self, fraction: f64) -> Deadline {
+        Deadline {
+            started: self.started,
+            budget: Budget {
+                max_seconds: self.budget.max_seconds * fraction.clamp(0.0, 1.0),
+                ..self.budget
+            },
+        }
+    }
     /// `Err` once the wall-clock budget has run out.
     pub fn check_time(&self) -> Result<(), Exhausted> {
         if self.elapsed() > self.budget.max_seconds {

@@ -63,6 +63,7 @@ mod shape;
 pub mod shrink;
 pub mod sparse_order;
 pub mod validate;
+mod weight_sample;
 
 pub use action::Action;
 pub use candidates::ShrinkStep;

@@ -14,6 +14,7 @@ use super::candidates::start_degree;
 use super::linalg::is_squarefree;
 use super::select::{basis_orders, BasisOrder};
 use super::validate::nf_action_charpoly;
+use super::weight_sample::{narrow_weights, neighbours, ones_and_twos, sampled_weights};
 use super::{Action, ActionChoice, EquationReduction, TemplateError, TemplateOptions};
 use crate::algebra::MonomialOrder;
 use crate::algebra::{Fp, Monomial, Poly, P1};
@@ -92,6 +93,14 @@ pub(crate) fn best_template_within(
     } else {
         Vec::new()
     };
+    // The narrow sample's phase may use part of the budget only: the refinement and the
+    // validation after it keep theirs.
+    let narrow_deadline = deadline.portion(NARROW_BUDGET_SHARE);
+    let narrow = if opts.alternative_bases {
+        narrow_bases(eqs, basis, &bases, opts, &narrow_deadline)
+    } else {
+        Vec::new()
+    };
     let search_all = |eqs: &[Poly<Fp<P1>>]| {
         let mut all = search_actions(eqs, basis, gb, opts, deadline, &first);
         let has_distinct = all
@@ -114,6 +123,30 @@ pub(crate) fn best_template_within(
         );
         climb_weights(
             eqs, basis, &bases, starts, visible, opts, deadline, &mut work, &mut all,
+        );
+        // Then the narrow sample, on work of its own, and climbs from its best.
+        let mut narrow_work = 0u64;
+        let starts = try_alternative_bases(
+            eqs,
+            &narrow,
+            visible,
+            opts,
+            &narrow_deadline,
+            &distinct_of,
+            &mut narrow_work,
+            &mut all,
+        );
+        let seen: Vec<AlternativeBasis> = bases.iter().chain(&narrow).cloned().collect();
+        climb_weights(
+            eqs,
+            basis,
+            &seen,
+            starts,
+            visible,
+            opts,
+            &narrow_deadline,
+            &mut narrow_work,
+            &mut all,
         );
         all
     };
@@ -306,6 +339,7 @@ fn raise_degree<const P: u32>(
 
 /// A quotient basis other than the analysis's: the standard monomials of another
 /// monomial order, with the grading its candidate pools use.
+#[derive(Clone)]
 struct AlternativeBasis {
     /// How it was obtained, for `inspect`.
     label: String,
@@ -314,6 +348,9 @@ struct AlternativeBasis {
     /// The weights of its order (empty for grevlex under a variable order); its candidate
     /// pools are graded by the same weights.
     weights: Vec<u32>,
+    /// The one unknown whose action it is tried for (the heaviest of `weights`), or none
+    /// for every action.
+    for_unknown: Option<usize>,
 }
 
 /// The standard bases of other monomial orders, each from a Gröbner basis of the
@@ -344,6 +381,7 @@ fn alternative_bases<const P: u32>(
                 label,
                 basis: b,
                 weights,
+                for_unknown: None,
             });
         }
         new
@@ -418,6 +456,53 @@ fn alternative_bases<const P: u32>(
     out
 }
 
+/// The standard bases of weighted orders whose weights lie within a factor of four of
+/// each other ([`narrow_weights`]), other than `basis` and those of `known`: up to
+/// [`NARROW_BASES_PER_ORDER`] times `opts.weighted_orders` of them, in the order drawn.
+/// Stops when the budget runs out.
+fn narrow_bases<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    basis: &[Monomial],
+    known: &[AlternativeBasis],
+    opts: &TemplateOptions,
+    deadline: &Deadline,
+) -> Vec<AlternativeBasis> {
+    let nvars = basis.first().map_or(0, Monomial::nvars);
+    let wanted = opts.weighted_orders.saturating_mul(NARROW_BASES_PER_ORDER);
+    let mut seen: Vec<Vec<Monomial>> = std::iter::once(sorted(basis.to_vec()))
+        .chain(known.iter().map(|b| b.basis.clone()))
+        .collect();
+    let mut out = Vec::new();
+    let draws = wanted.saturating_mul(DRAWS_PER_ORDER);
+    let visible = nvars - opts.hidden_vars.min(nvars);
+    for (unknown, weights) in narrow_weights(nvars, visible, draws, opts.seed) {
+        if out.len() >= wanted || deadline.check_time().is_err() {
+            break;
+        }
+        let Some(b) = weighted_basis(eqs, nvars, &weights, deadline) else {
+            continue;
+        };
+        if b.len() != basis.len() || seen.contains(&b) {
+            continue;
+        }
+        seen.push(b.clone());
+        out.push(AlternativeBasis {
+            label: weighted_label(&weights),
+            basis: b,
+            weights,
+            for_unknown: Some(unknown),
+        });
+    }
+    out
+}
+
+/// How many bases of the narrow sample [`narrow_bases`] looks for, per weighted order of
+/// `opts.weighted_orders`: the cones of such orders are many and small, the good ones rare.
+const NARROW_BASES_PER_ORDER: usize = 4;
+
+/// The share of the wall-clock budget the narrow sample's phase may use.
+const NARROW_BUDGET_SHARE: f64 = 0.5;
+
 /// The standard monomials (descending grevlex) of the weighted order `weights`, from a
 /// Gröbner basis of `eqs` in that order; none when it fails or the budget runs out.
 fn weighted_basis<const P: u32>(
@@ -440,60 +525,9 @@ fn weighted_label(weights: &[u32]) -> String {
     format!("standard monomials (weighted order, weights {weights:?})")
 }
 
-/// Seed offset of the weight vectors of [`weight_vectors`].
-const WEIGHTS_SEED: u64 = 0x3E16_0000;
-
-/// The largest weights of [`weight_vectors`]'s sample, in turn.
-const WEIGHT_TOPS: [u32; 4] = [3, 5, 8, 12];
-
 /// At most how many weight vectors [`alternative_bases`] computes a Gröbner basis for,
 /// per new basis it looks for.
 const DRAWS_PER_ORDER: usize = 8;
-
-/// Every weight vector of 1s and 2s for `nvars` variables but the two constant ones
-/// (grevlex), when there are at most `max`; otherwise none. Their cones lie nearest
-/// grevlex's, and their ties keep grevlex's tie-breaking on some variables.
-fn ones_and_twos(nvars: usize, max: usize) -> Vec<Vec<u32>> {
-    let n = 1usize
-        .checked_shl(nvars as u32)
-        .map_or(usize::MAX, |n| n - 2);
-    if nvars < 2 || n > max {
-        return Vec::new();
-    }
-    (1..=n)
-        .map(|bits| {
-            (0..nvars)
-                .map(|i| 1 + ((bits >> (nvars - 1 - i)) & 1) as u32)
-                .collect()
-        })
-        .collect()
-}
-
-/// `count` distinct weight vectors for `nvars` variables, none all equal (that order is
-/// grevlex), with entries uniform in `1..=top`, `top` cycling through
-/// [`WEIGHT_TOPS`], from a generator seeded by `seed`: a sample of the Gröbner fan's
-/// cones, whose orders the weighted templates of Martyushev et al. come from.
-fn sampled_weights(nvars: usize, count: usize, seed: u64) -> Vec<Vec<u32>> {
-    use rand::{Rng, SeedableRng};
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed ^ WEIGHTS_SEED);
-    let mut out: Vec<Vec<u32>> = Vec::new();
-    if nvars < 2 {
-        return out;
-    }
-    // Enough draws for `count` distinct vectors where that many exist.
-    for _ in 0..count.saturating_mul(4) {
-        if out.len() == count {
-            break;
-        }
-        let top = WEIGHT_TOPS[out.len() % WEIGHT_TOPS.len()];
-        let w: Vec<u32> = (0..nvars).map(|_| rng.gen_range(1..=top)).collect();
-        if w.iter().all(|&x| x == w[0]) || out.contains(&w) {
-            continue;
-        }
-        out.push(w);
-    }
-    out
-}
 
 /// The size every choice minimises: [`super::EliminationTemplate::elimination_area`].
 fn area(b: &BuiltTemplate) -> usize {
@@ -544,6 +578,9 @@ fn try_alternative_bases<const P: u32>(
         .collect();
     'bases: for alt in bases {
         for (k, (action, result)) in all.iter_mut().enumerate() {
+            if alt.for_unknown.is_some_and(|v| action.single() != Some(v)) {
+                continue;
+            }
             let current = result.as_ref().unwrap_or(&smallest);
             if deadline.check_time().is_err() {
                 break 'bases;
@@ -690,32 +727,6 @@ fn climb_weights<const P: u32>(
             }
         }
     }
-}
-
-/// The weight vectors one step from `w`: each weight one up or one down (staying
-/// positive), then, on the doubled vector, each weight one up or down (the finer cones
-/// between).
-fn neighbours(w: &[u32]) -> Vec<Vec<u32>> {
-    let mut out: Vec<Vec<u32>> = Vec::new();
-    let doubled: Vec<u32> = w.iter().map(|x| 2 * x).collect();
-    for base in [w.to_vec(), doubled] {
-        for i in 0..base.len() {
-            for up in [true, false] {
-                let mut v = base.clone();
-                if up {
-                    v[i] += 1;
-                } else if v[i] > 1 {
-                    v[i] -= 1;
-                } else {
-                    continue;
-                }
-                if !out.contains(&v) && v.iter().any(|&x| x != v[0]) {
-                    out.push(v);
-                }
-            }
-        }
-    }
-    out
 }
 
 /// How many times the rows of the template to beat a candidate pool of an alternative basis

@@ -12,6 +12,7 @@ mod convert;
 mod estimate;
 mod options;
 mod pair;
+mod result;
 mod solvers;
 
 use camera::camera_of;
@@ -123,7 +124,7 @@ fn rspose(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<pair::GyroLog>()?;
     m.add_class::<pair::GroundTruth>()?;
     m.add_class::<pair::Pair>()?;
-    m.add_class::<estimate::Estimate>()?;
+    m.add_class::<result::Estimate>()?;
     m.add_function(wrap_pyfunction!(estimate::estimate_relative_pose, m)?)?;
     m.add_function(wrap_pyfunction!(estimate::estimate_many, m)?)?;
     m.add_function(wrap_pyfunction!(estimate::options, m)?)?;

@@ -65,8 +65,8 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
-/// One pixel correspondence `[[u1, v1], [u2, v2]]` (image 1, image 2).
-pub type Match = [[f64; 2]; 2];
+/// The pair file's matches are the model's ([`crate::model::matches::Match`]).
+pub use crate::model::matches::Match;
 
 /// Ground truth stored with a simulated pair (see the module documentation for conventions).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

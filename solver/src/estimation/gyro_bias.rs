@@ -20,13 +20,13 @@
 //! it causes is `f H λ |b|` pixels at the last row. A per-view rate noise comparable to the
 //! bias is indistinguishable from it; the fit then returns the mean of bias and noise.
 
-use crate::data::pair_file::Match;
 use crate::estimation::readout::inlier_observations;
 use crate::estimation::refine::{
     levenberg_marquardt, LmOptions, LmProblem, Loss, Pose, PoseProblem,
 };
 use crate::model::camera::{Observation, View};
 use crate::model::epipolar::{PointData, PoseModel, ResidualKind};
+use crate::model::matches::Match;
 use nalgebra::{Matrix3, SVector, Vector3};
 use std::sync::Arc;
 

@@ -15,9 +15,9 @@ use super::pose_ransac::{indices, orient, point_data, run, threshold, GrsrpRansa
 use super::{
     gsrp, rectified, Estimate, EstimateError, EstimateOptions, Method, R0Source, Threshold,
 };
-use crate::data::pair_file::Match;
 use crate::model::camera::View;
 use crate::model::epipolar::ResidualKind;
+use crate::model::matches::Match;
 
 /// Estimate with `grsrp` (`plus = false`) or `grsrp+` (`plus = true`); inputs already
 /// validated by the caller.

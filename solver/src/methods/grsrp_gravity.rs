@@ -26,12 +26,12 @@
 
 use super::pose_ransac::{indices, point_data, run, threshold, EssentialRansac, Hypothesis};
 use super::{rectified, Estimate, EstimateError, EstimateOptions, Method, RobustOptions};
-use crate::data::pair_file::Match;
 use crate::estimation::ransac::{RansacEstimator, RansacResult, Score};
 use crate::minimal::{GravitySample, GravitySolver};
 use crate::model::camera::View;
 use crate::model::epipolar::PointData;
 use crate::model::geometry::fix_translation_sign;
+use crate::model::matches::Match;
 use nalgebra::{Matrix3, Vector3};
 
 /// Known-gravity RANSAC: hypotheses from the generated 3-point solver, scoring and local

@@ -10,10 +10,10 @@ use super::pose_ransac::{
     decompose_on_inliers, gs_threshold, indices, run, EssentialRansac, Hypothesis,
 };
 use super::{Estimate, EstimateError, EstimateOptions, Method};
-use crate::data::pair_file::Match;
 use crate::estimation::refine::{refine_pose, Loss};
 use crate::model::camera::View;
 use crate::model::epipolar::{PointData, PoseModel, ResidualKind};
+use crate::model::matches::Match;
 
 /// Run `gsrp` on prepared data (inputs already validated).
 pub(crate) fn run_on(

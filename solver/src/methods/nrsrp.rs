@@ -13,12 +13,12 @@
 
 use super::pose_ransac::{indices, threshold};
 use super::{gsrp, Estimate, EstimateError, EstimateOptions, Method};
-use crate::data::pair_file::Match;
 use crate::estimation::refine::{
     nrsrp_cheirality, nrsrp_residual, refine_nrsrp, LmOptions, NrsrpState, Pose,
 };
 use crate::model::camera::View;
 use crate::model::epipolar::{PointData, ResidualKind};
+use crate::model::matches::Match;
 use nalgebra::Vector3;
 
 /// Refine / re-classify rounds at most: the inliers settle within two or three.

@@ -77,7 +77,7 @@ pub(crate) fn gs_threshold(view1: &View, view2: &View, o: &RobustOptions) -> (Re
 pub(crate) fn point_data(
     view1: &View,
     view2: &View,
-    matches: &[crate::data::pair_file::Match],
+    matches: &[crate::model::matches::Match],
     o: &RobustOptions,
 ) -> Result<PointData, crate::model::epipolar::UnobservableMatch> {
     let mut data = PointData::new(view1, view2, matches)?;

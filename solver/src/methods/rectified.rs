@@ -9,10 +9,10 @@ use super::pose_ransac::{
     decompose_on_inliers, indices, point_data, run, threshold, EssentialRansac, Hypothesis,
 };
 use super::{Estimate, EstimateError, EstimateOptions, Method};
-use crate::data::pair_file::Match;
 use crate::estimation::ransac::RansacResult;
 use crate::model::camera::View;
 use crate::model::epipolar::{PointData, PoseModel, ResidualKind};
+use crate::model::matches::Match;
 
 /// Run `rectified` on prepared data (inputs already validated).
 pub(crate) fn run_on(

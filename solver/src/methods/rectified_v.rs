@@ -28,7 +28,6 @@
 
 use super::pose_ransac::{indices, point_data, threshold};
 use super::{rectified, Estimate, EstimateError, EstimateOptions, Method};
-use crate::data::pair_file::Match;
 use crate::estimation::refine::{levenberg_marquardt, LmOptions, Loss, Pose};
 use crate::estimation::velocity::{
     reference_duration, refine_velocity, velocity_information, RateErrorProblem, RateErrorState,
@@ -36,6 +35,7 @@ use crate::estimation::velocity::{
 };
 use crate::model::camera::View;
 use crate::model::epipolar::{PointData, ResidualKind};
+use crate::model::matches::Match;
 use nalgebra::Vector3;
 use serde::Serialize;
 

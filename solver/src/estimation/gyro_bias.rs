@@ -7,7 +7,7 @@
 //! gyro-aided method run with the rates as given), Levenberg-Marquardt refines `(R, t)` and
 //! one bias `b` (camera axes, rad/s) common to both views, whose row rotations are
 //! recomputed from `rate − b` (the constant rate, or each segment of an integrated gyro
-//! track, [`RowTrack::with_bias`]). The two frames are a fraction of a second apart, so
+//! track, [`RowTrack::with_bias`](crate::model::gyro_log::RowTrack::with_bias)). The two frames are a fraction of a second apart, so
 //! one bias serves both; a per-frame rate error is not a bias and is not modelled.
 //!
 //! The cost is the Sampson error over the inliers with a Cauchy loss at the pixel noise;

@@ -99,7 +99,10 @@ fn validate_options(o: &EstimateOptions) -> Result<(), EstimateError> {
     Ok(())
 }
 
-/// Check views, pixels, counts and options; shared by every method.
+/// Checks what every method requires of its input: valid views (a gravity direction on
+/// both for `grsrp-gravity`), finite pixels that have a bearing, at least
+/// [`Method::min_matches`] distinct matches for `options.method`, and valid options.
+/// [`estimate_relative_pose`] calls it; a caller of a method's own `estimate` calls it first.
 pub fn validate_input(
     view1: &View,
     view2: &View,

@@ -57,7 +57,7 @@ pub enum EstimateError {
     /// No model was found (degenerate geometry or every sample failed).
     #[error("no solution found")]
     NoSolution,
-    /// The method needs a gravity direction on both views ([`View::gravity`]).
+    /// The method needs a gravity direction on both views ([`View::gravity`](crate::model::camera::View::gravity)).
     #[error(
         "method grsrp-gravity needs the gravity direction of both views; view {view} has none"
     )]

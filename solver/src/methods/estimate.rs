@@ -1,4 +1,4 @@
-//! The result of [`estimate_relative_pose`](super::estimate_relative_pose) and its JSON
+//! The result of [`estimate_relative_pose`](super::estimate_relative_pose)(super::estimate_relative_pose) and its JSON
 //! report.
 
 use super::method::Method;
@@ -8,7 +8,7 @@ use super::rectified_v::VelocityFit;
 use crate::estimation::gyro_bias::EstimatedBias;
 use nalgebra::{Matrix3, Vector3};
 
-/// The result of [`estimate_relative_pose`].
+/// The result of [`estimate_relative_pose`](super::estimate_relative_pose).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Estimate {
     /// The method that produced it.
@@ -39,14 +39,14 @@ pub struct Estimate {
     /// prior, or left out (the `rectified` pose returned), and why.
     pub velocity_fit: Option<VelocityFit>,
     /// The noise model the final inliers were classified with, when it was fitted to the
-    /// pair ([`RobustOptions::fit_gyro_noise`]; `rectified`, `grsrp`, `grsrp+`,
+    /// pair ([`RobustOptions::fit_gyro_noise`](super::RobustOptions::fit_gyro_noise); `rectified`, `grsrp`, `grsrp+`,
     /// `grsrp-gravity`, and `rectified+v` when it falls back to `rectified`).
     pub noise_fit: Option<NoiseFit>,
-    /// With [`EstimateOptions::readout`]: the readout time the pose was refined with, over
+    /// With [`EstimateOptions::readout`](super::EstimateOptions::readout): the readout time the pose was refined with, over
     /// the views' nominal one (`None` if the refinement could not run: fewer than 8
     /// inliers or a non-finite result; the method's pose is then kept).
     pub readout_scale: Option<f64>,
-    /// With [`EstimateOptions::gyro_bias`]: the bias of the views' gyro rates the pose was
+    /// With [`EstimateOptions::gyro_bias`](super::EstimateOptions::gyro_bias): the bias of the views' gyro rates the pose was
     /// refined with and its standard deviation, camera axes, rad/s (true rate = the views'
     /// rate − the bias; `None` if the refinement could not run: fewer than 8 inliers or a
     /// non-finite result; the method's pose is then kept).
@@ -54,6 +54,37 @@ pub struct Estimate {
 }
 
 impl Estimate {
+    /// A method's estimate before the shared stages: the pose, the inlier mask and the
+    /// final RANSAC stage's figures; no refinement, the quality report still to be
+    /// computed ([`Quality::default`]), no velocities, noise fit, readout scale or gyro bias.
+    /// A method sets the fields it reports with `Estimate { field, ..Estimate::new(..) }`.
+    pub fn new(
+        method: Method,
+        rotation: Matrix3<f64>,
+        translation: Vector3<f64>,
+        inliers: Vec<bool>,
+        iterations: usize,
+        ransac_score: f64,
+    ) -> Self {
+        Estimate {
+            method,
+            rotation,
+            translation,
+            inliers,
+            iterations,
+            ransac_score,
+            refinement_iterations: 0,
+            refinement_cost: None,
+            quality: Quality::default(),
+            angular_velocity: None,
+            linear_velocity: None,
+            velocity_fit: None,
+            noise_fit: None,
+            readout_scale: None,
+            gyro_bias: None,
+        }
+    }
+
     /// Number of inliers.
     pub fn num_inliers(&self) -> usize {
         self.inliers.iter().filter(|&&b| b).count()

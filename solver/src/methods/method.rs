@@ -16,7 +16,7 @@ pub enum Method {
     /// `grsrp`: the paper's G-RSRP minimal solver in RANSAC.
     Grsrp,
     /// `grsrp+`: `grsrp` + a final refinement over the inliers (the paper's algebraic cost
-    /// in the paper preset; see [`GrsrpModel`]).
+    /// in the paper preset; see [`GrsrpModel`](super::GrsrpModel)).
     GrsrpPlus,
     /// `rectified`: undistort by gyro, 5-point RANSAC, Sampson refinement.
     Rectified,

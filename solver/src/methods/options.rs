@@ -1,4 +1,4 @@
-//! The options of [`estimate_relative_pose`](super::estimate_relative_pose): plain structs
+//! The options of [`estimate_relative_pose`](super::estimate_relative_pose)(super::estimate_relative_pose): plain structs
 //! whose [`Default`] is the library's documented choice, and the presets.
 
 use super::method::Method;
@@ -144,7 +144,7 @@ impl GrsrpModel {
     }
 }
 
-/// All options of [`estimate_relative_pose`].
+/// All options of [`estimate_relative_pose`](super::estimate_relative_pose).
 #[derive(Debug, Clone, PartialEq)]
 pub struct EstimateOptions {
     /// The method.
@@ -173,14 +173,14 @@ pub struct EstimateOptions {
     /// For a readout time known only roughly: after the method, refine the pose together
     /// with a common scale of both views' readout times
     /// ([`crate::estimation::readout::refine_readout_scale`], exact angular model, on the
-    /// method's inliers) and report it in [`Estimate::readout_scale`]. Gyro-aided methods
+    /// method's inliers) and report it in [`Estimate::readout_scale`](super::Estimate::readout_scale). Gyro-aided methods
     /// only (not `gsrp` or `nrsrp`); default `None` (the readout is taken as given).
     pub readout: Option<ReadoutOptions>,
     /// For a gyro with an unknown constant bias: after the method (and after the readout
     /// refinement, with its scale), refine the pose together with one bias of both views'
     /// rates, their row rotations recomputed from rate − bias
     /// ([`crate::estimation::gyro_bias::refine_gyro_bias`], exact angular model, on the
-    /// method's inliers), and report it in [`Estimate::gyro_bias`]. Gyro-aided methods only
+    /// method's inliers), and report it in [`Estimate::gyro_bias`](super::Estimate::gyro_bias). Gyro-aided methods only
     /// (not `gsrp` or `nrsrp`); default `None` (the rates are taken as unbiased).
     pub gyro_bias: Option<GyroBiasOptions>,
 }

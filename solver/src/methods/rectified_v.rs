@@ -279,7 +279,14 @@ impl Stage<'_> {
     }
 }
 
-/// Estimate with `rectified+v` (inputs already validated by the caller).
+/// Estimate with `rectified+v`.
+///
+/// The input is not checked here: it must be what [`super::validate_input`] accepts with
+/// `options.method` = `rectified+v` (valid views, finite pixels that have bearings, at
+/// least [`super::Method::min_matches`] distinct matches, valid options); call that first, or
+/// use [`super::estimate_relative_pose`], which checks the input and adds the subset of large
+/// inputs, the optional readout and gyro-bias refinements and the quality report. Unchecked
+/// input may give an error or a meaningless estimate.
 pub fn estimate(
     view1: &View,
     view2: &View,

@@ -1,232 +1,20 @@
-//! Estimation: the `Estimate` class, `estimate_relative_pose`, `estimate_many` (all cores,
-//! the GIL released) and `options`.
+//! The estimating functions: `estimate_relative_pose`, `estimate_many` (all cores, the GIL
+//! released) and `options`; each pair goes through the library's
+//! `data::pair_estimate::estimate_pair` ([`Request::estimate`]), as `rspose estimate` does.
 
-use crate::convert::{
-    estimate_error, json_to_python, matrix_array, pair_file_error, rows_array, type_name,
-    vector_array,
-};
-use crate::options::{options_dict, request, R0Request, Request};
+use crate::convert::type_name;
+use crate::options::{options_dict, request, Request};
 use crate::pair::Pair;
-use numpy::ndarray::Array1;
-use numpy::{IntoPyArray, PyArray1, PyArray2};
+use crate::result::{failure_error, Estimate};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
-use rspose_core::data::pair_file::{PairFile, PairFileError};
-use rspose_core::methods::R0Source;
-use rspose_core::{estimate_relative_pose as rs_estimate, Estimate as RsEstimate, EstimateError};
+use rspose_core::data::pair_estimate::PairEstimateError;
+use rspose_core::data::pair_file::PairFile;
+use rspose_core::{Estimate as RsEstimate, EstimateError};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
-
-/// A relative pose and its quality report. ``rotation`` R (3 x 3) and unit ``translation``
-/// t take row-0 camera-1 coordinates to row-0 camera-2 coordinates, x2 = R x1 + t;
-/// ``inliers`` is a bool mask over the matches. ``to_dict()`` is the object
-/// ``rspose estimate --json`` prints (without its timing and reference errors).
-#[pyclass(module = "rspose", frozen)]
-pub struct Estimate {
-    inner: RsEstimate,
-}
-
-impl Estimate {
-    /// Wraps the library's estimate.
-    pub fn new(inner: RsEstimate) -> Self {
-        Estimate { inner }
-    }
-}
-
-#[pymethods]
-impl Estimate {
-    /// The method's name.
-    #[getter]
-    fn method(&self) -> &'static str {
-        self.inner.method.name()
-    }
-    /// Relative rotation R = R2 R1^T, 3 x 3.
-    #[getter]
-    fn rotation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        matrix_array(py, &self.inner.rotation)
-    }
-    /// Unit relative translation t = R2 (C1 - C2) / |.|.
-    #[getter]
-    fn translation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        vector_array(py, &self.inner.translation)
-    }
-    /// Inlier mask, one flag per match (for ``nrsrp``: its ``gsrp`` initialisation's).
-    #[getter]
-    fn inliers<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<bool>> {
-        Array1::from_vec(self.inner.inliers.clone()).into_pyarray(py)
-    }
-    /// Number of inliers.
-    #[getter]
-    fn num_inliers(&self) -> usize {
-        self.inner.num_inliers()
-    }
-    /// RANSAC iterations of the final RANSAC stage.
-    #[getter]
-    fn iterations(&self) -> usize {
-        self.inner.iterations
-    }
-    /// MSAC score of the best hypothesis (squared threshold units).
-    #[getter]
-    fn ransac_score(&self) -> f64 {
-        self.inner.ransac_score
-    }
-    /// Levenberg-Marquardt iterations of the final refinement (0 if none).
-    #[getter]
-    fn refinement_iterations(&self) -> usize {
-        self.inner.refinement_iterations
-    }
-    /// Final cost of the refinement, or None without one.
-    #[getter]
-    fn refinement_cost(&self) -> Option<f64> {
-        self.inner.refinement_cost
-    }
-    /// Inliers over matches.
-    #[getter]
-    fn inlier_ratio(&self) -> f64 {
-        self.inner.quality.inlier_ratio
-    }
-    /// Median parallax of the inliers left by the best pure rotation, pixels.
-    #[getter]
-    fn parallax_px(&self) -> f64 {
-        self.inner.quality.parallax_px
-    }
-    /// Median distance of the inliers from their epipolar planes, pixels.
-    #[getter]
-    fn epipolar_px(&self) -> f64 {
-        self.inner.quality.epipolar_px
-    }
-    /// Median transfer error of the inliers under the best homography, pixels.
-    #[getter]
-    fn homography_px(&self) -> f64 {
-        self.inner.quality.homography_px
-    }
-    /// Names of the raised quality flags: ``too_few_inliers``,
-    /// ``translation_undetermined``, ``near_planar``.
-    #[getter]
-    fn flags(&self) -> Vec<&'static str> {
-        self.inner.quality.flags()
-    }
-    /// The whole quality report as a dict (as in ``rspose estimate --json``).
-    #[getter]
-    fn quality<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        json_to_python(py, &serde_json::json!(self.inner.quality))
-    }
-    /// ``nrsrp`` only: estimated angular velocities, 2 x 3 (rad/s, camera axes); else None.
-    #[getter]
-    fn angular_velocity<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
-        self.inner
-            .angular_velocity
-            .map(|w| rows_array(py, &w.map(|v| [v.x, v.y, v.z])))
-    }
-    /// ``nrsrp`` and ``rectified+v``: estimated linear velocities, 2 x 3 (baselines per
-    /// second, camera-1 row-0 frame); else None.
-    #[getter]
-    fn linear_velocity<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
-        self.inner
-            .linear_velocity
-            .map(|w| rows_array(py, &w.map(|v| [v.x, v.y, v.z])))
-    }
-    /// ``rectified+v`` only: what its velocity stage did, a dict with ``outcome`` and its
-    /// statistics; else None.
-    #[getter]
-    fn velocity_fit<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        self.inner
-            .velocity_fit
-            .map(|f| json_to_python(py, &serde_json::json!(f)))
-            .transpose()
-    }
-
-    /// The gyro-rate noise fitted to the final pose's residuals (``fit_gyro_noise``), a
-    /// dict with ``gyro_noise`` (rad/s per axis) and ``truncation``; else None.
-    #[getter]
-    fn noise_fit<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        self.inner
-            .noise_fit
-            .map(|f| {
-                let d = PyDict::new(py);
-                d.set_item("gyro_noise", f.gyro_noise)?;
-                d.set_item("truncation", f.truncation)?;
-                Ok(d.into_any())
-            })
-            .transpose()
-    }
-
-    /// With ``refine_readout=True``: the readout time the pose was refined with, over the
-    /// views' nominal one; else None.
-    #[getter]
-    fn readout_scale(&self) -> Option<f64> {
-        self.inner.readout_scale
-    }
-
-    /// The object ``rspose estimate --json`` prints, without ``seconds`` and the pair file's
-    /// reference errors (``inliers`` is the count there).
-    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        json_to_python(py, &self.inner.report_json())
-    }
-
-    fn __repr__(&self) -> String {
-        let q = &self.inner.quality;
-        format!(
-            "Estimate(method={:?}, inliers={}/{}, iterations={}, inlier_ratio={:.3}, flags={:?})",
-            self.inner.method.name(),
-            self.inner.num_inliers(),
-            self.inner.inliers.len(),
-            self.inner.iterations,
-            q.inlier_ratio,
-            q.flags()
-        )
-    }
-}
-
-/// Why one pair gave no estimate: a pair file that could not be read, or the estimator's
-/// error; `prefix` is the pair file's path where it came from one.
-pub enum Failure {
-    /// Reading the pair file failed.
-    File(PairFileError),
-    /// A gyro-integrated `R_0` was asked for without a log spanning both frames.
-    NoGyroR0,
-    /// The estimator's error.
-    Estimate(EstimateError),
-}
-
-/// Estimates one pair as `rspose estimate` does: its views (row rotations integrated from
-/// a gyro log unless `integrated_rows` is false), `R_0` from the gyro log if asked for, then
-/// the library's `estimate_relative_pose`.
-pub fn run(pair: &PairFile, req: &Request) -> Result<RsEstimate, Failure> {
-    let (mut v1, mut v2) = pair.views().map_err(Failure::File)?;
-    if !req.integrated_rows {
-        (v1, v2) = (v1.constant_rate(), v2.constant_rate());
-    }
-    let mut options = req.options.clone();
-    if req.r0 == R0Request::Gyro {
-        options.r0_source =
-            R0Source::Given(pair.gyro_relative_rotation().ok_or(Failure::NoGyroR0)?);
-    }
-    rs_estimate(&v1, &v2, &pair.matches, &options).map_err(Failure::Estimate)
-}
-
-/// A failure as a Python exception, with the pair file's path as the command line writes
-/// it.
-pub fn failure_error(f: &Failure, path: Option<&PathBuf>) -> PyErr {
-    let prefix = path.map(|p| p.display().to_string());
-    match f {
-        Failure::File(e @ PairFileError::InvalidField { .. }) => match &prefix {
-            Some(p) => PyValueError::new_err(format!("{p}: {e}")),
-            None => pair_file_error(e),
-        },
-        Failure::File(e) => pair_file_error(e),
-        Failure::NoGyroR0 => {
-            let message = "r0_source `gyro` needs a gyro_log whose samples span both frames";
-            PyValueError::new_err(match &prefix {
-                Some(p) => format!("{p}: {message}"),
-                None => message.to_string(),
-            })
-        }
-        Failure::Estimate(e) => estimate_error(e, prefix.as_deref()),
-    }
-}
 
 /// Estimates the relative pose of two rolling-shutter views from pixel matches.
 ///
@@ -273,15 +61,7 @@ pub fn estimate_relative_pose(
     let pair = Pair::from_args(
         x1, x2, camera, cameras, gyro1, gyro2, gyro_log, gravity1, gravity2,
     )?;
-    estimate_pair(py, &pair, &req)
-}
-
-/// Estimates one wrapped pair with the GIL released.
-pub fn estimate_pair(py: Python<'_>, pair: &Pair, req: &Request) -> PyResult<Estimate> {
-    let inner = pair.inner.clone();
-    py.detach(|| run(&inner, req))
-        .map(Estimate::new)
-        .map_err(|f| failure_error(&f, pair.source.path.as_ref()))
+    pair.estimate_with(py, &req)
 }
 
 /// One item of `estimate_many`'s input once read: a pair, or a pair file still to load.
@@ -381,14 +161,16 @@ fn item_of(obj: &Bound<'_, PyAny>, index: usize) -> PyResult<Item> {
 
 /// The result of one pair in `estimate_many`: the estimate, or the failure and the path to
 /// name in its message.
-type Outcome = Result<RsEstimate, (Failure, Option<PathBuf>)>;
+type Outcome = Result<RsEstimate, (PairEstimateError, Option<PathBuf>)>;
 
 fn run_item(item: &Item, req: &Request) -> Outcome {
     match item {
-        Item::Pair(p) => run(&p.inner, req).map_err(|f| (f, p.source.path.clone())),
+        Item::Pair(p) => req
+            .estimate(&p.inner)
+            .map_err(|f| (f, p.source.path.clone())),
         Item::File(path) => {
-            let pair = PairFile::load(path).map_err(|e| (Failure::File(e), None))?;
-            run(&pair, req).map_err(|f| (f, Some(path.clone())))
+            let pair = PairFile::load(path).map_err(|e| (PairEstimateError::Pair(e), None))?;
+            req.estimate(&pair).map_err(|f| (f, Some(path.clone())))
         }
     }
 }
@@ -480,10 +262,10 @@ fn run_parallel(items: &[Item], req: &Request, workers: usize) -> Vec<Outcome> {
     slots
         .into_iter()
         .map(|m| {
-            m.into_inner()
-                .ok()
-                .flatten()
-                .unwrap_or(Err((Failure::Estimate(EstimateError::NoSolution), None)))
+            m.into_inner().ok().flatten().unwrap_or(Err((
+                PairEstimateError::Estimate(EstimateError::NoSolution),
+                None,
+            )))
         })
         .collect()
 }
@@ -502,17 +284,4 @@ pub fn options<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let req = request(method, preset, "integrated", options, "options")?;
     options_dict(py, &req)
-}
-
-/// ``Pair.estimate``: the pair with the arguments of ``estimate_relative_pose``.
-pub fn estimate_wrapped(
-    py: Python<'_>,
-    pair: &Pair,
-    method: &str,
-    rows: &str,
-    preset: &str,
-    options: Option<&Bound<'_, PyDict>>,
-) -> PyResult<Estimate> {
-    let req = request(method, preset, rows, options, "estimate")?;
-    estimate_pair(py, pair, &req)
 }

@@ -1,9 +1,11 @@
 //! The Python module `rspose`: the Rust library `rspose` (gyro-aided relative pose of
 //! rolling-shutter cameras) on numpy arrays. Everything is the library's own code: pairs
 //! are the library's pair files (`pair`), checked by its validation with the command line's
-//! messages; options are the fields of `EstimateOptions` on a preset (`options`); estimates
-//! run the library's `estimate_relative_pose` with the GIL released (`estimate`, which also
-//! spreads many pairs over the cores); the minimal solvers are the generated ones
+//! messages; options are the fields of `EstimateOptions` on a preset, every named choice
+//! parsed by the library's own name tables (`options`); estimates run the library's
+//! pair-file estimate (`data::pair_estimate::estimate_pair`) with the GIL released
+//! (`estimate`, which also spreads many pairs over the cores; `result` holds the `Estimate`
+//! class and the failures' exceptions); the minimal solvers are the generated ones
 //! (`solvers`). Conventions are the library's: pixels `[u, v]` with v the row, the gyro a
 //! gyroscope's reading in camera axes (rad/s), `R = R2 R1^T`, `t = R2 (C1 - C2) / |.|`.
 
@@ -12,6 +14,7 @@ mod convert;
 mod estimate;
 mod options;
 mod pair;
+mod result;
 mod solvers;
 
 use camera::camera_of;
@@ -123,7 +126,7 @@ fn rspose(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<pair::GyroLog>()?;
     m.add_class::<pair::GroundTruth>()?;
     m.add_class::<pair::Pair>()?;
-    m.add_class::<estimate::Estimate>()?;
+    m.add_class::<result::Estimate>()?;
     m.add_function(wrap_pyfunction!(estimate::estimate_relative_pose, m)?)?;
     m.add_function(wrap_pyfunction!(estimate::estimate_many, m)?)?;
     m.add_function(wrap_pyfunction!(estimate::options, m)?)?;

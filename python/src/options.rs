@@ -1,122 +1,64 @@
 //! Keyword options of the estimators: the fields of `rspose::EstimateOptions` with their
 //! Rust names, read onto a preset's options (the defaults are never restated here), and the
-//! options back as a nested dict (`rspose.options()`).
+//! options back as a nested dict (`rspose.options()`). Every name of a choice (preset, rows,
+//! solver, model, `R_0` source) is the library's (`FromStr`/`name()`).
 
 use crate::convert::{matrix_array, matrix_rows, type_name};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
+use rspose_core::data::pair_estimate::{estimate_pair, PairEstimateError, R0Choice, RowModel};
+use rspose_core::data::pair_file::PairFile;
 use rspose_core::estimation::refine::LmOptions;
 use rspose_core::methods::{
-    GrsrpModel, QualityOptions, R0Source, RobustOptions, Threshold, VelocityOptions,
+    Preset, QualityOptions, R0Source, RobustOptions, Threshold, VelocityOptions,
 };
 use rspose_core::minimal::{EssentialSolver, GravitySolver, GrsrpSolver};
-use rspose_core::{EstimateOptions, Method};
-
-/// Where `r0_source` asks for `R_0`: a library source, or the rotation integrated from the
-/// pair's gyro log (resolved per pair, as the command line's `--r0 gyro`).
-#[derive(Debug, Clone, PartialEq)]
-pub enum R0Request {
-    /// As given (the preset's or the caller's).
-    Source(R0Source),
-    /// From the gyro log.
-    Gyro,
-}
+use rspose_core::{Estimate, EstimateOptions, Method};
 
 /// Everything an estimate of one pair needs besides the pair.
 #[derive(Debug, Clone)]
 pub struct Request {
     /// The options.
     pub options: EstimateOptions,
-    /// `R_0` from the gyro log instead of `options.r0_source`.
-    pub r0: R0Request,
-    /// Row rotations from the gyro log (`true`, the default) or each frame's mean rate.
-    pub integrated_rows: bool,
+    /// `Some(R0Choice::Gyro)`: `R_0` from the pair's gyro log instead of
+    /// `options.r0_source` (resolved per pair, as the command line's `--r0 gyro`).
+    pub r0: Option<R0Choice>,
+    /// The row rotations of pairs with a gyro log.
+    pub rows: RowModel,
+}
+
+impl Request {
+    /// Estimates `pair` with these options, rows and `R_0` (the library's
+    /// `estimate_pair`, as `rspose estimate` does).
+    pub fn estimate(&self, pair: &PairFile) -> Result<Estimate, PairEstimateError> {
+        estimate_pair(pair, &self.options, self.rows, self.r0)
+    }
+}
+
+/// A `ValueError` with the library's message.
+fn value_error(e: impl std::fmt::Display) -> PyErr {
+    PyValueError::new_err(e.to_string())
 }
 
 /// The method named `name` (`ValueError` with the library's message otherwise).
 pub fn parse_method(name: &str) -> PyResult<Method> {
-    name.parse::<Method>()
-        .map_err(|e| PyValueError::new_err(e.to_string()))
+    name.parse::<Method>().map_err(value_error)
 }
-
-/// The preset's options for `method`: `"default"` (`EstimateOptions::for_method`) or
-/// `"paper"` (`EstimateOptions::paper`).
-pub fn preset_options(method: Method, preset: &str) -> PyResult<EstimateOptions> {
-    match preset {
-        "default" => Ok(EstimateOptions::for_method(method)),
-        "paper" => Ok(EstimateOptions::paper(method)),
-        other => Err(PyValueError::new_err(format!(
-            "unknown preset `{other}` (expected default or paper)"
-        ))),
-    }
-}
-
-/// The row model named `rows`: `"integrated"` (true) or `"constant"`.
-pub fn parse_rows(rows: &str) -> PyResult<bool> {
-    match rows {
-        "integrated" => Ok(true),
-        "constant" => Ok(false),
-        other => Err(PyValueError::new_err(format!(
-            "unknown rows `{other}` (expected integrated or constant)"
-        ))),
-    }
-}
-
-/// The Python names of the essential solvers.
-const ESSENTIAL: [(&str, EssentialSolver); 2] = [
-    ("five_point", EssentialSolver::FivePoint),
-    ("eight_point", EssentialSolver::EightPoint),
-];
-/// The Python names of the G-RSRP solvers.
-const GRSRP: [(&str, GrsrpSolver); 2] =
-    [("ten", GrsrpSolver::Ten), ("twenty", GrsrpSolver::Twenty)];
-/// The Python names of `grsrp`'s scoring models.
-const GRSRP_MODEL: [(&str, GrsrpModel); 2] =
-    [("paper", GrsrpModel::Paper), ("exact", GrsrpModel::Exact)];
-/// The Python names of the known-gravity solvers.
-const GRAVITY: [(&str, GravitySolver); 2] = [
-    ("six", GravitySolver::Six),
-    ("twelve", GravitySolver::Twelve),
-];
 
 /// The essential solver named `name` (`five_point`, `eight_point`).
 pub fn essential_solver(name: &str) -> PyResult<EssentialSolver> {
-    named(name, &ESSENTIAL, "solver")
+    name.parse().map_err(value_error)
 }
 
 /// The G-RSRP solver named `name` (`ten`, `twenty`).
 pub fn grsrp_solver(name: &str) -> PyResult<GrsrpSolver> {
-    named(name, &GRSRP, "solver")
+    name.parse().map_err(value_error)
 }
 
 /// The known-gravity solver named `name` (`six`, `twelve`).
 pub fn gravity_solver(name: &str) -> PyResult<GravitySolver> {
-    named(name, &GRAVITY, "solver")
-}
-
-/// The value of `choices` named `name`; `ValueError` naming `what` was asked for and
-/// listing the names otherwise.
-fn named<T: Copy>(name: &str, choices: &[(&str, T)], what: &str) -> PyResult<T> {
-    choices
-        .iter()
-        .find(|(n, _)| *n == name)
-        .map(|(_, v)| *v)
-        .ok_or_else(|| {
-            let names: Vec<&str> = choices.iter().map(|(n, _)| *n).collect();
-            PyValueError::new_err(format!(
-                "unknown {what} `{name}` (expected {})",
-                names.join(" or ")
-            ))
-        })
-}
-
-/// The name of `value` among `choices`.
-fn name_of<T: PartialEq>(value: T, choices: &[(&'static str, T)]) -> &'static str {
-    choices
-        .iter()
-        .find(|(_, v)| *v == value)
-        .map_or("", |(n, _)| n)
+    name.parse().map_err(value_error)
 }
 
 fn value<'py, T: for<'a> FromPyObject<'a, 'py>>(
@@ -270,21 +212,25 @@ fn set_group<T>(
     Ok(())
 }
 
-fn r0_request(v: &Bound<'_, PyAny>) -> PyResult<R0Request> {
+/// `r0_source`: a name (`gyro` deferred to each pair) or a 3 x 3 rotation, set on `o`.
+fn set_r0(o: &mut EstimateOptions, v: &Bound<'_, PyAny>) -> PyResult<Option<R0Choice>> {
     if let Ok(s) = v.cast::<PyString>() {
-        return match s.to_cow()?.as_ref() {
-            "gsrp" => Ok(R0Request::Source(R0Source::Gsrp)),
-            "rectified" => Ok(R0Request::Source(R0Source::Rectified)),
-            "gyro" => Ok(R0Request::Gyro),
-            other => Err(PyValueError::new_err(format!(
-                "option `r0_source`: unknown source `{other}` (expected gsrp, rectified, gyro or a 3 x 3 rotation)"
-            ))),
-        };
+        let name = s.to_cow()?;
+        let choice: R0Choice = name.parse().map_err(|_| {
+            PyValueError::new_err(format!(
+                "option `r0_source`: unknown source `{name}` (expected {} or a 3 x 3 rotation)",
+                R0Choice::NAMES.join(", ")
+            ))
+        })?;
+        if let Some(source) = choice.fixed_source() {
+            o.r0_source = source;
+            return Ok(None);
+        }
+        return Ok(Some(choice));
     }
     let rows = matrix_rows(v, "option `r0_source`")?;
-    Ok(R0Request::Source(R0Source::Given(
-        rspose_core::data::pair_file::matrix_from_rows(&rows),
-    )))
+    o.r0_source = R0Source::Given(rspose_core::data::pair_file::matrix_from_rows(&rows));
+    Ok(None)
 }
 
 /// A `ValueError` about option `name`.
@@ -303,8 +249,11 @@ pub fn request(
     function: &str,
 ) -> PyResult<Request> {
     let method = parse_method(method)?;
-    let mut o = preset_options(method, preset)?;
-    let mut r0 = R0Request::Source(o.r0_source);
+    let mut o = preset
+        .parse::<Preset>()
+        .map_err(value_error)?
+        .options(method);
+    let mut r0 = None;
     if let Some(d) = options {
         for (k, v) in d.iter() {
             let key = text(&k, "keyword")?;
@@ -322,14 +271,15 @@ pub fn request(
                         grsrp_solver(&text(&v, &key)?).map_err(|e| in_option(&key, e))?
                 }
                 "grsrp_model" => {
-                    o.grsrp_model = named(&text(&v, &key)?, &GRSRP_MODEL, "model")
-                        .map_err(|e| in_option(&key, e))?
+                    o.grsrp_model = text(&v, &key)?
+                        .parse()
+                        .map_err(|e| in_option(&key, value_error(e)))?
                 }
                 "gravity_solver" => {
                     o.gravity_solver =
                         gravity_solver(&text(&v, &key)?).map_err(|e| in_option(&key, e))?
                 }
-                "r0_source" => r0 = r0_request(&v)?,
+                "r0_source" => r0 = set_r0(&mut o, &v)?,
                 "nrsrp_cauchy_px" => o.nrsrp_cauchy_px = float(&v, &key)?,
                 "refine_readout" => {
                     o.readout = flag(&v, &key)?
@@ -345,13 +295,10 @@ pub fn request(
             }
         }
     }
-    if let R0Request::Source(s) = r0 {
-        o.r0_source = s;
-    }
     Ok(Request {
         options: o,
         r0,
-        integrated_rows: parse_rows(rows)?,
+        rows: rows.parse().map_err(value_error)?,
     })
 }
 
@@ -398,15 +345,15 @@ pub fn options_dict<'py>(py: Python<'py>, req: &Request) -> PyResult<Bound<'py, 
     refinement.set_item("step_tolerance", l.step_tolerance)?;
     refinement.set_item("fd_step", l.fd_step)?;
     d.set_item("refinement", refinement)?;
-    d.set_item("essential_solver", name_of(o.essential_solver, &ESSENTIAL))?;
-    d.set_item("grsrp_solver", name_of(o.grsrp_solver, &GRSRP))?;
-    d.set_item("grsrp_model", name_of(o.grsrp_model, &GRSRP_MODEL))?;
-    d.set_item("gravity_solver", name_of(o.gravity_solver, &GRAVITY))?;
-    match (&req.r0, o.r0_source) {
-        (R0Request::Gyro, _) => d.set_item("r0_source", "gyro")?,
-        (_, R0Source::Gsrp) => d.set_item("r0_source", "gsrp")?,
-        (_, R0Source::Rectified) => d.set_item("r0_source", "rectified")?,
-        (_, R0Source::Given(m)) => d.set_item("r0_source", matrix_array(py, &m))?,
+    d.set_item("essential_solver", o.essential_solver.name())?;
+    d.set_item("grsrp_solver", o.grsrp_solver.name())?;
+    d.set_item("grsrp_model", o.grsrp_model.name())?;
+    d.set_item("gravity_solver", o.gravity_solver.name())?;
+    match (req.r0, o.r0_source) {
+        (Some(choice), _) => d.set_item("r0_source", choice.name())?,
+        (None, R0Source::Gsrp) => d.set_item("r0_source", R0Choice::Gsrp.name())?,
+        (None, R0Source::Rectified) => d.set_item("r0_source", R0Choice::Rectified.name())?,
+        (None, R0Source::Given(m)) => d.set_item("r0_source", matrix_array(py, &m))?,
     }
     d.set_item("nrsrp_cauchy_px", o.nrsrp_cauchy_px)?;
     d.set_item("refine_readout", o.readout.is_some())?;

@@ -5,6 +5,8 @@
 
 use crate::camera::{cameras_of, Camera};
 use crate::convert::{pair_file_error, rows_array, rows_of, type_name, vector_array, vector_of};
+use crate::options::{request, Request};
+use crate::result::{failure_error, Estimate};
 use numpy::ndarray::Array1;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::exceptions::{PyTypeError, PyValueError};
@@ -227,6 +229,15 @@ fn gravity_value(
 }
 
 impl Pair {
+    /// Estimates this pair with the GIL released; errors of a pair loaded from a file name
+    /// the file.
+    pub fn estimate_with(&self, py: Python<'_>, req: &Request) -> PyResult<Estimate> {
+        let inner = self.inner.clone();
+        py.detach(|| req.estimate(&inner))
+            .map(Estimate::new)
+            .map_err(|f| failure_error(&f, self.source.path.as_ref()))
+    }
+
     /// A checked pair from Python arguments (see the class documentation).
     #[allow(clippy::too_many_arguments)]
     pub fn from_args(
@@ -425,8 +436,9 @@ impl Pair {
         rows: &str,
         preset: &str,
         options: Option<&Bound<'_, PyDict>>,
-    ) -> PyResult<crate::estimate::Estimate> {
-        crate::estimate::estimate_wrapped(py, self, method, rows, preset, options)
+    ) -> PyResult<Estimate> {
+        let req = request(method, preset, rows, options, "estimate")?;
+        self.estimate_with(py, &req)
     }
 
     /// Writes the pair file (JSON) atomically; ``compact`` writes one line.

@@ -14,14 +14,14 @@
 use nalgebra::Vector3;
 use rspose::estimation::gyro_bias::GyroBiasOptions;
 use rspose::model::geometry::{rotation_error_deg, translation_error_deg};
+use rspose::stats::upper_median;
 use rspose::{estimate_relative_pose, simulate, EstimateOptions, Method, SimulationOptions};
 
 /// The bias added to every reading, rad/s, camera axes.
 const BIAS: [f64; 3] = [0.03, -0.03, 0.03];
 
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
+fn median(v: &[f64]) -> f64 {
+    upper_median(v.iter().copied()).unwrap_or(f64::NAN)
 }
 
 fn mean(v: &[f64]) -> f64 {
@@ -94,17 +94,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         let (mr, mt, mrb, mtb) = (mean(&rot), mean(&tra), mean(&rot_b), mean(&tra_b));
         let n = err.len();
-        let me = median(&mut err);
+        let me = median(&err);
         let q = |p: f64| err[((p * (n.max(1) - 1) as f64).round()) as usize];
         println!(
             "| {noise} | {:.4} / {:.3} ({mr:.4} / {mt:.3}) | {:.4} / {:.3} ({mrb:.4} / {mtb:.3}) | {me:.4} ({:.4}-{:.4}) | {:.4} |",
-            median(&mut rot),
-            median(&mut tra),
-            median(&mut rot_b),
-            median(&mut tra_b),
+            median(&rot),
+            median(&tra),
+            median(&rot_b),
+            median(&tra_b),
             q(0.1),
             q(0.9),
-            median(&mut stds),
+            median(&stds),
         );
     }
     Ok(())

@@ -9,6 +9,7 @@
 //!
 //! The modules follow the architecture (`docs/ARCHITECTURE.md` §3):
 //!
+//! - [`names`]: the name tables of the option enums; [`stats`]: means and medians.
 //! - [`generated`] and [`minimal`]: the minimal solvers, emitted by `mingen` from
 //!   `templates/*.mp` on the numeric back end of the `mingen-runtime` crate, and their
 //!   adapters for the estimator.
@@ -22,6 +23,8 @@
 
 pub mod generated;
 pub mod minimal;
+pub mod names;
+pub mod stats;
 
 pub mod data;
 pub mod estimation;
@@ -29,7 +32,8 @@ pub mod experiment;
 pub mod methods;
 pub mod model;
 
-pub use data::pair_file::{Match, PairFile};
+pub use data::pair_file::PairFile;
 pub use data::simulate::{simulate, SimulationOptions};
 pub use methods::{estimate_relative_pose, Estimate, EstimateError, EstimateOptions, Method};
 pub use model::camera::{Camera, View};
+pub use model::matches::Match;

@@ -36,6 +36,12 @@ pub enum EssentialSolver {
     EightPoint,
 }
 
+crate::names::name_table!(
+    EssentialSolver,
+    "solver",
+    [FivePoint = "five_point", EightPoint = "eight_point"]
+);
+
 impl EssentialSolver {
     /// Points per sample.
     pub fn sample_size(&self) -> usize {
@@ -135,6 +141,8 @@ pub enum GrsrpSolver {
     /// `grsrp`: the paper's 6-unknown formulation, 20 solutions (±t).
     Twenty,
 }
+
+crate::names::name_table!(GrsrpSolver, "solver", [Ten = "ten", Twenty = "twenty"]);
 
 /// One minimal G-RSRP sample: normalised image points `x = [m.x, m.y]` (bearing `[x, y, 1]`),
 /// rows `v` (pixels), `w = −λ ω` (rad/row, the paper's sign: [`crate::model::camera::View::paper_rate_per_row`]), initial rotation `R_0`.
@@ -329,6 +337,8 @@ pub enum GravitySolver {
     /// monomial order) after its equations are row-reduced on the data.
     Twelve,
 }
+
+crate::names::name_table!(GravitySolver, "solver", [Six = "six", Twelve = "twelve"]);
 
 impl GravitySolver {
     /// Solve one sample; appends `(R = G2^T Ry G1, t / |t|)` for each finite solution

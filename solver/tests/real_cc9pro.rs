@@ -5,6 +5,7 @@
 //! global-shutter 5-point method and stay within 0.1° (median); with the gyro sign flipped
 //! they fall behind it, which pins the convention to a real gyroscope.
 
+use rspose::data::pair_estimate::RowModel;
 use rspose::data::pair_file::PairFile;
 use rspose::estimate_relative_pose;
 use rspose::experiment::real::{run_real, RealRow};
@@ -32,12 +33,12 @@ fn row(rows: &[RealRow], m: Method) -> &RealRow {
     rows.iter().find(|r| r.method == m.name()).unwrap()
 }
 
-fn run(pairs: &[PairFile], constant_rows: bool) -> Vec<RealRow> {
+fn run(pairs: &[PairFile], rows: RowModel) -> Vec<RealRow> {
     let rows = run_real(
         pairs,
         &Method::ALL,
         |m, _| EstimateOptions::for_method(m),
-        constant_rows,
+        rows,
     );
     for r in &rows {
         eprintln!(
@@ -51,7 +52,7 @@ fn run(pairs: &[PairFile], constant_rows: bool) -> Vec<RealRow> {
 #[test]
 fn gyro_methods_beat_the_global_shutter_baseline_on_a_real_recording() {
     let pairs = pairs();
-    let rows = run(&pairs, false);
+    let rows = run(&pairs, RowModel::Integrated);
     let gsrp = row(&rows, Method::Gsrp);
     assert_eq!(gsrp.failures, 0);
     for m in [Method::Grsrp, Method::GrsrpPlus, Method::Rectified] {
@@ -66,7 +67,7 @@ fn gyro_methods_beat_the_global_shutter_baseline_on_a_real_recording() {
         );
     }
     // Rows integrated from the samples are at least as good as each frame's mean rate.
-    let constant = run(&pairs, true);
+    let constant = run(&pairs, RowModel::Constant);
     assert!(
         row(&rows, Method::Rectified).rot_median <= row(&constant, Method::Rectified).rot_median
     );
@@ -75,7 +76,7 @@ fn gyro_methods_beat_the_global_shutter_baseline_on_a_real_recording() {
 #[test]
 fn the_opposite_gyro_sign_is_worse_than_no_gyro() {
     let pairs = pairs();
-    let gsrp = row(&run(&pairs, false), Method::Gsrp).rot_median;
+    let gsrp = row(&run(&pairs, RowModel::Integrated), Method::Gsrp).rot_median;
     for m in [Method::GrsrpPlus, Method::Rectified] {
         let mut diffs: Vec<f64> = pairs
             .iter()

@@ -9,6 +9,7 @@
 use rspose::experiment::{
     scene_trial, summarize_levels, to_csv, trial_line, trial_seed, MethodOutcome, Sweep,
 };
+use rspose::methods::Preset;
 use rspose::{EstimateOptions, Method};
 use std::path::Path;
 
@@ -20,12 +21,8 @@ fn read(path: &Path) -> String {
     std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
-fn options(paper: bool, m: Method, seed: u64) -> EstimateOptions {
-    let mut o = if paper {
-        EstimateOptions::paper(m)
-    } else {
-        EstimateOptions::for_method(m)
-    };
+fn options(preset: Preset, m: Method, seed: u64) -> EstimateOptions {
+    let mut o = preset.options(m);
     o.robust.seed = seed;
     o
 }
@@ -55,7 +52,7 @@ fn parse_outcome(line: &str) -> (usize, MethodOutcome) {
     )
 }
 
-fn check(dir: &Path, paper: bool) {
+fn check(dir: &Path, preset: Preset) {
     let methods = Method::ALL;
     for sweep in SWEEPS {
         let trials = read(&dir.join(format!("{}-trials.csv", sweep.name())));
@@ -68,7 +65,7 @@ fn check(dir: &Path, paper: bool) {
         for (li, level) in levels.iter().enumerate() {
             for ti in [0, TRIALS - 1] {
                 let seed = trial_seed(SEED, li, ti);
-                let outcomes = scene_trial(level, seed, &methods, |m| options(paper, m, seed));
+                let outcomes = scene_trial(level, seed, &methods, |m| options(preset, m, seed));
                 assert_eq!(outcomes.len(), per_trial, "{sweep:?}");
                 for (k, o) in outcomes.iter().enumerate() {
                     let at = (li * TRIALS + ti) * per_trial + k;
@@ -102,7 +99,7 @@ fn check(dir: &Path, paper: bool) {
 fn committed_paper_preset_results_are_fresh() {
     check(
         &Path::new(env!("CARGO_MANIFEST_DIR")).join("../results"),
-        true,
+        Preset::Paper,
     );
 }
 
@@ -110,7 +107,7 @@ fn committed_paper_preset_results_are_fresh() {
 fn committed_default_preset_results_are_fresh() {
     check(
         &Path::new(env!("CARGO_MANIFEST_DIR")).join("../results/default"),
-        false,
+        Preset::Default,
     );
 }
 

@@ -1,13 +1,15 @@
 //! `rspose compare`: every method on a set of pair files (e.g. from a real recording),
 //! against each pair's rotation reference (ground truth, else the gyro-integrated rotation).
 
-use super::estimate::{apply_r0, GrsrpModelChoice, R0Choice, Rows};
-use super::{CliError, Preset, ALL_METHODS};
+use super::estimate::r0_source;
+use super::{preset_options, CliError, Preset, ALL_METHODS, PRESET_HELP};
+use rspose::data::pair_estimate::{R0Choice, RowModel};
 use rspose::data::pair_file::PairFile;
 use rspose::estimation::gyro_bias::GyroBiasOptions;
 use rspose::estimation::readout::ReadoutOptions;
 use rspose::experiment::real::{reference_rotation, run_real, to_markdown};
 use rspose::experiment::READOUT_REFINED_LABEL;
+use rspose::methods::GrsrpModel;
 use std::path::{Path, PathBuf};
 
 /// The `compare` row of `rectified` with the gyro bias refined.
@@ -19,18 +21,17 @@ pub struct Args {
     /// Pair files, or directories (every `pair*.json` in them).
     #[arg(required = true)]
     pairs: Vec<PathBuf>,
-    /// RANSAC/refinement settings.
-    #[arg(long, value_enum, default_value_t = Preset::Default)]
+    #[arg(long, value_enum, default_value_t = Preset::Default, help = PRESET_HELP)]
     preset: Preset,
     /// Where grsrp/grsrp+ take R_0 from (default: the preset's).
     #[arg(long, value_enum)]
     r0: Option<R0Choice>,
     /// The model grsrp/grsrp+ score and refine with (default: the preset's).
     #[arg(long, value_enum)]
-    grsrp_model: Option<GrsrpModelChoice>,
+    grsrp_model: Option<GrsrpModel>,
     /// Row rotations for pairs with a gyro log.
-    #[arg(long, value_enum, default_value_t = Rows::Integrated)]
-    rows: Rows,
+    #[arg(long, value_enum, default_value_t = RowModel::Integrated)]
+    rows: RowModel,
     /// RANSAC sampler seed.
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -95,10 +96,12 @@ pub fn run(a: Args) -> Result<(), CliError> {
         .collect::<Result<Vec<_>, _>>()?;
     let mut options = Vec::with_capacity(pairs.len());
     for (pair, path) in pairs.iter().zip(&paths) {
-        let mut o = a.preset.options(rspose::Method::GrsrpPlus, a.seed);
-        apply_r0(&mut o, a.r0, pair, path)?;
+        let mut o = preset_options(a.preset, rspose::Method::GrsrpPlus, a.seed);
+        if let Some(r0) = a.r0 {
+            o.r0_source = r0_source(r0, pair, path)?;
+        }
         if let Some(m) = a.grsrp_model {
-            o.grsrp_model = m.model();
+            o.grsrp_model = m;
         }
         options.push(o);
     }
@@ -121,14 +124,13 @@ pub fn run(a: Args) -> Result<(), CliError> {
             ..options[k].clone()
         }
     };
-    let constant = a.rows == Rows::Constant;
-    let mut rows = run_real(&pairs, &methods, options_for, constant);
+    let mut rows = run_real(&pairs, &methods, options_for, a.rows);
     if a.refine_readout {
         let refined = |method, pair: &PairFile| rspose::EstimateOptions {
             readout: Some(ReadoutOptions::default()),
             ..options_for(method, pair)
         };
-        let mut extra = run_real(&pairs, &[rspose::Method::Rectified], refined, constant);
+        let mut extra = run_real(&pairs, &[rspose::Method::Rectified], refined, a.rows);
         for r in &mut extra {
             r.method = READOUT_REFINED_LABEL.to_string();
         }
@@ -139,7 +141,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             gyro_bias: Some(GyroBiasOptions::default()),
             ..options_for(method, pair)
         };
-        let mut extra = run_real(&pairs, &[rspose::Method::Rectified], refined, constant);
+        let mut extra = run_real(&pairs, &[rspose::Method::Rectified], refined, a.rows);
         for r in &mut extra {
             r.method = BIAS_REFINED_LABEL.to_string();
         }

@@ -1,7 +1,7 @@
 //! `rspose demo`: one simulated scene at 2.5 rad/s with the paper's noise, every method;
 //! optionally with linear velocity (`--linear`) and outliers (`--outliers`).
 
-use super::{CliError, Preset, ALL_METHODS};
+use super::{preset_options, CliError, Preset, ALL_METHODS, PRESET_HELP};
 use rspose::data::simulate::simulate;
 use rspose::experiment::{level_simulation, run_methods, Level, Sweep};
 
@@ -11,8 +11,7 @@ pub struct Args {
     /// Scene seed.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// RANSAC/refinement settings.
-    #[arg(long, value_enum, default_value_t = Preset::Default)]
+    #[arg(long, value_enum, default_value_t = Preset::Default, help = PRESET_HELP)]
     preset: Preset,
     /// Linear velocity of each camera (m/s); 20 is the angular-linear sweep's hardest level,
     /// where `rectified+v` differs from `rectified`.
@@ -50,7 +49,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         "method", "rotation (deg)", "translation (deg)", "inliers", "time (ms)"
     );
     let preset = a.preset;
-    for o in run_methods(&pair, &ALL_METHODS, |m| preset.options(m, a.seed)) {
+    for o in run_methods(&pair, &ALL_METHODS, |m| preset_options(preset, m, a.seed)) {
         let ms = o.seconds * 1e3;
         match (o.rotation_error_deg, o.translation_error_deg, o.inliers) {
             (Some(r), Some(t), Some(n)) => {

@@ -1,12 +1,13 @@
 //! `rspose estimate`: relative pose of one pair file.
 
-use super::{CliError, Preset};
+use super::{preset_options, CliError, Preset, PRESET_HELP};
+use rspose::data::pair_estimate::{estimate_pair, PairEstimateError, R0Choice, RowModel};
 use rspose::data::pair_file::PairFile;
 use rspose::experiment::evaluate::pose_errors;
 use rspose::methods::{GrsrpModel, R0Source};
 use rspose::model::geometry::rotation_error_deg;
-use rspose::{estimate_relative_pose, EstimateError, Method};
-use std::path::PathBuf;
+use rspose::{EstimateError, Method};
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Options of `rspose estimate`.
@@ -14,11 +15,10 @@ use std::time::Instant;
 pub struct Args {
     /// The pair file (see `rspose::data::pair_file` for the schema).
     pair: PathBuf,
-    /// Method: gsrp, nrsrp, grsrp, grsrp+, rectified, rectified+v.
+    /// Method: gsrp, nrsrp, grsrp, grsrp+, rectified, rectified+v or grsrp-gravity.
     #[arg(long, default_value = "grsrp+")]
     method: String,
-    /// RANSAC/refinement settings.
-    #[arg(long, value_enum, default_value_t = Preset::Default)]
+    #[arg(long, value_enum, default_value_t = Preset::Default, help = PRESET_HELP)]
     preset: Preset,
     /// RANSAC sampler seed.
     #[arg(long, default_value_t = 0)]
@@ -30,11 +30,11 @@ pub struct Args {
     /// The model grsrp/grsrp+ score and refine with: the preset's choice (paper: `paper`,
     /// default: `exact`).
     #[arg(long, value_enum)]
-    grsrp_model: Option<GrsrpModelChoice>,
+    grsrp_model: Option<GrsrpModel>,
     /// Row rotations from a gyro log: `integrated` (exact, the default) or `constant` (the
     /// mean rate over each readout). Without a log the constant `gyro` rates are used.
-    #[arg(long, value_enum, default_value_t = Rows::Integrated)]
-    rows: Rows,
+    #[arg(long, value_enum, default_value_t = RowModel::Integrated)]
+    rows: RowModel,
     /// Refine the readout time with the pose (a common scale of both views' nominal
     /// readout; gyro-aided methods only) and print it.
     #[arg(long)]
@@ -48,66 +48,25 @@ pub struct Args {
     json: bool,
 }
 
-/// Source of `R_0` on the command line.
-#[derive(Debug, Clone, Copy, clap::ValueEnum, PartialEq, Eq)]
-pub enum R0Choice {
-    /// The gsrp estimate.
-    Gsrp,
-    /// The rectified estimate.
-    Rectified,
-    /// Integrated from the pair's gyro log.
-    Gyro,
-}
-
-/// The model `grsrp`/`grsrp+` score and refine with, on the command line.
-#[derive(Debug, Clone, Copy, clap::ValueEnum, PartialEq, Eq)]
-pub enum GrsrpModelChoice {
-    /// The paper's linearised model.
-    Paper,
-    /// The exact angular model.
-    Exact,
-}
-
-impl GrsrpModelChoice {
-    /// The library's option value.
-    pub fn model(self) -> GrsrpModel {
-        match self {
-            GrsrpModelChoice::Paper => GrsrpModel::Paper,
-            GrsrpModelChoice::Exact => GrsrpModel::Exact,
+/// The message of a failed pair-file estimate: exit code 1 for a valid pair without an
+/// answer, 2 for bad input; `path` prefixes the message as every subcommand names the file.
+pub fn pair_error(e: PairEstimateError, path: &Path) -> CliError {
+    let path = path.display();
+    match e {
+        PairEstimateError::Estimate(e @ EstimateError::NoSolution) => {
+            CliError::failed(format!("{path}: {e}"))
         }
+        PairEstimateError::NoGyroRotation(_) => CliError::input(format!(
+            "{path}: --r0 gyro needs a gyro_log whose samples span both frames"
+        )),
+        other => CliError::input(format!("{path}: {other}")),
     }
 }
 
-/// Row-rotation model for pairs with a gyro log.
-#[derive(Debug, Clone, Copy, clap::ValueEnum, PartialEq, Eq)]
-pub enum Rows {
-    /// Integrated from the samples over each readout.
-    Integrated,
-    /// Constant: each frame's mean rate.
-    Constant,
-}
-
-/// The options for `method` with the command line's `--r0` applied.
-pub fn apply_r0(
-    options: &mut rspose::EstimateOptions,
-    r0: Option<R0Choice>,
-    pair: &PairFile,
-    path: &std::path::Path,
-) -> Result<(), CliError> {
-    options.r0_source = match r0 {
-        None => return Ok(()),
-        Some(R0Choice::Gsrp) => R0Source::Gsrp,
-        Some(R0Choice::Rectified) => R0Source::Rectified,
-        Some(R0Choice::Gyro) => {
-            R0Source::Given(pair.gyro_relative_rotation().ok_or_else(|| {
-                CliError::input(format!(
-                    "{}: --r0 gyro needs a gyro_log whose samples span both frames",
-                    path.display()
-                ))
-            })?)
-        }
-    };
-    Ok(())
+/// The `R_0` source `r0` names for `pair`, checked before any estimate.
+pub fn r0_source(r0: R0Choice, pair: &PairFile, path: &Path) -> Result<R0Source, CliError> {
+    r0.source(pair)
+        .map_err(|e| pair_error(PairEstimateError::NoGyroRotation(e), path))
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
@@ -116,16 +75,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
         .parse()
         .map_err(|e: rspose::methods::ParseMethodError| CliError::input(e.to_string()))?;
     let pair = PairFile::load(&a.pair).map_err(|e| CliError::input(e.to_string()))?;
-    let (mut v1, mut v2) = pair
-        .views()
-        .map_err(|e| CliError::input(format!("{}: {e}", a.pair.display())))?;
-    if a.rows == Rows::Constant {
-        (v1, v2) = (v1.constant_rate(), v2.constant_rate());
-    }
-    let mut options = a.preset.options(method, a.seed);
-    apply_r0(&mut options, a.r0, &pair, &a.pair)?;
+    let mut options = preset_options(a.preset, method, a.seed);
     if let Some(m) = a.grsrp_model {
-        options.grsrp_model = m.model();
+        options.grsrp_model = m;
     }
     if a.refine_readout {
         options.readout = Some(rspose::estimation::readout::ReadoutOptions::default());
@@ -134,10 +86,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         options.gyro_bias = Some(rspose::estimation::gyro_bias::GyroBiasOptions::default());
     }
     let start = Instant::now();
-    let est = estimate_relative_pose(&v1, &v2, &pair.matches, &options).map_err(|e| match e {
-        EstimateError::NoSolution => CliError::failed(format!("{}: {e}", a.pair.display())),
-        other => CliError::input(format!("{}: {other}", a.pair.display())),
-    })?;
+    let est = estimate_pair(&pair, &options, a.rows, a.r0).map_err(|e| pair_error(e, &a.pair))?;
     let seconds = start.elapsed().as_secs_f64();
     let errors = pair.ground_truth.as_ref().map(|gt| pose_errors(&est, gt));
     let gyro_difference = pair
@@ -203,10 +152,11 @@ pub fn run(a: Args) -> Result<(), CliError> {
             );
         }
         if let Some(k) = est.readout_scale {
+            let camera = &pair.cameras[0];
             println!(
                 "readout      {:.2} ms (nominal {:.2} ms, x{k:.3})",
-                k * v1.camera.readout * v1.camera.lines() * 1e3,
-                v1.camera.readout * v1.camera.lines() * 1e3
+                k * camera.readout * camera.lines() * 1e3,
+                camera.readout * camera.lines() * 1e3
             );
         }
         if let Some(rspose::estimation::gyro_bias::EstimatedBias { bias: b, std: s }) =

@@ -1,7 +1,7 @@
 //! `rspose experiment SWEEP`: one of the paper's synthetic sweeps or one of this library's
 //! (gravity noise, readout error), every method.
 
-use super::{CliError, Preset, ALL_METHODS};
+use super::{preset_options, CliError, Preset, ALL_METHODS, PRESET_HELP};
 use indicatif::{ProgressBar, ProgressStyle};
 use rspose::experiment::{
     render_svg, run_sweep, scene_trial, to_csv, trials_csv, write_output, ExperimentOptions, Sweep,
@@ -26,8 +26,8 @@ pub struct Args {
     /// Worker threads (default: all cores).
     #[arg(long)]
     threads: Option<usize>,
-    /// RANSAC/refinement settings (the paper's by default, to compare with its figures).
-    #[arg(long, value_enum, default_value_t = Preset::Paper)]
+    // The paper's settings by default, to compare with its figures.
+    #[arg(long, value_enum, default_value_t = Preset::Paper, help = PRESET_HELP)]
     preset: Preset,
 }
 
@@ -69,7 +69,11 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let result = run_sweep(
         sweep,
         &options,
-        |level, seed| scene_trial(level, seed, &ALL_METHODS, |m| preset.options(m, seed)),
+        |level, seed| {
+            scene_trial(level, seed, &ALL_METHODS, |m| {
+                preset_options(preset, m, seed)
+            })
+        },
         |done, _| {
             if let Some(b) = &bar {
                 b.set_position(done as u64);

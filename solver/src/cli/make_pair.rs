@@ -6,7 +6,9 @@ use rspose::data::kalibr::{parse_kalibr, CalibrationImportError, ImportedRig};
 use rspose::data::opencv_calibration::parse_opencv_calibration;
 use rspose::data::pair_file::{matrix_from_rows, GyroLogSpec, Match, PairFile, PairFileError};
 use rspose::model::camera::Camera;
-use rspose::model::gyro_log::{parse_gyro_csv, GyroLog, GyroLogError, MAX_SAMPLE_GAP};
+use rspose::model::gyro_log::{
+    parse_gyro_csv, plausible_rate, GyroLog, GyroLogError, MAX_ANGULAR_VELOCITY, MAX_SAMPLE_GAP,
+};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -180,9 +182,10 @@ pub fn load_calibration(path: &Path) -> Result<RigCalibration, CliError> {
         return Err(bad("time_offset must be finite".into()));
     }
     if let Some(b) = c.gyro_bias {
-        let n = nalgebra::Vector3::from(b).norm();
-        if !(n.is_finite() && n <= rspose::model::camera::MAX_ANGULAR_VELOCITY) {
-            return Err(bad("gyro_bias must be finite and at most 100 rad/s".into()));
+        if !plausible_rate(&nalgebra::Vector3::from(b)) {
+            return Err(bad(format!(
+                "gyro_bias must be finite and at most {MAX_ANGULAR_VELOCITY} rad/s"
+            )));
         }
     }
     GyroLog::new(

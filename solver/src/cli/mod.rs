@@ -9,7 +9,7 @@ mod experiment;
 mod make_pair;
 mod simulate;
 
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{Parser, Subcommand};
 use rspose::{EstimateOptions, Method};
 use std::path::PathBuf;
 
@@ -41,25 +41,19 @@ enum Command {
     DumpInstances(dump_instances::Args),
 }
 
-/// RANSAC/refinement settings to use.
-#[derive(Debug, Clone, Copy, ValueEnum, PartialEq, Eq)]
-pub enum Preset {
-    /// The paper: 200 RANSAC iterations, threshold 0.01 on |m2' E m1|.
-    Paper,
-    /// The library defaults: adaptive RANSAC, 1 px Sampson threshold, local optimisation.
-    Default,
-}
+pub use rspose::methods::Preset;
 
-impl Preset {
-    /// The estimator options of this preset for `method`, with a sampler seed.
-    pub fn options(self, method: Method, seed: u64) -> EstimateOptions {
-        let mut o = match self {
-            Preset::Paper => EstimateOptions::paper(method),
-            Preset::Default => EstimateOptions::for_method(method),
-        };
-        o.robust.seed = seed;
-        o
-    }
+/// The help of every `--preset` flag.
+pub const PRESET_HELP: &str = "RANSAC/refinement settings: `default` (the library defaults: \
+adaptive RANSAC, a 2.5 px Sampson threshold scaled per match by its row noise, local \
+optimisation, final refinement) or `paper` (200 RANSAC iterations, threshold 0.01 on \
+|m2' E m1|)";
+
+/// The estimator options of `preset` for `method`, with a sampler seed.
+pub fn preset_options(preset: Preset, method: Method, seed: u64) -> EstimateOptions {
+    let mut o = preset.options(method);
+    o.robust.seed = seed;
+    o
 }
 
 /// Every method, in the order tables and plots list them.

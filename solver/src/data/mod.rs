@@ -6,6 +6,7 @@ pub mod atomic_file;
 pub mod instances;
 pub mod kalibr;
 pub mod opencv_calibration;
+pub mod pair_estimate;
 pub mod pair_file;
 pub mod simulate;
 pub mod yaml;

@@ -59,14 +59,16 @@
 //! `ground_truth.rotation`, ...).
 
 use crate::model::camera::{Camera, CameraError, View};
-use crate::model::gyro_log::{GyroLog, GyroLogError, MAX_SAMPLE_GAP};
+use crate::model::gyro_log::{
+    plausible_rate, GyroLog, GyroLogError, MAX_ANGULAR_VELOCITY, MAX_SAMPLE_GAP,
+};
 use nalgebra::{Matrix3, Vector3};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
-/// One pixel correspondence `[[u1, v1], [u2, v2]]` (image 1, image 2).
-pub type Match = [[f64; 2]; 2];
+/// The pair file's matches are the model's ([`crate::model::matches::Match`]).
+pub use crate::model::matches::Match;
 
 /// Ground truth stored with a simulated pair (see the module documentation for conventions).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -427,11 +429,13 @@ fn camera_field(key: &str, camera: &Camera, e: &CameraError) -> String {
 /// A gyro bias must be finite and below the plausible rate (a larger one is a unit or
 /// sign mistake, not a bias).
 fn check_bias(field: &str, b: &[f64; 3]) -> Result<(), PairFileError> {
-    let n = Vector3::from(*b).norm();
-    if n.is_finite() && n <= crate::model::camera::MAX_ANGULAR_VELOCITY {
+    if plausible_rate(&Vector3::from(*b)) {
         Ok(())
     } else {
-        Err(invalid(field, "must be finite and at most 100 rad/s"))
+        Err(invalid(
+            field,
+            format!("must be finite and at most {MAX_ANGULAR_VELOCITY} rad/s"),
+        ))
     }
 }
 
@@ -514,11 +518,12 @@ impl PairFile {
         }
         if let Some(g) = &self.gyro {
             for (i, w) in g.iter().enumerate() {
-                let speed = Vector3::from(*w).norm();
-                if speed.is_nan() || speed > crate::model::camera::MAX_ANGULAR_VELOCITY {
+                if !plausible_rate(&Vector3::from(*w)) {
                     return Err(invalid(
                         format!("gyro[{i}]"),
-                        "angular velocity must be finite and at most 100 rad/s",
+                        format!(
+                            "angular velocity must be finite and at most {MAX_ANGULAR_VELOCITY} rad/s"
+                        ),
                     ));
                 }
             }

@@ -7,7 +7,7 @@
 //! gyro-aided method run with the rates as given), Levenberg-Marquardt refines `(R, t)` and
 //! one bias `b` (camera axes, rad/s) common to both views, whose row rotations are
 //! recomputed from `rate − b` (the constant rate, or each segment of an integrated gyro
-//! track, [`RowTrack::with_bias`]). The two frames are a fraction of a second apart, so
+//! track, [`RowTrack::with_bias`](crate::model::gyro_log::RowTrack::with_bias)). The two frames are a fraction of a second apart, so
 //! one bias serves both; a per-frame rate error is not a bias and is not modelled.
 //!
 //! The cost is the Sampson error over the inliers with a Cauchy loss at the pixel noise;
@@ -20,13 +20,13 @@
 //! it causes is `f H λ |b|` pixels at the last row. A per-view rate noise comparable to the
 //! bias is indistinguishable from it; the fit then returns the mean of bias and noise.
 
-use crate::data::pair_file::Match;
 use crate::estimation::readout::inlier_observations;
 use crate::estimation::refine::{
     levenberg_marquardt, LmOptions, LmProblem, Loss, Pose, PoseProblem,
 };
 use crate::model::camera::{Observation, View};
 use crate::model::epipolar::{PointData, PoseModel, ResidualKind};
+use crate::model::matches::Match;
 use nalgebra::{Matrix3, SVector, Vector3};
 use std::sync::Arc;
 

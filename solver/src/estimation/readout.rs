@@ -18,12 +18,12 @@
 //! readout when it did not fall (see [`ReadoutFit::cost_nominal`]). `rspose calibrate`
 //! estimates the readout time (and the gyro's time offset) from many pairs at once instead.
 
-use crate::data::pair_file::Match;
 use crate::estimation::refine::{
     levenberg_marquardt, LmOptions, LmProblem, Loss, Pose, PoseProblem,
 };
 use crate::model::camera::{Observation, View};
 use crate::model::epipolar::{observe_matches, PointData, PoseModel, ResidualKind};
+use crate::model::matches::Match;
 use nalgebra::{Matrix3, SVector, Vector3};
 
 /// Settings of [`refine_readout_scale`].

@@ -9,12 +9,11 @@ pub mod evaluate;
 #[cfg(feature = "plot")]
 mod plot;
 pub mod real;
-mod stats;
 mod sweep;
 
+pub use crate::stats::{median, summarize};
 #[cfg(feature = "plot")]
 pub use plot::{render_svg, write_svg};
-pub use stats::{median, summarize};
 pub use sweep::{Level, Sweep, UnknownSweep, READOUT_REFINED_LABEL};
 
 /// Output files are written whole or not at all (see [`crate::data::atomic_file`]).

@@ -4,9 +4,11 @@
 //! independent of the gyro methods (they read the same gyro, though only its rate within
 //! each frame), and there is none for the translation.
 
+use crate::data::pair_estimate::{estimate_pair, RowModel};
 use crate::data::pair_file::PairFile;
-use crate::methods::{estimate_relative_pose, EstimateOptions, Method};
+use crate::methods::{EstimateOptions, Method};
 use crate::model::geometry::rotation_error_deg;
+use crate::stats::median;
 use nalgebra::Matrix3;
 use serde::Serialize;
 use std::time::Instant;
@@ -40,27 +42,14 @@ pub fn reference_rotation(pair: &PairFile) -> Option<Matrix3<f64>> {
     }
 }
 
-fn median(v: &mut [f64]) -> f64 {
-    if v.is_empty() {
-        return f64::NAN;
-    }
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
-}
-
-/// Runs `methods` on every pair with `options_for(method, pair)`; `constant_rows` drops the
-/// integrated gyro tracks (each frame's mean rate only). Pairs without a reference are
+/// Runs `methods` on every pair with `options_for(method, pair)` and the row model `rows`
+/// ([`estimate_pair`]). Pairs without a reference are
 /// skipped by the caller ([`reference_rotation`]); here they count as failures.
 pub fn run_real(
     pairs: &[PairFile],
     methods: &[Method],
     options_for: impl Fn(Method, &PairFile) -> EstimateOptions,
-    constant_rows: bool,
+    rows: RowModel,
 ) -> Vec<RealRow> {
     methods
         .iter()
@@ -71,29 +60,25 @@ pub fn run_real(
             for pair in pairs {
                 let result = (|| {
                     let reference = reference_rotation(pair)?;
-                    let (mut v1, mut v2) = pair.views().ok()?;
-                    if constant_rows {
-                        (v1, v2) = (v1.constant_rate(), v2.constant_rate());
-                    }
                     let options = options_for(method, pair);
                     let start = Instant::now();
-                    let est = estimate_relative_pose(&v1, &v2, &pair.matches, &options).ok()?;
+                    let est = estimate_pair(pair, &options, rows, None).ok()?;
                     seconds.push(start.elapsed().as_secs_f64());
                     ratios.push(est.num_inliers() as f64 / pair.matches.len().max(1) as f64);
                     Some(rotation_error_deg(&reference, &est.rotation))
                 })();
                 per_pair.push(result.unwrap_or(f64::NAN));
             }
-            let mut ok: Vec<f64> = per_pair.iter().copied().filter(|x| x.is_finite()).collect();
+            let ok: Vec<f64> = per_pair.iter().copied().filter(|x| x.is_finite()).collect();
             let rot_max = ok.iter().copied().fold(f64::NAN, f64::max);
             RealRow {
                 method: method.name().to_string(),
                 pairs: pairs.len(),
                 failures: pairs.len() - ok.len(),
-                rot_median: median(&mut ok),
+                rot_median: median(&ok),
                 rot_max,
-                inlier_ratio_median: median(&mut ratios),
-                seconds_median: median(&mut seconds),
+                inlier_ratio_median: median(&ratios),
+                seconds_median: median(&seconds),
                 per_pair_deg: per_pair,
             }
         })
@@ -118,16 +103,4 @@ pub fn to_markdown(rows: &[RealRow]) -> String {
         ));
     }
     s
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn medians() {
-        assert_eq!(median(&mut [3.0, 1.0, 2.0]), 2.0);
-        assert_eq!(median(&mut [4.0, 1.0, 2.0, 3.0]), 2.5);
-        assert!(median(&mut []).is_nan());
-    }
 }

@@ -11,16 +11,22 @@
 //! on the row-noise-weighted Sampson residual with a pixel threshold.
 
 use super::noise_fit::{final_inliers, refine_and_classify};
-use super::pose_ransac::{indices, orient, point_data, run, threshold, GrsrpRansac};
+use super::pose_ransac::{indices, orient, point_data, run, threshold, GrsrpRansac, PoseScorer};
 use super::{
     gsrp, rectified, Estimate, EstimateError, EstimateOptions, Method, R0Source, Threshold,
 };
-use crate::data::pair_file::Match;
 use crate::model::camera::View;
 use crate::model::epipolar::ResidualKind;
+use crate::model::matches::Match;
 
-/// Estimate with `grsrp` (`plus = false`) or `grsrp+` (`plus = true`); inputs already
-/// validated by the caller.
+/// Estimate with `grsrp` (`plus = false`) or `grsrp+` (`plus = true`).
+///
+/// The input is not checked here: it must be what [`super::validate_input`] accepts with
+/// `options.method` = `grsrp` or `grsrp+` (valid views, finite pixels that have bearings, at
+/// least [`super::Method::min_matches`] distinct matches, valid options); call that first, or
+/// use [`super::estimate_relative_pose`], which checks the input and adds the subset of large
+/// inputs, the optional readout and gyro-bias refinements and the quality report. Unchecked
+/// input may give an error or a meaningless estimate.
 pub fn estimate(
     view1: &View,
     view2: &View,
@@ -37,12 +43,14 @@ pub fn estimate(
     let (kind, thr_sq) = threshold(view1, view2, options.robust.threshold);
     let model = options.grsrp_model.pose_model();
     let mut est = GrsrpRansac {
-        data: &data,
-        model,
-        kind,
+        scorer: PoseScorer {
+            data: &data,
+            model,
+            kind,
+            lm: options.refinement.clone(),
+        },
         solver: options.grsrp_solver,
         r0,
-        lm: options.refinement.clone(),
         sols: Vec::new(),
     };
     let (mut h, res) = run(&mut est, options, thr_sq)?;
@@ -81,25 +89,15 @@ pub fn estimate(
         (res.inliers, None)
     };
     let t = orient(&h.r, &h.t, &data.b1, &data.b2, &indices(&inliers));
+    let method = if plus {
+        Method::GrsrpPlus
+    } else {
+        Method::Grsrp
+    };
     Ok(Estimate {
-        method: if plus {
-            Method::GrsrpPlus
-        } else {
-            Method::Grsrp
-        },
-        rotation: h.r,
-        translation: t,
-        inliers,
-        iterations: res.iterations,
-        ransac_score: res.score.msac,
         refinement_iterations,
         refinement_cost,
-        quality: Default::default(),
-        angular_velocity: None,
-        linear_velocity: None,
-        velocity_fit: None,
         noise_fit,
-        readout_scale: None,
-        gyro_bias: None,
+        ..Estimate::new(method, h.r, t, inliers, res.iterations, res.score.msac)
     })
 }

@@ -26,12 +26,12 @@
 
 use super::pose_ransac::{indices, point_data, run, threshold, EssentialRansac, Hypothesis};
 use super::{rectified, Estimate, EstimateError, EstimateOptions, Method, RobustOptions};
-use crate::data::pair_file::Match;
 use crate::estimation::ransac::{RansacEstimator, RansacResult, Score};
 use crate::minimal::{GravitySample, GravitySolver};
 use crate::model::camera::View;
 use crate::model::epipolar::PointData;
 use crate::model::geometry::fix_translation_sign;
+use crate::model::matches::Match;
 use nalgebra::{Matrix3, Vector3};
 
 /// Known-gravity RANSAC: hypotheses from the generated 3-point solver, scoring and local
@@ -52,10 +52,10 @@ impl RansacEstimator for GravityRansac<'_> {
         3
     }
     fn num_data(&self) -> usize {
-        self.exact.data.len()
+        self.exact.scorer.data.len()
     }
     fn generate_models(&mut self, sample: &[usize], models: &mut Vec<Hypothesis>) {
-        let d: &PointData = self.exact.data;
+        let d: &PointData = self.exact.scorer.data;
         let s = GravitySample::from_points(
             d,
             &std::array::from_fn(|k| sample[k]),
@@ -91,8 +91,14 @@ impl RansacEstimator for GravityRansac<'_> {
     }
 }
 
-/// Estimate with `grsrp-gravity` (inputs already validated by the caller, both views with a
-/// gravity direction).
+/// Estimate with `grsrp-gravity`.
+///
+/// The input is not checked here: it must be what [`super::validate_input`] accepts with
+/// `options.method` = `grsrp-gravity` (valid views, both with a gravity direction, finite pixels that have bearings, at
+/// least [`super::Method::min_matches`] distinct matches, valid options); call that first, or
+/// use [`super::estimate_relative_pose`], which checks the input and adds the subset of large
+/// inputs, the optional readout and gyro-bias refinements and the quality report. Unchecked
+/// input may give an error or a meaningless estimate.
 pub fn estimate(
     view1: &View,
     view2: &View,

@@ -10,10 +10,10 @@ use super::pose_ransac::{
     decompose_on_inliers, gs_threshold, indices, run, EssentialRansac, Hypothesis,
 };
 use super::{Estimate, EstimateError, EstimateOptions, Method};
-use crate::data::pair_file::Match;
 use crate::estimation::refine::{refine_pose, Loss};
 use crate::model::camera::View;
 use crate::model::epipolar::{PointData, PoseModel, ResidualKind};
+use crate::model::matches::Match;
 
 /// Run `gsrp` on prepared data (inputs already validated).
 pub(crate) fn run_on(
@@ -49,25 +49,27 @@ pub(crate) fn run_on(
     }
     let (rotation, t) = decompose_on_inliers(&h, &data.m1, &data.m2, &indices(&inliers));
     Ok(Estimate {
-        method: Method::Gsrp,
-        rotation,
-        translation: t,
-        inliers,
-        iterations: res.iterations,
-        ransac_score: res.score.msac,
         refinement_iterations,
         refinement_cost,
-        quality: Default::default(),
-        angular_velocity: None,
-        linear_velocity: None,
-        velocity_fit: None,
-        noise_fit: None,
-        readout_scale: None,
-        gyro_bias: None,
+        ..Estimate::new(
+            Method::Gsrp,
+            rotation,
+            t,
+            inliers,
+            res.iterations,
+            res.score.msac,
+        )
     })
 }
 
-/// Estimate with `gsrp` (inputs already validated by the caller).
+/// Estimate with `gsrp`.
+///
+/// The input is not checked here: it must be what [`super::validate_input`] accepts with
+/// `options.method` = `gsrp` (valid views, finite pixels that have bearings, at
+/// least [`super::Method::min_matches`] distinct matches, valid options); call that first, or
+/// use [`super::estimate_relative_pose`], which checks the input and adds the subset of large
+/// inputs, the optional readout and gyro-bias refinements and the quality report. Unchecked
+/// input may give an error or a meaningless estimate.
 pub fn estimate(
     view1: &View,
     view2: &View,

@@ -13,18 +13,25 @@
 
 use super::pose_ransac::{indices, threshold};
 use super::{gsrp, Estimate, EstimateError, EstimateOptions, Method};
-use crate::data::pair_file::Match;
 use crate::estimation::refine::{
     nrsrp_cheirality, nrsrp_residual, refine_nrsrp, LmOptions, NrsrpState, Pose,
 };
 use crate::model::camera::View;
 use crate::model::epipolar::{PointData, ResidualKind};
+use crate::model::matches::Match;
 use nalgebra::Vector3;
 
 /// Refine / re-classify rounds at most: the inliers settle within two or three.
 const ROUNDS: usize = 4;
 
-/// Estimate with `nrsrp` (inputs already validated by the caller).
+/// Estimate with `nrsrp`.
+///
+/// The input is not checked here: it must be what [`super::validate_input`] accepts with
+/// `options.method` = `nrsrp` (valid views, finite pixels that have bearings, at
+/// least [`super::Method::min_matches`] distinct matches, valid options); call that first, or
+/// use [`super::estimate_relative_pose`], which checks the input and adds the subset of large
+/// inputs, the optional readout and gyro-bias refinements and the quality report. Unchecked
+/// input may give an error or a meaningless estimate.
 pub fn estimate(
     view1: &View,
     view2: &View,
@@ -129,24 +136,21 @@ pub fn estimate(
     let per_frame1 = lines[0] * view1.camera.readout;
     let per_frame2 = lines[1] * view2.camera.readout;
     Ok(Estimate {
-        method: Method::Nrsrp,
-        rotation: r,
-        translation: t,
-        inliers,
-        iterations: init.iterations,
-        ransac_score: init.ransac_score,
         refinement_iterations: iterations,
         refinement_cost: cost,
-        quality: Default::default(),
         // The model's per-frame rotation is `−H λ ω` (see `NrsrpState`); a global-shutter
         // camera (readout 0) has no rates to report.
         angular_velocity: (per_frame1 > 0.0 && per_frame2 > 0.0)
             .then(|| [-s.phi[0] / per_frame1, -s.phi[1] / per_frame2]),
         linear_velocity: (per_frame1 > 0.0 && per_frame2 > 0.0)
             .then(|| [delta[0] / per_frame1, delta[1] / per_frame2]),
-        velocity_fit: None,
-        noise_fit: None,
-        readout_scale: None,
-        gyro_bias: None,
+        ..Estimate::new(
+            Method::Nrsrp,
+            r,
+            t,
+            inliers,
+            init.iterations,
+            init.ransac_score,
+        )
     })
 }

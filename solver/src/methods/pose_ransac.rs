@@ -77,7 +77,7 @@ pub(crate) fn gs_threshold(view1: &View, view2: &View, o: &RobustOptions) -> (Re
 pub(crate) fn point_data(
     view1: &View,
     view2: &View,
-    matches: &[crate::data::pair_file::Match],
+    matches: &[crate::model::matches::Match],
     o: &RobustOptions,
 ) -> Result<PointData, crate::model::epipolar::UnobservableMatch> {
     let mut data = PointData::new(view1, view2, matches)?;
@@ -119,15 +119,58 @@ fn lo_options(base: &LmOptions) -> LmOptions {
     }
 }
 
-/// Essential-matrix RANSAC on bearings `b` (plain `m` or gyro-undistorted), scored with
-/// `model`.
-pub(crate) struct EssentialRansac<'a> {
+/// How both RANSACs judge and polish a pose hypothesis: its residuals under `model` and
+/// `kind`, their MSAC score, and local optimisation by a few LM iterations on the truncated
+/// quadratic at the threshold.
+pub(crate) struct PoseScorer<'a> {
     pub data: &'a PointData,
-    pub undistorted: bool,
     pub model: PoseModel,
     pub kind: ResidualKind,
-    pub solver: EssentialSolver,
     pub lm: LmOptions,
+}
+
+impl PoseScorer<'_> {
+    /// Squared residual of match `i` (infinite where it is not finite).
+    fn residual_sq(&self, m: &Hypothesis, i: usize) -> f64 {
+        let r = self
+            .data
+            .residual(self.model, self.kind, i, &m.r, &m.t, &m.e);
+        if r.is_finite() {
+            r * r
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// MSAC score, abandoned once it exceeds `bound`.
+    fn score_bounded(&self, m: &Hypothesis, thr_sq: f64, bound: f64) -> Score {
+        let (msac, inliers) = self
+            .data
+            .msac(self.model, self.kind, &m.r, &m.t, &m.e, thr_sq, bound);
+        Score { msac, inliers }
+    }
+
+    /// Local optimisation of `m` on `inliers`.
+    fn refine(&self, m: &Hypothesis, inliers: &[usize], thr_sq: f64) -> Option<Hypothesis> {
+        let res = refine_pose(
+            self.data,
+            inliers,
+            self.model,
+            self.kind,
+            Loss::Truncated(thr_sq.sqrt()),
+            m.pose(),
+            &lo_options(&self.lm),
+        );
+        Some(Hypothesis::from_pose(&res.state))
+    }
+}
+
+/// Essential-matrix RANSAC on bearings `b` (plain `m` or gyro-undistorted), scored with
+/// `scorer`.
+pub(crate) struct EssentialRansac<'a> {
+    pub scorer: PoseScorer<'a>,
+    pub undistorted: bool,
+    pub solver: EssentialSolver,
     pub es: Vec<Matrix3<f64>>,
     /// The current sample's bearings (for the cheirality test of [`RansacEstimator::complete`]).
     pub sample: ([Vector3<f64>; 8], [Vector3<f64>; 8], usize),
@@ -144,12 +187,14 @@ impl<'a> EssentialRansac<'a> {
         options: &EstimateOptions,
     ) -> Self {
         EssentialRansac {
-            data,
+            scorer: PoseScorer {
+                data,
+                model,
+                kind,
+                lm: options.refinement.clone(),
+            },
             undistorted,
-            model,
-            kind,
             solver: options.essential_solver,
-            lm: options.refinement.clone(),
             es: Vec::new(),
             sample: ([Vector3::zeros(); 8], [Vector3::zeros(); 8], 0),
         }
@@ -168,13 +213,14 @@ impl RansacEstimator for EssentialRansac<'_> {
         self.solver.sample_size()
     }
     fn num_data(&self) -> usize {
-        self.data.len()
+        self.scorer.data.len()
     }
     fn generate_models(&mut self, sample: &[usize], models: &mut Vec<Hypothesis>) {
+        let data = self.scorer.data;
         let (b1, b2) = if self.undistorted {
-            (&self.data.b1, &self.data.b2)
+            (&data.b1, &data.b2)
         } else {
-            (&self.data.m1, &self.data.m2)
+            (&data.m1, &data.m2)
         };
         let (buf1, buf2, k) = &mut self.sample;
         *k = sample.len().min(8);
@@ -204,44 +250,22 @@ impl RansacEstimator for EssentialRansac<'_> {
         }
     }
     fn residual_sq(&self, m: &Hypothesis, i: usize) -> f64 {
-        let r = self
-            .data
-            .residual(self.model, self.kind, i, &m.r, &m.t, &m.e);
-        if r.is_finite() {
-            r * r
-        } else {
-            f64::INFINITY
-        }
+        self.scorer.residual_sq(m, i)
     }
     fn score_bounded(&self, m: &Hypothesis, thr_sq: f64, bound: f64) -> Score {
-        let (msac, inliers) = self
-            .data
-            .msac(self.model, self.kind, &m.r, &m.t, &m.e, thr_sq, bound);
-        Score { msac, inliers }
+        self.scorer.score_bounded(m, thr_sq, bound)
     }
     fn refine(&self, m: &Hypothesis, inliers: &[usize], thr_sq: f64) -> Option<Hypothesis> {
-        let res = refine_pose(
-            self.data,
-            inliers,
-            self.model,
-            self.kind,
-            Loss::Truncated(thr_sq.sqrt()),
-            m.pose(),
-            &lo_options(&self.lm),
-        );
-        Some(Hypothesis::from_pose(&res.state))
+        self.scorer.refine(m, inliers, thr_sq)
     }
 }
 
 /// G-RSRP RANSAC: the generated solver with a fixed `R_0`, scored (and locally optimised)
-/// with `model`: the paper's linearised model or the exact angular one.
+/// by `scorer`: the paper's linearised model or the exact angular one.
 pub(crate) struct GrsrpRansac<'a> {
-    pub data: &'a PointData,
-    pub model: PoseModel,
-    pub kind: ResidualKind,
+    pub scorer: PoseScorer<'a>,
     pub solver: GrsrpSolver,
     pub r0: Matrix3<f64>,
-    pub lm: LmOptions,
     pub sols: Vec<(Matrix3<f64>, Vector3<f64>)>,
 }
 
@@ -251,10 +275,10 @@ impl RansacEstimator for GrsrpRansac<'_> {
         5
     }
     fn num_data(&self) -> usize {
-        self.data.len()
+        self.scorer.data.len()
     }
     fn generate_models(&mut self, sample: &[usize], models: &mut Vec<Hypothesis>) {
-        let d = self.data;
+        let d = self.scorer.data;
         let s = GrsrpSample::from_points(d, &std::array::from_fn(|k| sample[k]), self.r0);
         let mut sols = std::mem::take(&mut self.sols);
         sols.clear();
@@ -268,32 +292,13 @@ impl RansacEstimator for GrsrpRansac<'_> {
         self.sols = sols;
     }
     fn residual_sq(&self, m: &Hypothesis, i: usize) -> f64 {
-        let r = self
-            .data
-            .residual(self.model, self.kind, i, &m.r, &m.t, &m.e);
-        if r.is_finite() {
-            r * r
-        } else {
-            f64::INFINITY
-        }
+        self.scorer.residual_sq(m, i)
     }
     fn score_bounded(&self, m: &Hypothesis, thr_sq: f64, bound: f64) -> Score {
-        let (msac, inliers) = self
-            .data
-            .msac(self.model, self.kind, &m.r, &m.t, &m.e, thr_sq, bound);
-        Score { msac, inliers }
+        self.scorer.score_bounded(m, thr_sq, bound)
     }
     fn refine(&self, m: &Hypothesis, inliers: &[usize], thr_sq: f64) -> Option<Hypothesis> {
-        let res = refine_pose(
-            self.data,
-            inliers,
-            self.model,
-            self.kind,
-            Loss::Truncated(thr_sq.sqrt()),
-            m.pose(),
-            &lo_options(&self.lm),
-        );
-        Some(Hypothesis::from_pose(&res.state))
+        self.scorer.refine(m, inliers, thr_sq)
     }
 }
 

@@ -3,10 +3,10 @@
 //! each refining the pose with its parameter on the method's inliers.
 
 use super::{Estimate, EstimateOptions};
-use crate::data::pair_file::Match;
 use crate::estimation::gyro_bias::{refine_gyro_bias, unbiased_view, EstimatedBias};
 use crate::estimation::readout::refine_readout_scale;
 use crate::model::camera::View;
+use crate::model::matches::Match;
 
 /// Runs the refinements `options` asks for on `est` (its pose replaced, `readout_scale`
 /// and `gyro_bias` set where a refinement ran), over `working`, the matches the method

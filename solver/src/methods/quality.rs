@@ -20,10 +20,11 @@
 //! Bearings are the method's own: undistorted by the gyro row rotations for the gyro-aided
 //! methods, by `nrsrp`'s estimated rotations for `nrsrp`, raw for `gsrp`.
 
-use crate::data::pair_file::Match;
 use crate::estimation::refine::{refine_pose, LmOptions, Loss, Pose};
 use crate::model::camera::View;
 use crate::model::epipolar::{PointData, PoseModel, ResidualKind};
+use crate::model::matches::Match;
+use crate::stats::upper_median;
 use nalgebra::{Matrix3, SMatrix, SymmetricEigen, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -167,10 +168,9 @@ pub fn assess(
     }
 }
 
+/// The quality figures' median: an observed residual, 0 without any.
 fn median(v: impl Iterator<Item = f64>) -> f64 {
-    let mut v: Vec<f64> = v.filter(|x| x.is_finite()).collect();
-    v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied().unwrap_or(0.0)
+    upper_median(v).unwrap_or(0.0)
 }
 
 /// The rotation `R` maximising `Σ b2ᵀ R b1` over unit bearings (Wahba's problem, by SVD).

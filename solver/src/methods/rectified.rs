@@ -9,10 +9,10 @@ use super::pose_ransac::{
     decompose_on_inliers, indices, point_data, run, threshold, EssentialRansac, Hypothesis,
 };
 use super::{Estimate, EstimateError, EstimateOptions, Method};
-use crate::data::pair_file::Match;
 use crate::estimation::ransac::RansacResult;
 use crate::model::camera::View;
 use crate::model::epipolar::{PointData, PoseModel, ResidualKind};
+use crate::model::matches::Match;
 
 /// Run `rectified` on prepared data (inputs already validated).
 pub(crate) fn run_on(
@@ -66,25 +66,21 @@ pub(crate) fn refine_exact(
     );
     let (rotation, t) = decompose_on_inliers(&h, &data.b1, &data.b2, &indices(&inliers));
     Estimate {
-        method,
-        rotation,
-        translation: t,
-        inliers,
-        iterations: res.iterations,
-        ransac_score: res.score.msac,
         refinement_iterations: iterations,
         refinement_cost: Some(cost),
-        quality: Default::default(),
-        angular_velocity: None,
-        linear_velocity: None,
-        velocity_fit: None,
         noise_fit,
-        readout_scale: None,
-        gyro_bias: None,
+        ..Estimate::new(method, rotation, t, inliers, res.iterations, res.score.msac)
     }
 }
 
-/// Estimate with `rectified` (inputs already validated by the caller).
+/// Estimate with `rectified`.
+///
+/// The input is not checked here: it must be what [`super::validate_input`] accepts with
+/// `options.method` = `rectified` (valid views, finite pixels that have bearings, at
+/// least [`super::Method::min_matches`] distinct matches, valid options); call that first, or
+/// use [`super::estimate_relative_pose`], which checks the input and adds the subset of large
+/// inputs, the optional readout and gyro-bias refinements and the quality report. Unchecked
+/// input may give an error or a meaningless estimate.
 pub fn estimate(
     view1: &View,
     view2: &View,

@@ -28,7 +28,6 @@
 
 use super::pose_ransac::{indices, point_data, threshold};
 use super::{rectified, Estimate, EstimateError, EstimateOptions, Method};
-use crate::data::pair_file::Match;
 use crate::estimation::refine::{levenberg_marquardt, LmOptions, Loss, Pose};
 use crate::estimation::velocity::{
     reference_duration, refine_velocity, velocity_information, RateErrorProblem, RateErrorState,
@@ -36,6 +35,7 @@ use crate::estimation::velocity::{
 };
 use crate::model::camera::View;
 use crate::model::epipolar::{PointData, ResidualKind};
+use crate::model::matches::Match;
 use nalgebra::Vector3;
 use serde::Serialize;
 
@@ -279,7 +279,14 @@ impl Stage<'_> {
     }
 }
 
-/// Estimate with `rectified+v` (inputs already validated by the caller).
+/// Estimate with `rectified+v`.
+///
+/// The input is not checked here: it must be what [`super::validate_input`] accepts with
+/// `options.method` = `rectified+v` (valid views, finite pixels that have bearings, at
+/// least [`super::Method::min_matches`] distinct matches, valid options); call that first, or
+/// use [`super::estimate_relative_pose`], which checks the input and adds the subset of large
+/// inputs, the optional readout and gyro-bias refinements and the quality report. Unchecked
+/// input may give an error or a meaningless estimate.
 pub fn estimate(
     view1: &View,
     view2: &View,

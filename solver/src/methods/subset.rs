@@ -7,12 +7,12 @@
 use super::noise_fit::NoiseFit;
 use super::pose_ransac::{gs_threshold, point_data, threshold};
 use super::{Estimate, EstimateOptions, Method, RobustOptions};
-use crate::data::pair_file::Match;
 use crate::estimation::refine::{nrsrp_residual, NrsrpState, Pose};
 use crate::estimation::velocity::{VelocityModel, VelocityState};
 use crate::model::camera::View;
 use crate::model::epipolar::{PointData, PoseModel, ResidualKind};
 use crate::model::geometry::skew;
+use crate::model::matches::Match;
 use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;

@@ -1,8 +1,12 @@
 use super::*;
 use crate::data::pair_file::PairFile;
 use crate::data::simulate::{simulate, SimulationOptions};
+use crate::estimation::readout::ReadoutOptions;
 use crate::experiment::evaluate::pose_errors;
-use crate::model::camera::Camera;
+use crate::minimal::{EssentialSolver, GrsrpSolver};
+use crate::model::camera::{Camera, View};
+use crate::model::matches::Match;
+use nalgebra::Vector3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 

@@ -17,8 +17,8 @@
 //! direction of gravity in its camera axes at line 0, from an accelerometer.
 
 use crate::model::camera_model::{self, CameraModel, UndistortFailure};
-use crate::model::gyro_log::RowTrack;
-use crate::model::rolling_shutter::row_rotation;
+pub use crate::model::gyro_log::MAX_ANGULAR_VELOCITY;
+use crate::model::gyro_log::{plausible_rate, row_rotation, RowTrack};
 use nalgebra::{Matrix3, Vector2, Vector3};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
@@ -34,8 +34,6 @@ pub const MIN_FOCAL: f64 = 1e-3;
 pub const MAX_DISTORTION: f64 = 1e6;
 /// Longest frame readout accepted, `lines × readout`, seconds.
 pub const MAX_FRAME_READOUT: f64 = 10.0;
-/// Largest angular velocity accepted, rad/s (consumer gyroscopes saturate near 35 rad/s).
-pub const MAX_ANGULAR_VELOCITY: f64 = 100.0;
 /// Accepted lengths of a gravity vector: any unit (g, m/s², a unit vector) but neither
 /// zero nor absurd.
 pub const GRAVITY_NORM_RANGE: std::ops::RangeInclusive<f64> = 1e-6..=1e6;
@@ -132,7 +130,10 @@ pub enum CameraError {
         v: f64,
     },
     /// The gyroscope angular velocity is not finite or faster than `MAX_ANGULAR_VELOCITY`.
-    #[error("gyro angular velocity must be finite and at most 100 rad/s, got [{0}, {1}, {2}]")]
+    #[error(
+        "gyro angular velocity must be finite and at most {max} rad/s, got [{0}, {1}, {2}]",
+        max = MAX_ANGULAR_VELOCITY
+    )]
     InvalidGyro(f64, f64, f64),
     /// The gravity direction is not finite or its length is zero (or absurd).
     #[error("gravity must be a finite vector of non-zero length, got [{0}, {1}, {2}]")]
@@ -600,12 +601,11 @@ impl View {
         }
     }
 
-    /// Validate the camera, that `ω` is finite and at most `MAX_ANGULAR_VELOCITY`, and that a
+    /// Validate the camera, that `ω` is finite and at most [`MAX_ANGULAR_VELOCITY`], and that a
     /// gravity vector is finite with a length in [`GRAVITY_NORM_RANGE`].
     pub fn validate(&self) -> Result<(), CameraError> {
         self.camera.validate()?;
-        let speed = self.omega.norm();
-        if speed.is_nan() || speed > MAX_ANGULAR_VELOCITY {
+        if !plausible_rate(&self.omega) {
             return Err(CameraError::InvalidGyro(
                 self.omega.x,
                 self.omega.y,

@@ -18,9 +18,9 @@
 //! first-order geometric error in normalised image units (multiply by the focal length for
 //! pixels).
 
-use crate::data::pair_file::Match;
 use crate::model::camera::{Camera, CameraError, Observation, View};
 use crate::model::geometry::skew;
+use crate::model::matches::Match;
 use crate::model::sampson_kernel::{msac_sampson, BearingColumns};
 use nalgebra::{Matrix3, Vector3};
 use std::sync::OnceLock;

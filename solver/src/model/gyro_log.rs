@@ -14,6 +14,25 @@ use crate::model::geometry::exp_so3;
 use nalgebra::{Matrix3, Vector3};
 use thiserror::Error;
 
+/// Largest angular velocity accepted, rad/s (consumer gyroscopes saturate near 35 rad/s).
+/// Every check of a rate, a bias or a sample uses [`plausible_rate`], and every message
+/// formats this value.
+pub const MAX_ANGULAR_VELOCITY: f64 = 100.0;
+
+/// Whether an angular velocity (a rate, a sample or a bias) is finite and at most
+/// [`MAX_ANGULAR_VELOCITY`] in norm.
+pub fn plausible_rate(rate: &Vector3<f64>) -> bool {
+    let n = rate.norm();
+    n.is_finite() && n <= MAX_ANGULAR_VELOCITY
+}
+
+/// Row rotation `Ω(v) = exp(−[v λ ω]×)` (row-0 camera frame to row-`v` camera frame) for
+/// row `v`, readout `λ` (s/row) and a constant gyro rate `ω` (rad/s, camera axes): the
+/// row rotation of a log whose rate does not change over the readout.
+pub fn row_rotation(v: f64, readout: f64, omega: &Vector3<f64>) -> Matrix3<f64> {
+    exp_so3(&(omega * (-v * readout)))
+}
+
 /// The longest gap between consecutive gyro samples that pair files and `make-pair`
 /// accept, s. Between samples the rate is interpolated linearly (and each interval
 /// integrated at its midpoint): a gyroscope measures the rate, and a hand-held or mounted
@@ -37,8 +56,8 @@ pub enum GyroLogError {
         index: usize,
     },
     /// An angular velocity faster than any gyroscope measures
-    /// ([`crate::model::camera::MAX_ANGULAR_VELOCITY`]).
-    #[error("sample {index}: angular velocity above 100 rad/s")]
+    /// ([`MAX_ANGULAR_VELOCITY`]).
+    #[error("sample {index}: angular velocity above {max} rad/s", max = MAX_ANGULAR_VELOCITY)]
     Implausible {
         /// Sample index.
         index: usize,
@@ -130,7 +149,7 @@ impl GyroLog {
             if !s.iter().all(|x| x.is_finite()) {
                 return Err(GyroLogError::NonFinite { index });
             }
-            if Vector3::new(s[1], s[2], s[3]).norm() > crate::model::camera::MAX_ANGULAR_VELOCITY {
+            if !plausible_rate(&Vector3::new(s[1], s[2], s[3])) {
                 return Err(GyroLogError::Implausible { index });
             }
             if let Some(&previous) = times.last() {
@@ -417,7 +436,6 @@ pub fn parse_gyro_csv(text: &str, time_column: usize) -> Result<GyroCsvSamples, 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::rolling_shutter::row_rotation;
 
     fn constant_log(rate: Vector3<f64>, dt: f64, n: usize) -> GyroLog {
         let s: Vec<[f64; 4]> = (0..n)

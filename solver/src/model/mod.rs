@@ -6,5 +6,6 @@ pub mod camera_model;
 pub mod epipolar;
 pub mod geometry;
 pub mod gyro_log;
+pub mod matches;
 pub mod rolling_shutter;
 pub mod sampson_kernel;

@@ -21,15 +21,9 @@
 //! world line images with `u` decreasing down the image (tested below).
 
 use crate::model::camera::{Camera, CameraError, View};
-use crate::model::geometry::exp_so3;
+pub use crate::model::gyro_log::row_rotation;
 use nalgebra::{Matrix3, Vector2, Vector3};
 use thiserror::Error;
-
-/// Row rotation `Ω(v) = exp(−[v λ ω]×)` (row-0 camera frame to row-`v` camera frame) for
-/// row `v`, readout `λ` (s/row) and a constant gyro rate `ω` (rad/s, camera axes).
-pub fn row_rotation(v: f64, readout: f64, omega: &Vector3<f64>) -> Matrix3<f64> {
-    exp_so3(&(omega * (-v * readout)))
-}
 
 /// Bearing of pixel `(u, v)` expressed in the line-0 camera frame: `Ω(l)^T m` with `m` the
 /// pixel's undistorted bearing and `l` its line coordinate ([`Camera::observe`]) and the

@@ -1,4 +1,5 @@
-//! Summary statistics of trial errors: mean, standard deviation, median.
+//! Summary statistics: mean, standard deviation and the medians every layer uses (the
+//! quality report, the experiments, the real-data comparison).
 
 /// Mean, population standard deviation and median of the finite values; `None` if there
 /// are none.
@@ -32,6 +33,14 @@ pub fn median(values: &[f64]) -> f64 {
     summarize(values).map(|s| s.2).unwrap_or(f64::NAN)
 }
 
+/// Upper median of the finite values: the middle one, the upper of the two middle ones for
+/// an even count (always one of the values, never an average); `None` if there are none.
+pub fn upper_median(values: impl IntoIterator<Item = f64>) -> Option<f64> {
+    let mut v: Vec<f64> = values.into_iter().filter(|x| x.is_finite()).collect();
+    v.sort_by(f64::total_cmp);
+    v.get(v.len() / 2).copied()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -43,6 +52,10 @@ mod tests {
         assert!((s - 1.25f64.sqrt()).abs() < 1e-15);
         assert_eq!(med, 2.5);
         assert_eq!(median(&[3.0, 1.0, 2.0]), 2.0);
+        assert_eq!(median(&[4.0, 1.0, 2.0, 3.0]), 2.5);
+        assert!(median(&[]).is_nan());
+        assert_eq!(upper_median([4.0, 1.0, 2.0, 3.0, f64::NAN]), Some(3.0));
+        assert_eq!(upper_median([]), None);
         assert!(summarize(&[f64::NAN]).is_none());
     }
 }

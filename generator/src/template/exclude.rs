@@ -176,7 +176,7 @@ fn lower_equation_degrees<const P: u32>(blocks: &Blocks, best: &mut Excluded, wo
 }
 
 /// The bound on the summed `rows x columns` of the pools shrunk by one search.
-const MAX_WORK: u64 = 1 << 24;
+const MAX_WORK: u64 = 1 << 28;
 
 fn contains(c: &Candidate, m: &Monomial) -> bool {
     c.terms.iter().any(|(t, _)| t == m)

@@ -38,8 +38,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // one `mingen` picks for large templates), so that the tests can check that both
     // compute the same bits.
     for (dir, form) in [
-        ("inline", mingen::emit::CodeForm::Inline),
-        ("table", mingen::emit::CodeForm::Table),
+        ("inline", mingen::CodeForm::Inline),
+        ("table", mingen::CodeForm::Table),
     ] {
         mingen::build::Config::new()
             .problems(&BOTH_FORMS.map(|n| format!("../../templates/classic/{n}.mp")))

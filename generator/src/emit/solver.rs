@@ -205,7 +205,7 @@ impl<'a> Plan<'a> {
     }
 }
 
-/// Emits the solver file for `spec` (see the module documentation of [`super`]).
+/// Emits the solver file for `spec` (see the module documentation of `crate::emit`).
 pub fn emit_solver(spec: &SolverSpec) -> Result<String, EmitError> {
     if syn::parse_str::<Ident>(&spec.layout.module_name()).is_err() {
         return Err(EmitError::Unsupported(format!(

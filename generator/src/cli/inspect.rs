@@ -92,12 +92,7 @@ pub(super) fn inspect(
     outln!(out, "problem {}", p.name());
     outln!(out, "unknowns ({}): {}", names.len(), names.join(" "));
     if !p.layout.eliminate.is_empty() {
-        let el: Vec<&str> = p
-            .layout
-            .eliminate
-            .iter()
-            .filter_map(|&i| names.get(i).map(String::as_str))
-            .collect();
+        let el = plan.eliminated_names();
         let how = if !parsed.layout.eliminate.is_empty() {
             ""
         } else if p.substitution().is_some() {

@@ -2,8 +2,8 @@
 //! G-RSRP's equations mod p: `cargo run --release -p mingen --example expand_timing [DIR]`
 //! (default `templates/`).
 
-use mingen::algebra::{Fp, P1};
-use mingen::instance::random_data_fp;
+use mingen::__internal::algebra::{Fp, P1};
+use mingen::__internal::instance::random_data_fp;
 use mingen::Problem;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;

@@ -1,5 +1,5 @@
 //! Explores basis selection and shrinking on one problem, printing template sizes instead of
-//! choosing one (`mingen::template::explore`):
+//! choosing one (`mingen::__internal::template::explore`):
 //!
 //! ```text
 //! cargo run --release -p mingen --example explore_basis -- FILE MODE [OPTIONS]
@@ -20,11 +20,11 @@
 //!
 //! For instance `explore_basis templates/grsrp.mp permutations --action t1 --degree 4`.
 
-use mingen::algebra::P1;
-use mingen::pipeline::ProblemSource;
-use mingen::quotient::{analyse, InstanceSource};
-use mingen::template::explore::{explore, explore_random_shrink};
-use mingen::template::select::{basis_orders, BasisOrder};
+use mingen::__internal::algebra::P1;
+use mingen::__internal::quotient::{analyse, InstanceSource};
+use mingen::__internal::system::ProblemSource;
+use mingen::__internal::template::explore::{explore, explore_random_shrink};
+use mingen::__internal::template::select::{basis_orders, BasisOrder};
 use mingen::Problem;
 
 type Error = Box<dyn std::error::Error>;

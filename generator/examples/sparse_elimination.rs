@@ -6,10 +6,10 @@
 //! `cargo run --release -p mingen --example sparse_elimination [PROBLEM.mp ...]`
 //! (default: every problem in `templates/`).
 
-use mingen::instance::random_data_f64;
-use mingen::interpret::fill_template;
-use mingen::pipeline::plan_file;
-use mingen::template::TemplateOptions;
+use mingen::__internal::instance::random_data_f64;
+use mingen::__internal::interpret::fill_template;
+use mingen::plan_file;
+use mingen::TemplateOptions;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::path::PathBuf;

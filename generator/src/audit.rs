@@ -552,7 +552,7 @@ impl fmt::Display for AuditReport {
 /// `plan.generated.count` solutions are expected per instance.
 ///
 /// ```no_run
-/// # use mingen::{audit::{audit_plan, AuditOptions}, pipeline::plan_file, template::TemplateOptions};
+/// # use mingen::{audit_plan, plan_file, AuditOptions, TemplateOptions};
 /// let plan = plan_file("templates/gs5pt.mp".as_ref(), &TemplateOptions::default()).unwrap();
 /// println!("{}", audit_plan(&plan, &AuditOptions::default()));
 /// ```

@@ -29,7 +29,6 @@
 
 use crate::emit::CodeForm;
 use crate::emit::{is_fresh, write_output};
-use crate::generate::GenerateError;
 use crate::pipeline::{emit_plan_in, plan_file, PipelineError, SolverPlan};
 use crate::template::TemplateOptions;
 use std::collections::{BTreeMap, HashMap};
@@ -53,12 +52,12 @@ pub enum BuildError {
         /// The problem file.
         file: PathBuf,
         /// What went wrong.
-        source: GenerateError,
+        source: PipelineError,
     },
     /// Two problem files give the same module name (they would write the same file).
     #[error("problem module `{name}` is declared by both {first} and {second}")]
     DuplicateName {
-        /// The module name ([`crate::problem::ProblemLayout::module_name`]).
+        /// The module name ([`crate::SolverPlan::module_name`]).
         name: String,
         /// The first file declaring it.
         first: PathBuf,
@@ -79,7 +78,7 @@ pub enum BuildError {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Compiled {
     /// The module to declare and the file stem: the problem name lowercased, `p` prepended
-    /// when it starts with a digit ([`crate::problem::ProblemLayout::module_name`]).
+    /// when it starts with a digit ([`crate::SolverPlan::module_name`]).
     pub name: String,
     /// The problem file.
     pub problem: PathBuf,
@@ -176,8 +175,8 @@ impl Config {
                 file: file.clone(),
                 source,
             };
-            let plan = cached_plan(file, &self.options).map_err(|e| generate(e.into()))?;
-            let name = plan.problem.layout.module_name();
+            let plan = cached_plan(file, &self.options).map_err(generate)?;
+            let name = plan.module_name();
             if let Some(first) = seen.insert(name.clone(), file.clone()) {
                 return Err(BuildError::DuplicateName {
                     name,
@@ -186,7 +185,7 @@ impl Config {
                 });
             }
             let source = emit_plan_in(&plan, &file.display().to_string(), self.code_form)
-                .map_err(|e| generate(e.into()))?;
+                .map_err(generate)?;
             let path = out_dir.join(format!("{name}.rs"));
             let io = |source| BuildError::Io {
                 path: path.clone(),

@@ -91,7 +91,7 @@ pub fn eliminate_linear<C: Ring>(
 /// [`eliminate_linear`] that computes only the equations `wanted` (indices into the full
 /// list of [`Eliminated::equations`], increasing) and returns those, in that order; all of
 /// them with `None`. The minors are the costly part, and most are often redundant (see
-/// [`crate::independent`]).
+/// `crate::independent`).
 pub fn eliminate_linear_selected<C: Ring>(
     equations: &[Poly<C>],
     nvars: usize,

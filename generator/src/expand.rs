@@ -656,7 +656,7 @@ impl Problem {
 
     /// The same problem keeping only equations `kept` (indices, increasing) of its system
     /// after elimination and division: planning drops those that are linear combinations
-    /// of the others on the whole data family ([`crate::independent`]), which changes
+    /// of the others on the whole data family (`crate::independent`), which changes
     /// neither the ideal nor the solutions.
     pub fn with_independent(&self, kept: Vec<usize>) -> Problem {
         let mut p = self.clone();

@@ -14,16 +14,17 @@
 //! The resulting [`SolverPlan`] also serves `inspect` (sizes, basis, timings), the
 //! interpreter and audit (f64 instances): all of them obtain the template's equations
 //! through [`SolverPlan::equations`], so every consumer sees the same elimination. Writing
-//! files is `crate::generate`'s and `crate::build`'s.
+//! files is `crate::build`'s (and the `mingen` binary's).
 
-use crate::algebra::{Fp, Monomial, Poly, Ring};
-use crate::eliminate::{eliminate_linear_selected, substitute_linear, EliminateError, Eliminated};
+use crate::algebra::{Monomial, Poly, Ring};
+use crate::eliminate::EliminateError;
 use crate::emit::{
     emit_solver, CodeForm, EliminationSpec, EmitError, PolishSpec, SolverSpec, Tracer,
 };
 use crate::instance::random_data_fp;
 use crate::quotient::{analyse_within, InstanceRng, InstanceSource};
 use crate::rewrite;
+use crate::system::{system, ProblemSource, System};
 use crate::template::search::best_template_within;
 use crate::template::validate::validate_within;
 use crate::template::{
@@ -93,157 +94,6 @@ impl PipelineError {
     }
 }
 
-/// A problem viewed as a family of polynomial systems (after elimination, if any).
-pub struct ProblemSource<'a> {
-    problem: &'a Problem,
-}
-
-impl<'a> ProblemSource<'a> {
-    /// The family of `problem`'s instances.
-    pub fn new(problem: &'a Problem) -> Self {
-        ProblemSource { problem }
-    }
-}
-
-impl InstanceSource for ProblemSource<'_> {
-    fn nvars(&self) -> usize {
-        self.problem.layout.unknown_count() - self.problem.layout.eliminate.len()
-    }
-    fn var_names(&self) -> Vec<String> {
-        let names = self.problem.unknown_names();
-        (0..names.len())
-            .filter(|i| !self.problem.layout.eliminate.contains(i))
-            .map(|i| names[i].clone())
-            .collect()
-    }
-    fn hidden_vars(&self) -> usize {
-        self.problem.layout.hidden_count()
-    }
-    fn instance<const P: u32>(&self, rng: &mut InstanceRng) -> Vec<Poly<Fp<P>>> {
-        let data = random_data_fp::<P>(&self.problem.layout, rng);
-        // Elimination was checked structurally by `plan`; an instance where it fails (a
-        // coefficient vanishing by chance mod p) yields an empty system, which the
-        // analysis reports as such instead of silently changing the family.
-        system(self.problem, &data)
-            .map(|(eqs, _)| eqs)
-            .unwrap_or_default()
-    }
-}
-
-/// The template's equations for one data instance, and the elimination (with the
-/// coefficient matrix that recovers the eliminated unknowns) if the problem has one.
-pub type System<C> = (Vec<Poly<C>>, Option<Eliminated<C>>);
-
-/// The template's equations for data `data` over any ring (see [`System`]).
-pub(crate) fn system<C: Ring>(problem: &Problem, data: &[C]) -> Result<System<C>, EliminateError> {
-    system_and_factors(problem, data).map(|(system, _)| system)
-}
-
-/// [`system`] and the `nonzero` expressions as polynomials in the system's variables (the
-/// unknowns left after elimination, hidden ones included; `None` for one that involves an
-/// eliminated unknown, which cannot divide the system's equations), from one evaluation of
-/// the problem.
-pub(crate) fn system_and_factors<C: Ring>(
-    problem: &Problem,
-    data: &[C],
-) -> Result<(System<C>, Factors<C>), EliminateError> {
-    let (equations, expressions) = if problem.nonzero_count() == 0 {
-        (problem.evaluate(data), Vec::new())
-    } else {
-        problem
-            .try_evaluate_with_nonzero(data)
-            .unwrap_or_else(|e| panic!("evaluating problem {}: {e}", problem.layout.name))
-    };
-    // Only the kept equations are computed (the minors of an elimination are the costly
-    // part).
-    let kept = problem.independent();
-    let (mut equations, mut elimination) = if problem.layout.eliminate.is_empty() {
-        (select(equations, kept), None)
-    } else if let Some(affine) = problem.substitution() {
-        let mut e = substitute_linear(
-            &equations,
-            problem.layout.unknown_count(),
-            &problem.layout.eliminate,
-            affine,
-        )?;
-        e.equations = select(std::mem::take(&mut e.equations), kept);
-        (e.equations.clone(), Some(e))
-    } else {
-        let e = eliminate_linear_selected(
-            &equations,
-            problem.layout.unknown_count(),
-            &problem.layout.eliminate,
-            kept,
-        )?;
-        (e.equations.clone(), Some(e))
-    };
-    let factors = system_variables(problem, &expressions);
-    if problem.divisions().iter().flatten().any(|&d| d > 0) {
-        for (k, eq) in equations.iter_mut().enumerate() {
-            // Divisions number the equations of the full system.
-            let i = kept.map_or(k, |kept| kept[k]);
-            let Some(counts) = problem.divisions().get(i) else {
-                continue;
-            };
-            for (factor, &count) in factors.iter().zip(counts) {
-                let Some(factor) = factor else { continue };
-                for _ in 0..count {
-                    if let Some((q, _)) = eq.divide(factor) {
-                        *eq = q;
-                    }
-                }
-            }
-        }
-        if let Some(e) = &mut elimination {
-            e.equations.clone_from(&equations);
-        }
-    }
-    Ok(((equations, elimination), factors))
-}
-
-/// The equations `kept` (increasing indices) of `equations`; all with `None`.
-fn select<T>(equations: Vec<T>, kept: Option<&[usize]>) -> Vec<T> {
-    match kept {
-        None => equations,
-        Some(kept) => equations
-            .into_iter()
-            .enumerate()
-            .filter(|(i, _)| kept.binary_search(i).is_ok())
-            .map(|(_, e)| e)
-            .collect(),
-    }
-}
-
-/// The `nonzero` expressions in a system's variables (see [`system_and_factors`]).
-pub(crate) type Factors<C> = Vec<Option<Poly<C>>>;
-
-/// Polynomials in the problem's declared unknowns renumbered into the system's variables
-/// (the eliminated unknowns left out); `None` for one that involves an eliminated unknown.
-fn system_variables<C: Ring>(problem: &Problem, polys: &[Poly<C>]) -> Factors<C> {
-    let layout = &problem.layout;
-    let kept: Vec<usize> = (0..layout.unknown_count())
-        .filter(|i| !layout.eliminate.contains(i))
-        .collect();
-    let n = kept.len();
-    polys
-        .iter()
-        .map(|e| {
-            let mut out = Poly::zero(n);
-            for (m, c) in e.terms() {
-                let mut exps = vec![0; n];
-                for (i, &x) in m.0.iter().enumerate() {
-                    if x == 0 {
-                        continue;
-                    }
-                    exps[kept.iter().position(|&k| k == i)?] = x;
-                }
-                out.add_term(Monomial(exps), c.clone());
-            }
-            Some(out)
-        })
-        .collect()
-}
-
 /// Everything needed to solve, audit or emit a problem.
 pub struct SolverPlan {
     /// The parsed problem.
@@ -302,6 +152,17 @@ pub fn resolve_options(problem: &Problem, options: &TemplateOptions) -> Template
 pub fn plan_file(path: &Path, options: &TemplateOptions) -> Result<SolverPlan, PipelineError> {
     let problem = Problem::from_file(path)?;
     plan(problem, &path.display().to_string(), options)
+}
+
+/// Parses and plans a problem given as source text; `file` names it in messages and in
+/// the header of the emitted solver.
+pub fn plan_source(
+    text: &str,
+    file: &str,
+    options: &TemplateOptions,
+) -> Result<SolverPlan, PipelineError> {
+    let problem = Problem::parse(text, file).map_err(ProblemError::from)?;
+    plan(problem, file, options)
 }
 
 /// Runs the algebra pipeline on `problem` (see the module documentation), with the
@@ -458,6 +319,12 @@ impl SolverPlan {
         layout.unknown_count() - layout.hidden_count()
     }
 
+    /// The name of the emitted solver's module and file stem: the problem name lowercased,
+    /// `p` prepended when it starts with a digit (`problem 8ptF` gives `p8ptf`).
+    pub fn module_name(&self) -> String {
+        self.problem.layout.module_name()
+    }
+
     /// Names of the template's variables (the unknowns that were not eliminated).
     pub fn variable_names(&self) -> Vec<String> {
         ProblemSource::new(&self.problem).var_names()
@@ -577,12 +444,6 @@ pub fn find_template<S: InstanceSource>(
             (t3 - t2).as_secs_f64(),
         ),
     })
-}
-
-/// Emits the solver source of a planned problem, as checked in under
-/// `solver/src/generated/` (header naming `templates/<name>.mp`).
-pub fn emit_plan(plan: &SolverPlan) -> Result<String, PipelineError> {
-    emit_plan_from(plan, &format!("templates/{}.mp", plan.problem.layout.name))
 }
 
 /// Emits the solver source of a planned problem, its header naming the problem file

@@ -9,7 +9,6 @@
 //! compare by area (rows x columns), as the field does.
 
 use crate::audit::{audit_plan, AuditOptions, AuditReport};
-use crate::generate::GenerateError;
 use crate::pipeline::{plan, SolverPlan};
 use crate::template::TemplateOptions;
 use crate::Problem;
@@ -174,12 +173,8 @@ fn header_value(source: &str, key: &str) -> Option<String> {
     })
 }
 
-/// The report row of one problem file: plan (count, template), then audit with `audit`.
-pub fn report_row(file: &Path, audit: &AuditOptions) -> ReportRow {
-    report_row_with(file, audit, &TemplateOptions::default())
-}
-
-/// [`report_row`] with explicit template options.
+/// The report row of one problem file: plan (count, template) with `options`, then audit
+/// with `audit`.
 pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOptions) -> ReportRow {
     let shown = file.display().to_string();
     let source = std::fs::read_to_string(file).unwrap_or_default();
@@ -210,7 +205,7 @@ pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOpti
     let problem = match Problem::from_file(file) {
         Ok(p) => p,
         Err(e) => {
-            row.error = Some(GenerateError::from(e).to_string());
+            row.error = Some(e.to_string());
             return row;
         }
     };
@@ -240,7 +235,7 @@ pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOpti
     row
 }
 
-/// The report of every problem file named by `paths` (see [`problem_files`]).
+/// The report of every problem file named by `paths` (see `problem_files`).
 pub fn report(paths: &[PathBuf], audit: &AuditOptions) -> Result<Vec<ReportRow>, ReportError> {
     report_with(paths, audit, &TemplateOptions::default())
 }

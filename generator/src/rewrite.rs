@@ -13,8 +13,8 @@
 use crate::algebra::{MonomialOrder, Poly};
 use crate::eliminate::{affine_equations, linear_pivots, purely_linear_unknowns};
 use crate::instance::random_data_fp;
-use crate::pipeline::{system, system_and_factors, ProblemSource};
 use crate::quotient::{analyse_within, InstanceRng};
+use crate::system::{system, system_and_factors, ProblemSource};
 use crate::template::TemplateOptions;
 use crate::Problem;
 

@@ -2,11 +2,11 @@
 //! report as the library on the same data, `inspect --json` documents the slot order, and
 //! malformed lines are rejected naming the line and the column count.
 
-use mingen::audit::audit_plan_on;
-use mingen::instance::random_data_f64;
-use mingen::instances_file::format_instances;
-use mingen::pipeline::plan_file;
-use mingen::template::TemplateOptions;
+use mingen::__internal::instance::random_data_f64;
+use mingen::__internal::instances_file::format_instances;
+use mingen::audit_plan_on;
+use mingen::plan_file;
+use mingen::TemplateOptions;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use serde_json::Value;

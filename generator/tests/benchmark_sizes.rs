@@ -8,8 +8,8 @@
 //! `python3 tools/benchmark_record.py --check`, which plans every one, so that the test
 //! suite stays short.
 
-use mingen::pipeline::plan_file;
-use mingen::template::TemplateOptions;
+use mingen::plan_file;
+use mingen::TemplateOptions;
 use std::path::{Path, PathBuf};
 
 /// Problems whose recorded planning time is above this are not planned by the test.

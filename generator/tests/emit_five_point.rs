@@ -2,12 +2,12 @@
 //! small problem with linear elimination. Set `MINGEN_EMIT_OUT=DIR` to keep the emitted
 //! files in DIR (default: a temporary directory).
 
-use mingen::algebra::{Monomial, MonomialOrder, Poly, Ring, Q};
-use mingen::emit::{
+use mingen::__internal::algebra::{Monomial, MonomialOrder, Poly, Ring, Q};
+use mingen::__internal::emit::{
     emit_solver, generated_header, EliminationSpec, Program, SolverSpec, Traced, Tracer,
 };
-use mingen::problem::{DataKind, DataSymbol, ProblemLayout, UnknownSymbol};
-use mingen::template::{EliminationTemplate, TemplateRow};
+use mingen::__internal::problem::{DataKind, DataSymbol, ProblemLayout, UnknownSymbol};
+use mingen::__internal::template::{EliminationTemplate, TemplateRow};
 use nalgebra::{DMatrix, Matrix3, Rotation3, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -136,7 +136,7 @@ fn five_point_template() -> EliminationTemplate {
         n_dependent: 0,
         n_hidden: 0,
         basis,
-        action: mingen::template::Action::var(3, 0),
+        action: mingen::__internal::template::Action::var(3, 0),
         sparse: None,
         reduction: None,
     }
@@ -153,7 +153,7 @@ fn five_point_spec() -> (SolverSpec, Tracer) {
         problem_path: "templates/fivept.mp".into(),
         elimination: None,
         polish: None,
-        code_form: mingen::emit::CodeForm::Auto,
+        code_form: mingen::__internal::emit::CodeForm::Auto,
     };
     (spec, tracer)
 }
@@ -195,7 +195,7 @@ fn traced_dag_matches_direct_f64_evaluation() {
                 "eq {e} {m:?}: {traced} vs {want}"
             );
             assert!(rel_close(prog[k], want, 1e-12), "program eq {e} {m:?}");
-            if let mingen::emit::traced::TracedValue::Node { id, neg } = c.value() {
+            if let mingen::__internal::emit::traced::TracedValue::Node { id, neg } = c.value() {
                 let v = all_nodes[id as usize];
                 assert_eq!(if neg { -v } else { v }, traced);
             }
@@ -452,7 +452,7 @@ fn elimination_emission_parses() {
         n_dependent: 0,
         n_hidden: 0,
         basis: vec![s.clone(), one.clone()],
-        action: mingen::template::Action::var(1, 0),
+        action: mingen::__internal::template::Action::var(1, 0),
         sparse: None,
         reduction: None,
     };
@@ -478,7 +478,7 @@ fn elimination_emission_parses() {
             inhomogeneous: false,
         }),
         polish: None,
-        code_form: mingen::emit::CodeForm::Auto,
+        code_form: mingen::__internal::emit::CodeForm::Auto,
     };
     let a = emit_solver(&spec).unwrap();
     assert_eq!(a, emit_solver(&spec).unwrap());

@@ -3,9 +3,9 @@
 //! runs `mingen_runtime::reduce_equations` as the emitted solvers do), and validated mod p
 //! on fresh instances by the pipeline.
 
-use mingen::audit::{audit_plan, AuditOptions};
-use mingen::pipeline::plan_file;
-use mingen::template::TemplateOptions;
+use mingen::plan_file;
+use mingen::TemplateOptions;
+use mingen::{audit_plan, AuditOptions};
 use std::path::{Path, PathBuf};
 
 fn benchmark(name: &str) -> PathBuf {

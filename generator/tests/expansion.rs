@@ -2,8 +2,8 @@
 //! in f64 (relative 1e-12) and exactly mod p; evaluation over Poly<Q> with symbolic data
 //! equals `expand()`; everything is deterministic.
 
-use mingen::algebra::{Fp, Monomial, Poly, Ring, P1, Q};
-use mingen::instance::{random_data_f64, random_data_fp};
+use mingen::__internal::algebra::{Fp, Monomial, Poly, Ring, P1, Q};
+use mingen::__internal::instance::{random_data_f64, random_data_fp};
 use mingen::Problem;
 use num_traits::ToPrimitive;
 use rand::{Rng, SeedableRng};
@@ -191,7 +191,7 @@ fn grsrp_vanishes_on_a_consistent_instance() {
         .1;
     let mut rng = ChaCha8Rng::seed_from_u64(5);
     let skew = |v: Vector3<f64>| v.cross_matrix();
-    let r0 = Matrix3::from_row_slice(&mingen::instance::random_rotation_f64(&mut rng));
+    let r0 = Matrix3::from_row_slice(&mingen::__internal::instance::random_rotation_f64(&mut rng));
     let a = Vector3::new(0.01, -0.02, 0.015);
     let t = Vector3::new(0.3, -0.5, 0.8).normalize();
     let (w1, w2) = (

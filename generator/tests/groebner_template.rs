@@ -3,10 +3,10 @@
 mod common;
 
 use common::Fixture;
-use mingen::groebner::GroebnerError;
-use mingen::pipeline::{find_template, Generated};
-use mingen::quotient::{analyse, AnalysisError};
-use mingen::template::{best_template, validate, TemplateOptions};
+use mingen::__internal::groebner::GroebnerError;
+use mingen::__internal::pipeline::{find_template, Generated};
+use mingen::__internal::quotient::{analyse, AnalysisError};
+use mingen::__internal::template::{best_template, validate, TemplateOptions};
 use std::time::Instant;
 
 fn run(f: Fixture, opts: &TemplateOptions) -> Generated {

@@ -2,10 +2,10 @@
 //! (10 cubics in x, y, z; classic 10x20 template, action x), plus an eliminated-unknowns
 //! audit on a small system.
 
-use mingen::algebra::{Monomial, MonomialOrder, Poly};
-use mingen::audit::{audit, AuditInstance, AuditOptions, EliminatedUnknowns};
-use mingen::interpret::{normalized_residual, solve_template, solve_template_real};
-use mingen::template::{EliminationTemplate, TemplateRow};
+use mingen::__internal::algebra::{Monomial, MonomialOrder, Poly};
+use mingen::__internal::audit::{audit, AuditInstance, AuditOptions, EliminatedUnknowns};
+use mingen::__internal::interpret::{normalized_residual, solve_template, solve_template_real};
+use mingen::__internal::template::{EliminationTemplate, TemplateRow};
 use nalgebra::{DMatrix, Matrix3, Rotation3, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -54,7 +54,7 @@ fn five_point_template() -> EliminationTemplate {
         n_dependent: 0,
         n_hidden: 0,
         basis,
-        action: mingen::template::Action::var(3, 0),
+        action: mingen::__internal::template::Action::var(3, 0),
         sparse: None,
         reduction: None,
     }
@@ -274,7 +274,7 @@ fn audit_with_eliminated_unknowns() {
         n_dependent: 0,
         n_hidden: 0,
         basis: vec![m2([1, 0]), m2([0, 1]), m2([0, 0])],
-        action: mingen::template::Action::var(2, 0),
+        action: mingen::__internal::template::Action::var(2, 0),
         sparse: None,
         reduction: None,
     };

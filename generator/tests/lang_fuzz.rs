@@ -1,8 +1,8 @@
 //! Thousands of randomly mutated versions of the shipped problem files go through the
 //! parser and checker (and, when they parse, a direct evaluation mod p): no input panics.
 
-use mingen::algebra::{Fp, P1};
-use mingen::instance::random_data_fp;
+use mingen::__internal::algebra::{Fp, P1};
+use mingen::__internal::instance::random_data_fp;
 use mingen::Problem;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};

@@ -3,10 +3,10 @@
 //! solutions), equations that are linear combinations of others are dropped, and names
 //! that differ only in case give distinct fields.
 
-use mingen::pipeline::{emit_plan_from, plan, SolverPlan};
-use mingen::problem::ProblemOptions;
-use mingen::template::TemplateOptions;
 use mingen::Problem;
+use mingen::ProblemOptions;
+use mingen::TemplateOptions;
+use mingen::{emit_plan_from, plan, SolverPlan};
 
 fn planned(src: &str, opts: &TemplateOptions) -> SolverPlan {
     let problem = Problem::parse(src, "t.mp").unwrap_or_else(|e| panic!("{e}"));
@@ -18,9 +18,9 @@ fn eliminated(p: &SolverPlan) -> Vec<String> {
 }
 
 fn audit_median(p: &SolverPlan) -> f64 {
-    let a = mingen::audit::audit_plan(
+    let a = mingen::__internal::audit::audit_plan(
         p,
-        &mingen::audit::AuditOptions {
+        &mingen::__internal::audit::AuditOptions {
             instances: 200,
             seed: 7,
         },

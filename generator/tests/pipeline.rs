@@ -1,9 +1,9 @@
 //! The pipeline on problem files: counts and template sizes of the shipped problems,
 //! degenerate systems with clear errors, and deterministic `inspect --json`.
 
-use mingen::pipeline::{plan, plan_file};
-use mingen::template::TemplateOptions;
 use mingen::Problem;
+use mingen::TemplateOptions;
+use mingen::{plan, plan_file};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

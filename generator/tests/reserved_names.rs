@@ -2,9 +2,9 @@
 //! raw identifiers, so the solver builds in a crate of any edition; names that cannot be
 //! emitted at all are refused where they are declared.
 
-use mingen::pipeline::{emit_plan_from, plan};
-use mingen::template::TemplateOptions;
 use mingen::Problem;
+use mingen::TemplateOptions;
+use mingen::{emit_plan_from, plan};
 
 #[test]
 fn keyword_symbols_become_raw_identifiers() {

@@ -2,20 +2,23 @@
 //! saturated and unsaturated Cayley-form 5-point systems, the hidden unknown kept out of
 //! the solutions, random-combination actions, and the errors when a budget runs out.
 
-use mingen::budget::Budget;
-use mingen::pipeline::plan;
-use mingen::problem::ProblemOptions;
-use mingen::template::TemplateOptions;
+use mingen::plan;
+use mingen::Budget;
 use mingen::Problem;
+use mingen::ProblemOptions;
+use mingen::TemplateOptions;
 
-fn planned(src: &str, opts: &TemplateOptions) -> Result<mingen::pipeline::SolverPlan, String> {
+fn planned(src: &str, opts: &TemplateOptions) -> Result<mingen::SolverPlan, String> {
     let problem = Problem::parse(src, "t.mp").map_err(|e| e.to_string())?;
     plan(problem, "t.mp", opts).map_err(|e| e.to_string())
 }
 
 /// Audits `p` on `instances` uniform instances and checks the median log10 residual.
-fn assert_audit_below(p: &mingen::pipeline::SolverPlan, instances: usize, seed: u64, median: f64) {
-    let a = mingen::audit::audit_plan(p, &mingen::audit::AuditOptions { instances, seed });
+fn assert_audit_below(p: &mingen::SolverPlan, instances: usize, seed: u64, median: f64) {
+    let a = mingen::__internal::audit::audit_plan(
+        p,
+        &mingen::__internal::audit::AuditOptions { instances, seed },
+    );
     assert!(a.median_log10_residual < median, "{a}");
 }
 
@@ -43,7 +46,7 @@ fn nonzero_removes_the_component_and_is_never_returned() {
     // The audit measures the declared equations at the real solutions.
     assert_audit_below(&p, 50, 3, -9.0);
     // The emitted solution type has the declared unknowns only (q and t).
-    let out = mingen::pipeline::emit_plan_from(&p, "t.mp").unwrap();
+    let out = mingen::emit_plan_from(&p, "t.mp").unwrap();
     assert!(
         out.contains("pub const UNKNOWNS: usize = 6;"),
         "hidden unknown leaked into the solution type"
@@ -74,7 +77,7 @@ fn nonzero_expressions_are_divided_out_and_saturation_kept_only_where_needed() {
     assert_eq!(p.problem.divisions(), &[vec![1], vec![0]]);
     assert_eq!(p.problem.layout.hidden_count(), 0);
     assert_audit_below(&p, 30, 5, -12.0);
-    assert!(mingen::pipeline::emit_plan_from(&p, "e.mp").is_ok());
+    assert!(mingen::emit_plan_from(&p, "e.mp").is_ok());
     // Here the divided system still has a solution with x = 1 ((1, b - 1), the second
     // equation not being a multiple of x - 1): saturation stays and removes it.
     let p = planned(
@@ -159,19 +162,19 @@ fn newton_polishes_solutions_in_the_audit_and_the_emitted_solver() {
     assert_eq!(plain.problem.layout.options.newton, None);
     assert_eq!(
         plain.problem.layout.options.newton_steps(),
-        mingen::problem::DEFAULT_NEWTON_STEPS
+        mingen::__internal::problem::DEFAULT_NEWTON_STEPS
     );
-    assert_eq!(mingen::problem::DEFAULT_NEWTON_STEPS, 0);
+    assert_eq!(mingen::__internal::problem::DEFAULT_NEWTON_STEPS, 0);
     let polished = planned(
         &format!("{src}option newton = 2\n"),
         &TemplateOptions::default(),
     )
     .unwrap();
     assert_eq!(polished.problem.layout.options.newton, Some(2));
-    let audit = |p: &mingen::pipeline::SolverPlan| {
-        mingen::audit::audit_plan(
+    let audit = |p: &mingen::SolverPlan| {
+        mingen::__internal::audit::audit_plan(
             p,
-            &mingen::audit::AuditOptions {
+            &mingen::__internal::audit::AuditOptions {
                 instances: 200,
                 seed: 3,
             },
@@ -188,7 +191,7 @@ fn newton_polishes_solutions_in_the_audit_and_the_emitted_solver() {
     let with_steps = a.other_polishing.as_ref().expect("figures with polishing");
     assert_eq!(
         with_steps.newton_steps,
-        mingen::audit::COMPARISON_NEWTON_STEPS
+        mingen::__internal::audit::COMPARISON_NEWTON_STEPS
     );
     assert_eq!(with_steps.median_log10_residual, b.median_log10_residual);
     assert_eq!(with_steps.failures, b.failures);
@@ -200,9 +203,9 @@ fn newton_polishes_solutions_in_the_audit_and_the_emitted_solver() {
     assert_eq!(before.median_log10_residual, a.median_log10_residual);
     assert_eq!(before.p99_log10_residual, a.p99_log10_residual);
     assert_eq!(before.failures, a.failures);
-    let source = mingen::pipeline::emit_plan(&polished).unwrap();
+    let source = mingen::emit_plan_from(&polished, "t.mp").unwrap();
     assert!(source.contains("newton_polish(&mut x, &NEWTON_TERMS, &newton_c, 2)"));
-    assert!(!mingen::pipeline::emit_plan(&plain)
+    assert!(!mingen::emit_plan_from(&plain, "t.mp")
         .unwrap()
         .contains("newton_polish"));
     // The command line's value replaces the file's.

@@ -2,10 +2,10 @@
 //! pivoting (same pivots, same arithmetic on the non-zeros), and small templates keep the
 //! dense LU.
 
-use mingen::instance::random_data_f64;
-use mingen::interpret::fill_template;
-use mingen::pipeline::plan_file;
-use mingen::template::{TemplateOptions, SPARSE_MIN_PIVOTS};
+use mingen::__internal::instance::random_data_f64;
+use mingen::__internal::interpret::fill_template;
+use mingen::__internal::template::{TemplateOptions, SPARSE_MIN_PIVOTS};
+use mingen::plan_file;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 

@@ -5,9 +5,9 @@
 //! grevlex under every variable order stays far above it; the template is validated mod p
 //! and solves uniform random instances accurately.
 
-use mingen::audit::{audit_plan, AuditOptions};
-use mingen::pipeline::plan_file;
-use mingen::template::TemplateOptions;
+use mingen::plan_file;
+use mingen::TemplateOptions;
+use mingen::{audit_plan, AuditOptions};
 use std::path::Path;
 
 #[test]

@@ -1,6 +1,6 @@
 //! The emitted solvers (`rspose::generated::*`) agree with the interpreted solver
-//! (`mingen::interpret`) on the same template: on [`INSTANCES`] random f64 instances per
-//! problem (`mingen::instance::random_data_f64`, fixed seed) both return the same real
+//! (`mingen::__internal::interpret`) on the same template: on [`INSTANCES`] random f64 instances per
+//! problem (`mingen::__internal::instance::random_data_f64`, fixed seed) both return the same real
 //! solutions, as sets, to [`REL_TOL`] (relative to `max(1, max_i |x_i|)` of the solution),
 //! on at least [`MIN_AGREEMENT`] of the instances.
 //!
@@ -17,12 +17,12 @@
 mod common;
 
 use common::{assert_all_emitted_listed, emitted, problem_file, Emitted};
-use mingen::algebra::Poly;
-use mingen::instance::random_data_f64;
-use mingen::interpret::{normalized_residual, recover_eliminated, solve_template_real};
-use mingen::pipeline::plan_file;
-use mingen::pipeline::SolverPlan;
-use mingen::template::TemplateOptions;
+use mingen::__internal::algebra::Poly;
+use mingen::__internal::instance::random_data_f64;
+use mingen::__internal::interpret::{normalized_residual, recover_eliminated, solve_template_real};
+use mingen::plan_file;
+use mingen::SolverPlan;
+use mingen::TemplateOptions;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 

@@ -1,13 +1,13 @@
-//! `mingen::audit::audit_plan`, the library side of `mingen audit FILE`, on shipped problems.
+//! `mingen::__internal::audit::audit_plan`, the library side of `mingen audit FILE`, on shipped problems.
 
 mod common;
 
 use common::problem_file;
-use mingen::audit::{audit_plan, AuditOptions};
-use mingen::pipeline::plan_file;
-use mingen::template::TemplateOptions;
+use mingen::plan_file;
+use mingen::TemplateOptions;
+use mingen::{audit_plan, AuditOptions};
 
-fn audit(name: &str, instances: usize) -> mingen::audit::AuditReport {
+fn audit(name: &str, instances: usize) -> mingen::AuditReport {
     let plan = plan_file(&problem_file(name), &TemplateOptions::default())
         .unwrap_or_else(|e| panic!("planning {name}: {e}"));
     let report = audit_plan(&plan, &AuditOptions { instances, seed: 1 });

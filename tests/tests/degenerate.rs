@@ -6,8 +6,8 @@
 mod common;
 
 use common::{assert_all_emitted_listed, emitted_solvers, problem_file, Emitted};
-use mingen::instance::random_data_f64;
-use mingen::problem::ProblemLayout;
+use mingen::__internal::instance::random_data_f64;
+use mingen::__internal::problem::ProblemLayout;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::panic::{catch_unwind, AssertUnwindSafe};

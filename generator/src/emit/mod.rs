@@ -10,7 +10,7 @@
 //!   eliminated unknowns), built with `quote!` and formatted with `prettyplease`.
 //! - `structs`: the emitted `Data` / `Solution` structs and their slot conversions.
 //! - `tokens`: literal and doc-attribute helpers both of the above use.
-//! - `files`: header line, output path, atomic write, freshness check.
+//! - `files`: header line, atomic write, freshness check.
 //!
 //! All calls into `mingen_runtime` are spelled in `runtime_api` only.
 //!
@@ -31,10 +31,7 @@ mod tokens;
 pub mod traced;
 
 pub use coefficients::Program;
-pub use files::{
-    generated_header, generated_header_for_path, generated_path, generated_relative_path, is_fresh,
-    write_output,
-};
+pub use files::{generated_header, generated_header_for_path, is_fresh, write_output};
 pub use solver::{emit_solver, SMALL_TEMPLATE_ROWS, TABLE_FORM_MIN_SIZE};
 pub use traced::{Traced, Tracer};
 
@@ -94,7 +91,7 @@ pub struct PolishSpec {
 pub struct SolverSpec {
     /// The problem's symbols (names, kinds, slot numbering).
     pub layout: ProblemLayout,
-    /// The elimination template (see [`crate::template`] for the convention).
+    /// The elimination template (see `crate::template` for the convention).
     pub template: EliminationTemplate,
     /// The equations the template rows refer to, as polynomials in the template's
     /// variables whose coefficients are traced data (all from one [`Tracer`]).

@@ -3,6 +3,7 @@
 use super::action::action_matrix_tokens;
 use super::coefficients::{Expr, Program, VarStyle};
 use super::files::generated_header_for_path;
+use super::polish::EquationTerms;
 use super::runtime_api as rt;
 use super::structs::{
     data_field_idents, emit_data, emit_solution, slot_access, solution_field_idents,
@@ -205,7 +206,7 @@ impl<'a> Plan<'a> {
     }
 }
 
-/// Emits the solver file for `spec` (see the module documentation of [`super`]).
+/// Emits the solver file for `spec` (see the module documentation of `crate::emit`).
 pub fn emit_solver(spec: &SolverSpec) -> Result<String, EmitError> {
     if syn::parse_str::<Ident>(&spec.layout.module_name()).is_err() {
         return Err(EmitError::Unsupported(format!(
@@ -411,394 +412,52 @@ fn entry_tokens(terms: &[(Monomial, Expr)], style: VarStyle) -> TokenStream {
     out
 }
 
+/// Emits `solve` and `solve_staged`, stage by stage: the data, the coefficients, the
+/// template fill, its elimination, the action matrix, the eigenvectors, the read-out of
+/// each solution (with the eliminated unknowns and polishing) and the documentation.
 fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let spec = plan.spec;
     let t = &spec.template;
-    let layout = &spec.layout;
     let (rows, cols) = t.eliminated_size();
     let nb = t.basis.len();
     let pivots = t.pivot_columns();
-
-    // Data flattening, in slot order.
-    let n_slots = layout.data_slot_count();
-    let mut slot_expr: Vec<Option<TokenStream>> = vec![None; n_slots];
-    for (d, field) in layout.data.iter().zip(data_field_idents(layout)?) {
-        let per = d.kind.slots();
-        for e in 0..d.len.unwrap_or(1) {
-            for k in 0..per {
-                let s = d.first_slot + e * per + k;
-                match slot_expr.get_mut(s) {
-                    Some(x @ None) => *x = Some(slot_access(&field, d, e, k)),
-                    _ => {
-                        return Err(EmitError::Invalid(format!(
-                            "data slot {s} of `{}` is out of range or used twice",
-                            d.name
-                        )))
-                    }
-                }
-            }
-        }
-    }
-    let slot_expr: Vec<TokenStream> = slot_expr
-        .into_iter()
-        .map(|x| x.expect("all slots covered"))
+    let n_slots = spec.layout.data_slot_count();
+    let slot_expr = data_slots(plan)?;
+    let mut coefficients = Coefficients::new(plan)?;
+    let stats = Stats {
+        ops: coefficients.program.op_count(),
+        stmts: coefficients.program.stmts.len(),
+    };
+    let fill = fill_tokens(plan, &mut coefficients)?;
+    let (units, from_template_loop) = action_matrix_tokens(t, &plan.column_of, cols, pivots, nb);
+    let readout = Readout::new(plan);
+    let elim_block = eliminated_unknowns_tokens(plan, &coefficients, fill.style);
+    let (polish_consts, polish_block) = polish_tokens(plan, &coefficients, fill.style);
+    let field_inits = solution_fields(plan)?;
+    let elimination = Elimination::new(t);
+    let eig = eigen_function(nb);
+    let docs: Vec<TokenStream> = solve_docs(plan, elimination.words)
+        .iter()
+        .map(doc)
         .collect();
 
-    // Coefficients: template entries (inlinable) or, when the equations are reduced first,
-    // the entries of their coefficient matrix; then elimination matrix coefficients
-    // (bound before the solution loop).
-    let (fill_pos, fill_vals) = match &t.reduction {
-        Some(red) => super::reduction::equation_entries(red, &spec.equations)?,
-        None => {
-            let mut fill_pos: Vec<usize> = Vec::new();
-            let mut fill_vals: Vec<Traced> = Vec::new();
-            for (i, row) in t.rows.iter().enumerate() {
-                for (m, c) in spec.equations[row.equation].terms() {
-                    // Dependent excess columns are not part of the eliminated matrix.
-                    let Some(col) = t.eliminated_column(plan.column_of[&row.multiplier.mul(m)])
-                    else {
-                        continue;
-                    };
-                    fill_pos.push(i * cols + col);
-                    fill_vals.push(c.clone());
-                }
-            }
-            (fill_pos, fill_vals)
-        }
-    };
-    // Each template entry is written once: two terms of one row never share a column
-    // because the equation's monomials are distinct.
-    let mut elim_terms: Vec<Vec<Vec<Monomial>>> = Vec::new();
-    let mut elim_vals: Vec<Traced> = Vec::new();
-    if let Some(el) = &spec.elimination {
-        for row in &el.coefficient_matrix {
-            let mut r = Vec::new();
-            for p in row {
-                let support = p.support(MonomialOrder::Grevlex);
-                for m in &support {
-                    elim_vals.push(p.coeff(m));
-                }
-                r.push(support);
-            }
-            elim_terms.push(r);
-        }
-    }
-    // Polishing: the original equations' coefficients, bound before the loop with the
-    // elimination matrix's.
-    let n_elim_vals = elim_vals.len();
-    let polish_terms = match &spec.polish {
-        Some(p) => super::polish::coefficients(p, &mut elim_vals)?,
-        None => Vec::new(),
-    };
-    let mut program = Program::build(&fill_vals, &elim_vals, n_slots)?;
-    let stats = Stats {
-        ops: program.op_count(),
-        stmts: program.stmts.len(),
-    };
     let n_slots_l = lit(n_slots);
     let (rows_l, cols_l, pivots_l, nb_l) = (lit(rows), lit(cols), lit(pivots), lit(nb));
-    let size_l = lit(rows * cols);
-    let alloc = if rows <= SMALL_TEMPLATE_ROWS {
-        quote!(let mut m = [0.0f64; #size_l];)
-    } else {
-        quote!(let mut m = vec![0.0f64; #size_l];)
-    };
-    let table_form = match spec.code_form {
-        CodeForm::Auto => fill_vals.len() + program.stmts.len() > TABLE_FORM_MIN_SIZE,
-        CodeForm::Inline => false,
-        CodeForm::Table => true,
-    };
-    let style = if table_form {
-        VarStyle::Array
-    } else {
-        VarStyle::Locals
-    };
-    let target = match &t.reduction {
-        Some(red) => super::reduction::equation_matrix_target(red),
-        None => FillTarget {
-            name: format_ident!("m"),
-            table: format_ident!("TEMPLATE_FILL"),
-            alloc: alloc.clone(),
-            len: rows * cols,
-            what: "template",
-        },
-    };
-    let (mut coefficient_fns, mut coefficients_and_fill) = if table_form {
-        table_form_tokens(&mut program, &fill_pos, n_slots, &target)?
-    } else {
-        let coeff_stmts = program.stmt_tokens();
-        let mut fill_order: Vec<(usize, &Expr)> = fill_pos
-            .iter()
-            .copied()
-            .zip(&program.outputs[..fill_vals.len()])
-            .collect();
-        fill_order.sort_by_key(|(p, _)| *p);
-        let name = &target.name;
-        let fills: Vec<TokenStream> = fill_order
-            .into_iter()
-            .map(|(p, e)| {
-                let p = lit(p);
-                let e = e.to_tokens();
-                quote!(#name[#p] = #e;)
-            })
-            .collect();
-        let target_alloc = &target.alloc;
-        (
-            quote!(),
-            quote! {
-                #(#coeff_stmts)*
-                #target_alloc
-                #(#fills)*
-            },
-        )
-    };
-    if let Some(red) = &t.reduction {
-        let (items, code) =
-            super::reduction::reduce_and_fill_tokens(t, red, &plan.column_of, cols, &alloc)?;
-        coefficient_fns.extend(items);
-        coefficients_and_fill.extend(code);
-    }
-
-    let (units, from_template_loop) = action_matrix_tokens(t, &plan.column_of, cols, pivots, nb);
-
-    // Read-out: the runtime's `read_unknowns` with the read-out pairs as a constant.
-    let one_l = lit(plan.basis_one);
-    let nvars_l = lit(plan.readout.len());
-    let readout_pairs: Vec<TokenStream> = plan
-        .readout
-        .iter()
-        .map(|pairs| {
-            let ps = pairs.iter().map(|&(j, k)| {
-                let (jl, kl) = (lit(j), lit(k));
-                quote!((#jl, #kl))
-            });
-            quote!(&[#(#ps),*])
-        })
-        .collect();
-    let unknown_idents: Vec<Ident> = (0..plan.readout.len())
-        .map(|k| format_ident!("u{}", k))
-        .collect();
-    // Unknowns outside the basis: `x_i = -T[x_i, :] v / v[1]` from the reduced row of
-    // their (reducible) column, which starts at `c * cols + pivots` as the action rows do.
-    let read_linear = rt::read_linear();
-    let linear_reads: Vec<TokenStream> = plan
-        .readout
-        .iter()
-        .enumerate()
-        .filter(|(_, pairs)| pairs.is_empty())
-        .map(|(i, _)| {
-            let c = t
-                .eliminated_column(plan.column_of[&Monomial::var(t.nvars, i)])
-                .expect("an unknown outside the basis is a reducible column");
-            let (il, start, end) = (lit(i), lit(c * cols + pivots), lit(c * cols + pivots + nb));
-            quote! {
-                match #read_linear(v.as_slice(), #one_l, &m[#start..#end]) {
-                    Some(x) => u[#il] = x,
-                    None => continue,
-                }
-            }
-        })
-        .collect();
-    let elim_block = if let Some(el) = &spec.elimination {
-        let mut outs = program.outputs[fill_vals.len()..].iter();
-        let mut row_tokens = Vec::new();
-        for row in &elim_terms {
-            let mut entries = Vec::new();
-            for support in row {
-                let terms: Vec<(Monomial, Expr)> = support
-                    .iter()
-                    .map(|m| (m.clone(), outs.next().expect("one output per term").clone()))
-                    .collect();
-                entries.push(entry_tokens(&terms, style));
-            }
-            row_tokens.push(quote!([#(#entries),*]));
-        }
-        let nr = lit(el.coefficient_matrix.len());
-        let k = el.eliminated.len();
-        if el.inhomogeneous {
-            let (width, kl) = (lit(k + 1), lit(k));
-            let (nv, dh) = (rt::null_vector(), rt::dehomogenize());
-            quote! {
-                let rows: [[f64; #width]; #nr] = [#(#row_tokens),*];
-                let Some(h) = #nv(&rows) else {
-                    continue;
-                };
-                let mut n = [0.0; #kl];
-                if !#dh(&h, &mut n) {
-                    continue;
-                }
-            }
-        } else if k == 3 {
-            let nv = rt::null_vector3();
-            quote! {
-                let rows: [[f64; 3]; #nr] = [#(#row_tokens),*];
-                let Some(n) = #nv(&rows) else {
-                    continue;
-                };
-            }
-        } else {
-            let (width, nv) = (lit(k), rt::null_vector());
-            quote! {
-                let rows: [[f64; #width]; #nr] = [#(#row_tokens),*];
-                let Some(n) = #nv(&rows) else {
-                    continue;
-                };
-            }
-        }
-    } else {
-        quote!()
-    };
-    let source_value = |i: usize| match plan.source[i] {
-        Ok(k) => {
-            let u = format_ident!("u{}", k);
-            quote!(#u)
-        }
-        Err(j) => {
-            let j = lit(j);
-            quote!(n[#j])
-        }
-    };
-    let (polish_consts, polish_block) = match &spec.polish {
-        Some(p) => super::polish::tokens(
-            p,
-            &polish_terms,
-            &program.outputs[fill_vals.len() + n_elim_vals..],
-            (0..p.unknowns).map(source_value).collect(),
-            style,
-        ),
-        None => (quote!(), quote!()),
-    };
-    let mut field_inits = Vec::new();
-    for (u, id) in layout
-        .declared_unknowns()
-        .zip(solution_field_idents(layout)?)
-    {
-        let polished = spec.polish.is_some();
-        let val = |i: usize| {
-            if polished {
-                let i = lit(i);
-                quote!(x[#i])
-            } else {
-                source_value(i)
-            }
-        };
-        match u.len {
-            None => {
-                let v = val(u.first_var);
-                field_inits.push(quote!(#id: #v,));
-            }
-            Some(len) => {
-                let vs: Vec<TokenStream> = (0..len).map(|e| val(u.first_var + e)).collect();
-                field_inits.push(quote!(#id: [#(#vs),*],));
-            }
-        }
-    }
-
-    let first_row = lit(t.n_excess - t.n_dependent);
-    let (sparse_plan, reduce) = match &t.sparse {
-        Some(e) => {
-            let ty = rt::sparse_lu_plan();
-            let lu = rt::lu_solve_template_sparse();
-            let u32s = |v: &[u32]| {
-                v.iter()
-                    .map(|&x| Literal::u32_unsuffixed(x))
-                    .collect::<Vec<_>>()
-            };
-            let u16s = |v: &[u16]| {
-                v.iter()
-                    .map(|&x| Literal::u16_unsuffixed(x))
-                    .collect::<Vec<_>>()
-            };
-            let (ps, p, ts, tg) = (
-                u32s(&e.pattern_start),
-                u16s(&e.pattern),
-                u32s(&e.target_start),
-                u16s(&e.targets),
-            );
-            (
-                quote! {
-                    /// The structure of the template's sparse LU with partial pivoting (a bound
-                    /// over every pivot choice; see `mingen_runtime::SparseLuPlan`).
-                    #[rustfmt::skip]
-                    pub static SPARSE_PLAN: #ty<'static> = #ty {
-                        rows: #rows_l,
-                        cols: #cols_l,
-                        pivot_cols: #pivots_l,
-                        first_row: #first_row,
-                        pattern_start: &[#(#ps),*],
-                        pattern: &[#(#p),*],
-                        target_start: &[#(#ts),*],
-                        targets: &[#(#tg),*],
-                    };
-                },
-                quote!(#lu::<#cols_l, #pivots_l>(&mut m, &SPARSE_PLAN)),
-            )
-        }
-        None => {
-            let lu = rt::lu_solve_template();
-            (
-                quote!(),
-                quote!(#lu::<#rows_l, #cols_l, #pivots_l, #first_row>(&mut m)),
-            )
-        }
-    };
-    let lu_words = if t.sparse.is_some() {
-        "sparse LU with partial pivoting"
-    } else {
-        "LU with partial pivoting"
-    };
-    let eig = if nb <= mingen_runtime::STURM_MAX_BASIS {
-        rt::real_eigenpairs_sturm()
-    } else {
-        rt::real_eigenpairs_hqr()
-    };
+    let first_row = &elimination.first_row;
+    let sparse_plan = &elimination.sparse_plan;
+    let reduce = &elimination.reduce;
+    let coefficient_fns = &fill.functions;
+    let coefficients_and_fill = &fill.code;
+    let Readout {
+        one_l,
+        nvars_l,
+        pairs: readout_pairs,
+        unknown_idents,
+        linear_reads,
+    } = &readout;
     let stages = rt::stages();
     let smat = rt::smatrix();
     let read = rt::read_unknowns();
-    let basis: Vec<String> = t.basis.iter().map(|b| plan.mono(b)).collect();
-    let mut docs = vec![
-        format!(
-            "Solves `{}`: all real solutions of the problem's equations for the given data.",
-            layout.name
-        ),
-        String::new(),
-        format!(
-            "Fills a {rows} x {cols} elimination template, reduces it ({lu_words}, \
-             back substitution of the {} reducible rows only), builds the {nb} x {nb} \
-             action matrix of `{}` on the basis [{}] and reads each unknown `x` off the real \
-             eigenvectors `v` as the least-squares ratio of the entries `v[x b]` and `v[b]` \
-             over the basis monomials `b` with `x b` in the basis (`v[x] / v[1]` if that is the \
-             only one).",
-            t.n_reducible,
-            t.action.display_with(&plan.var_names),
-            basis.join(", ")
-        ),
-        String::new(),
-    ];
-    if let Some(red) = &t.reduction {
-        let pivots: Vec<String> = red
-            .pivots
-            .iter()
-            .map(|&p| plan.mono(&red.monomials[p]))
-            .collect();
-        docs.push(format!(
-            "The template's rows are multiples of the equations row-reduced on the data \
-             (`mingen_runtime::reduce_equations`) to the pivot monomials [{}].",
-            pivots.join(", ")
-        ));
-        docs.push(String::new());
-    }
-    if let Some(p) = &spec.polish {
-        docs.push(format!(
-            "Then polishes each solution by up to {} Gauss-Newton steps on the problem's \
-             original equations (`option newton`), each kept only if it lowers their \
-             squared residual.",
-            p.steps
-        ));
-        docs.push(String::new());
-    }
-    docs.push("Never panics: non-finite or degenerate data gives no solutions.".into());
-    let docs: Vec<TokenStream> = docs.iter().map(doc).collect();
     let solve = quote! {
         /// The elimination template's `[rows, cols, pivot columns, first reduced row]`.
         pub const TEMPLATE_SHAPE: [usize; 4] = [#rows_l, #cols_l, #pivots_l, #first_row];
@@ -863,4 +522,522 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
         }
     };
     Ok((solve, stats))
+}
+
+/// The data flattened in slot order: one expression reading each slot from `data`.
+fn data_slots(plan: &Plan) -> Result<Vec<TokenStream>, EmitError> {
+    let layout = &plan.spec.layout;
+    let mut slot_expr: Vec<Option<TokenStream>> = vec![None; layout.data_slot_count()];
+    for (d, field) in layout.data.iter().zip(data_field_idents(layout)?) {
+        let per = d.kind.slots();
+        for e in 0..d.len.unwrap_or(1) {
+            for k in 0..per {
+                let s = d.first_slot + e * per + k;
+                match slot_expr.get_mut(s) {
+                    Some(x @ None) => *x = Some(slot_access(&field, d, e, k)),
+                    _ => {
+                        return Err(EmitError::Invalid(format!(
+                            "data slot {s} of `{}` is out of range or used twice",
+                            d.name
+                        )))
+                    }
+                }
+            }
+        }
+    }
+    Ok(slot_expr
+        .into_iter()
+        .map(|x| x.expect("all slots covered"))
+        .collect())
+}
+
+/// Every coefficient the solver computes from the data, as one straight-line [`Program`]:
+/// its outputs are the template fill's values, then the elimination matrix's, then the
+/// polishing equations'.
+struct Coefficients {
+    /// The position of each fill value in the filled matrix (the template, or the
+    /// equations' coefficient matrix when they are reduced first).
+    fill_pos: Vec<usize>,
+    /// How many outputs fill the matrix.
+    n_fill: usize,
+    /// The monomials of each entry of the elimination coefficient matrix, row by row.
+    elim_terms: Vec<Vec<Vec<Monomial>>>,
+    /// How many outputs the elimination matrix has.
+    n_elim: usize,
+    /// The polishing equations' terms.
+    polish_terms: Vec<EquationTerms>,
+    program: Program,
+}
+
+impl Coefficients {
+    fn new(plan: &Plan) -> Result<Self, EmitError> {
+        let spec = plan.spec;
+        let t = &spec.template;
+        let cols = t.eliminated_size().1;
+        // Template entries (inlinable) or, when the equations are reduced first, the
+        // entries of their coefficient matrix; then elimination matrix coefficients (bound
+        // before the solution loop).
+        let (fill_pos, fill_vals) = match &t.reduction {
+            Some(red) => super::reduction::equation_entries(red, &spec.equations)?,
+            None => {
+                let mut fill_pos: Vec<usize> = Vec::new();
+                let mut fill_vals: Vec<Traced> = Vec::new();
+                for (i, row) in t.rows.iter().enumerate() {
+                    for (m, c) in spec.equations[row.equation].terms() {
+                        // Dependent excess columns are not part of the eliminated matrix.
+                        let Some(col) = t.eliminated_column(plan.column_of[&row.multiplier.mul(m)])
+                        else {
+                            continue;
+                        };
+                        fill_pos.push(i * cols + col);
+                        fill_vals.push(c.clone());
+                    }
+                }
+                (fill_pos, fill_vals)
+            }
+        };
+        // Each template entry is written once: two terms of one row never share a column
+        // because the equation's monomials are distinct.
+        let mut elim_terms: Vec<Vec<Vec<Monomial>>> = Vec::new();
+        let mut elim_vals: Vec<Traced> = Vec::new();
+        if let Some(el) = &spec.elimination {
+            for row in &el.coefficient_matrix {
+                let mut r = Vec::new();
+                for p in row {
+                    let support = p.support(MonomialOrder::Grevlex);
+                    for m in &support {
+                        elim_vals.push(p.coeff(m));
+                    }
+                    r.push(support);
+                }
+                elim_terms.push(r);
+            }
+        }
+        // Polishing: the original equations' coefficients, bound before the loop with the
+        // elimination matrix's.
+        let n_elim = elim_vals.len();
+        let polish_terms = match &spec.polish {
+            Some(p) => super::polish::coefficients(p, &mut elim_vals)?,
+            None => Vec::new(),
+        };
+        let program = Program::build(&fill_vals, &elim_vals, spec.layout.data_slot_count())?;
+        Ok(Coefficients {
+            fill_pos,
+            n_fill: fill_vals.len(),
+            elim_terms,
+            n_elim,
+            polish_terms,
+            program,
+        })
+    }
+}
+
+/// The coefficient code and the fill of the template (or of the equations' coefficient
+/// matrix, then reduced and filled into the template), in the form [`CodeForm`] asks for.
+struct Fill {
+    /// Items outside `solve`: the coefficient functions and fill tables.
+    functions: TokenStream,
+    /// The code in `solve` that leaves the filled template in `m`.
+    code: TokenStream,
+    /// How the coefficient code names its values, for the code after the fill.
+    style: VarStyle,
+}
+
+fn fill_tokens(plan: &Plan, coefficients: &mut Coefficients) -> Result<Fill, EmitError> {
+    let spec = plan.spec;
+    let t = &spec.template;
+    let (rows, cols) = t.eliminated_size();
+    let n_slots = spec.layout.data_slot_count();
+    let program = &mut coefficients.program;
+    let fill_pos = &coefficients.fill_pos;
+    let size_l = lit(rows * cols);
+    let alloc = if rows <= SMALL_TEMPLATE_ROWS {
+        quote!(let mut m = [0.0f64; #size_l];)
+    } else {
+        quote!(let mut m = vec![0.0f64; #size_l];)
+    };
+    let table_form = match spec.code_form {
+        CodeForm::Auto => coefficients.n_fill + program.stmts.len() > TABLE_FORM_MIN_SIZE,
+        CodeForm::Inline => false,
+        CodeForm::Table => true,
+    };
+    let style = if table_form {
+        VarStyle::Array
+    } else {
+        VarStyle::Locals
+    };
+    let target = match &t.reduction {
+        Some(red) => super::reduction::equation_matrix_target(red),
+        None => FillTarget {
+            name: format_ident!("m"),
+            table: format_ident!("TEMPLATE_FILL"),
+            alloc: alloc.clone(),
+            len: rows * cols,
+            what: "template",
+        },
+    };
+    let (mut functions, mut code) = if table_form {
+        table_form_tokens(program, fill_pos, n_slots, &target)?
+    } else {
+        let coeff_stmts = program.stmt_tokens();
+        let mut fill_order: Vec<(usize, &Expr)> = fill_pos
+            .iter()
+            .copied()
+            .zip(&program.outputs[..coefficients.n_fill])
+            .collect();
+        fill_order.sort_by_key(|(p, _)| *p);
+        let name = &target.name;
+        let fills: Vec<TokenStream> = fill_order
+            .into_iter()
+            .map(|(p, e)| {
+                let p = lit(p);
+                let e = e.to_tokens();
+                quote!(#name[#p] = #e;)
+            })
+            .collect();
+        let target_alloc = &target.alloc;
+        (
+            quote!(),
+            quote! {
+                #(#coeff_stmts)*
+                #target_alloc
+                #(#fills)*
+            },
+        )
+    };
+    if let Some(red) = &t.reduction {
+        let (items, reduce) =
+            super::reduction::reduce_and_fill_tokens(t, red, &plan.column_of, cols, &alloc)?;
+        functions.extend(items);
+        code.extend(reduce);
+    }
+    Ok(Fill {
+        functions,
+        code,
+        style,
+    })
+}
+
+/// The elimination of the filled template: dense or sparse LU.
+struct Elimination {
+    /// The first row the elimination reduces (the rows above are excess rows).
+    first_row: Literal,
+    /// The sparse LU's structure, a static item (empty for the dense LU).
+    sparse_plan: TokenStream,
+    /// The call that reduces `m`, true on success.
+    reduce: TokenStream,
+    /// How the documentation names it.
+    words: &'static str,
+}
+
+impl Elimination {
+    fn new(t: &EliminationTemplate) -> Self {
+        let (rows, cols) = t.eliminated_size();
+        let (rows_l, cols_l, pivots_l) = (lit(rows), lit(cols), lit(t.pivot_columns()));
+        let first_row = lit(t.n_excess - t.n_dependent);
+        match &t.sparse {
+            Some(e) => {
+                let ty = rt::sparse_lu_plan();
+                let lu = rt::lu_solve_template_sparse();
+                let u32s = |v: &[u32]| {
+                    v.iter()
+                        .map(|&x| Literal::u32_unsuffixed(x))
+                        .collect::<Vec<_>>()
+                };
+                let u16s = |v: &[u16]| {
+                    v.iter()
+                        .map(|&x| Literal::u16_unsuffixed(x))
+                        .collect::<Vec<_>>()
+                };
+                let (ps, p, ts, tg) = (
+                    u32s(&e.pattern_start),
+                    u16s(&e.pattern),
+                    u32s(&e.target_start),
+                    u16s(&e.targets),
+                );
+                Elimination {
+                    sparse_plan: quote! {
+                        /// The structure of the template's sparse LU with partial pivoting (a bound
+                        /// over every pivot choice; see `mingen_runtime::SparseLuPlan`).
+                        #[rustfmt::skip]
+                        pub static SPARSE_PLAN: #ty<'static> = #ty {
+                            rows: #rows_l,
+                            cols: #cols_l,
+                            pivot_cols: #pivots_l,
+                            first_row: #first_row,
+                            pattern_start: &[#(#ps),*],
+                            pattern: &[#(#p),*],
+                            target_start: &[#(#ts),*],
+                            targets: &[#(#tg),*],
+                        };
+                    },
+                    reduce: quote!(#lu::<#cols_l, #pivots_l>(&mut m, &SPARSE_PLAN)),
+                    first_row,
+                    words: "sparse LU with partial pivoting",
+                }
+            }
+            None => {
+                let lu = rt::lu_solve_template();
+                Elimination {
+                    sparse_plan: quote!(),
+                    reduce: quote!(#lu::<#rows_l, #cols_l, #pivots_l, #first_row>(&mut m)),
+                    first_row,
+                    words: "LU with partial pivoting",
+                }
+            }
+        }
+    }
+}
+
+/// The eigen back end for an action matrix of `nb` x `nb`: Sturm sequences on the stack
+/// for small bases, Hessenberg QR above.
+fn eigen_function(nb: usize) -> TokenStream {
+    if nb <= mingen_runtime::STURM_MAX_BASIS {
+        rt::real_eigenpairs_sturm()
+    } else {
+        rt::real_eigenpairs_hqr()
+    }
+}
+
+/// The read-out of the template variables from an eigenvector `v`.
+struct Readout {
+    /// The position of the monomial 1 in the basis.
+    one_l: Literal,
+    /// The number of template variables.
+    nvars_l: Literal,
+    /// The read-out pairs of each variable, the runtime's `read_unknowns` constant.
+    pairs: Vec<TokenStream>,
+    /// `u0, u1, ...`, the variables' names.
+    unknown_idents: Vec<Ident>,
+    /// The linear read-out of the variables outside the basis.
+    linear_reads: Vec<TokenStream>,
+}
+
+impl Readout {
+    fn new(plan: &Plan) -> Self {
+        let t = &plan.spec.template;
+        let cols = t.eliminated_size().1;
+        let (pivots, nb) = (t.pivot_columns(), t.basis.len());
+        let one_l = lit(plan.basis_one);
+        let pairs: Vec<TokenStream> = plan
+            .readout
+            .iter()
+            .map(|pairs| {
+                let ps = pairs.iter().map(|&(j, k)| {
+                    let (jl, kl) = (lit(j), lit(k));
+                    quote!((#jl, #kl))
+                });
+                quote!(&[#(#ps),*])
+            })
+            .collect();
+        let unknown_idents: Vec<Ident> = (0..plan.readout.len())
+            .map(|k| format_ident!("u{}", k))
+            .collect();
+        // Unknowns outside the basis: `x_i = -T[x_i, :] v / v[1]` from the reduced row of
+        // their (reducible) column, which starts at `c * cols + pivots` as the action rows
+        // do.
+        let read_linear = rt::read_linear();
+        let linear_reads: Vec<TokenStream> = plan
+            .readout
+            .iter()
+            .enumerate()
+            .filter(|(_, pairs)| pairs.is_empty())
+            .map(|(i, _)| {
+                let c = t
+                    .eliminated_column(plan.column_of[&Monomial::var(t.nvars, i)])
+                    .expect("an unknown outside the basis is a reducible column");
+                let (il, start, end) =
+                    (lit(i), lit(c * cols + pivots), lit(c * cols + pivots + nb));
+                quote! {
+                    match #read_linear(v.as_slice(), #one_l, &m[#start..#end]) {
+                        Some(x) => u[#il] = x,
+                        None => continue,
+                    }
+                }
+            })
+            .collect();
+        Readout {
+            nvars_l: lit(plan.readout.len()),
+            one_l,
+            pairs,
+            unknown_idents,
+            linear_reads,
+        }
+    }
+}
+
+/// The eliminated unknowns `n` of one solution: the null vector of the elimination
+/// coefficient matrix at the template variables (nothing without an elimination).
+fn eliminated_unknowns_tokens(
+    plan: &Plan,
+    coefficients: &Coefficients,
+    style: VarStyle,
+) -> TokenStream {
+    let Some(el) = &plan.spec.elimination else {
+        return quote!();
+    };
+    let mut outs = coefficients.program.outputs[coefficients.n_fill..].iter();
+    let mut row_tokens = Vec::new();
+    for row in &coefficients.elim_terms {
+        let mut entries = Vec::new();
+        for support in row {
+            let terms: Vec<(Monomial, Expr)> = support
+                .iter()
+                .map(|m| (m.clone(), outs.next().expect("one output per term").clone()))
+                .collect();
+            entries.push(entry_tokens(&terms, style));
+        }
+        row_tokens.push(quote!([#(#entries),*]));
+    }
+    let nr = lit(el.coefficient_matrix.len());
+    let k = el.eliminated.len();
+    if el.inhomogeneous {
+        let (width, kl) = (lit(k + 1), lit(k));
+        let (nv, dh) = (rt::null_vector(), rt::dehomogenize());
+        quote! {
+            let rows: [[f64; #width]; #nr] = [#(#row_tokens),*];
+            let Some(h) = #nv(&rows) else {
+                continue;
+            };
+            let mut n = [0.0; #kl];
+            if !#dh(&h, &mut n) {
+                continue;
+            }
+        }
+    } else if k == 3 {
+        let nv = rt::null_vector3();
+        quote! {
+            let rows: [[f64; 3]; #nr] = [#(#row_tokens),*];
+            let Some(n) = #nv(&rows) else {
+                continue;
+            };
+        }
+    } else {
+        let (width, nv) = (lit(k), rt::null_vector());
+        quote! {
+            let rows: [[f64; #width]; #nr] = [#(#row_tokens),*];
+            let Some(n) = #nv(&rows) else {
+                continue;
+            };
+        }
+    }
+}
+
+/// The value of the problem's unknown scalar `i` in one solution: a template variable
+/// `u_k` or an eliminated unknown `n[j]`.
+fn source_value(plan: &Plan, i: usize) -> TokenStream {
+    match plan.source[i] {
+        Ok(k) => {
+            let u = format_ident!("u{}", k);
+            quote!(#u)
+        }
+        Err(j) => {
+            let j = lit(j);
+            quote!(n[#j])
+        }
+    }
+}
+
+/// Newton polishing of one solution into `x`: its constants (before the solution loop)
+/// and its code (in the loop); both empty without `option newton`.
+fn polish_tokens(
+    plan: &Plan,
+    coefficients: &Coefficients,
+    style: VarStyle,
+) -> (TokenStream, TokenStream) {
+    match &plan.spec.polish {
+        Some(p) => super::polish::tokens(
+            p,
+            &coefficients.polish_terms,
+            &coefficients.program.outputs[coefficients.n_fill + coefficients.n_elim..],
+            (0..p.unknowns).map(|i| source_value(plan, i)).collect(),
+            style,
+        ),
+        None => (quote!(), quote!()),
+    }
+}
+
+/// The fields of the `Solution` pushed for one solution: the read-out (or polished) values
+/// of the declared unknowns.
+fn solution_fields(plan: &Plan) -> Result<Vec<TokenStream>, EmitError> {
+    let spec = plan.spec;
+    let layout = &spec.layout;
+    let mut field_inits = Vec::new();
+    for (u, id) in layout
+        .declared_unknowns()
+        .zip(solution_field_idents(layout)?)
+    {
+        let polished = spec.polish.is_some();
+        let val = |i: usize| {
+            if polished {
+                let i = lit(i);
+                quote!(x[#i])
+            } else {
+                source_value(plan, i)
+            }
+        };
+        match u.len {
+            None => {
+                let v = val(u.first_var);
+                field_inits.push(quote!(#id: #v,));
+            }
+            Some(len) => {
+                let vs: Vec<TokenStream> = (0..len).map(|e| val(u.first_var + e)).collect();
+                field_inits.push(quote!(#id: [#(#vs),*],));
+            }
+        }
+    }
+    Ok(field_inits)
+}
+
+/// The lines of `solve`'s documentation: what it computes, stage by stage.
+fn solve_docs(plan: &Plan, lu_words: &str) -> Vec<String> {
+    let spec = plan.spec;
+    let t = &spec.template;
+    let (rows, cols) = t.eliminated_size();
+    let nb = t.basis.len();
+    let basis: Vec<String> = t.basis.iter().map(|b| plan.mono(b)).collect();
+    let mut docs = vec![
+        format!(
+            "Solves `{}`: all real solutions of the problem's equations for the given data.",
+            spec.layout.name
+        ),
+        String::new(),
+        format!(
+            "Fills a {rows} x {cols} elimination template, reduces it ({lu_words}, \
+             back substitution of the {} reducible rows only), builds the {nb} x {nb} \
+             action matrix of `{}` on the basis [{}] and reads each unknown `x` off the real \
+             eigenvectors `v` as the least-squares ratio of the entries `v[x b]` and `v[b]` \
+             over the basis monomials `b` with `x b` in the basis (`v[x] / v[1]` if that is the \
+             only one).",
+            t.n_reducible,
+            t.action.display_with(&plan.var_names),
+            basis.join(", ")
+        ),
+        String::new(),
+    ];
+    if let Some(red) = &t.reduction {
+        let pivots: Vec<String> = red
+            .pivots
+            .iter()
+            .map(|&p| plan.mono(&red.monomials[p]))
+            .collect();
+        docs.push(format!(
+            "The template's rows are multiples of the equations row-reduced on the data \
+             (`mingen_runtime::reduce_equations`) to the pivot monomials [{}].",
+            pivots.join(", ")
+        ));
+        docs.push(String::new());
+    }
+    if let Some(p) = &spec.polish {
+        docs.push(format!(
+            "Then polishes each solution by up to {} Gauss-Newton steps on the problem's \
+             original equations (`option newton`), each kept only if it lowers their \
+             squared residual.",
+            p.steps
+        ));
+        docs.push(String::new());
+    }
+    docs.push("Never panics: non-finite or degenerate data gives no solutions.".into());
+    docs
 }

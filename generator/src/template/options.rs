@@ -52,7 +52,7 @@ pub struct TemplateOptions {
     /// pools are graded by the weights. Empty by default.
     pub weights: Vec<Vec<u32>>,
     /// Rebuild the chosen template with the greedy exclusion of candidate rows
-    /// ([`super::exclude`]) and keep it when it has fewer rows. On by default.
+    /// (`super::exclude`) and keep it when it has fewer rows. On by default.
     pub exclude_monomials: bool,
     /// Also build templates from the equations row-reduced on their data (see
     /// [`super::reduction`]; every action and basis again) and keep the smaller. On by

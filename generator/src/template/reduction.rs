@@ -11,7 +11,7 @@
 //! when they "row-reduce the data's coefficient matrix" before building a template.
 //!
 //! Which monomials are pivots and which entries are non-zero is a property of generic
-//! data, read off one random instance ([`EquationReduction::of`]). Every consumer of the
+//! data, read off one random instance (`EquationReduction::of`). Every consumer of the
 //! template then reduces its own instance's equations to the same pivots
 //! ([`EquationReduction::reduce`] exactly over Z_p, [`EquationReduction::reduce_f64`] by
 //! [`mingen_runtime::reduce_equations`] as the emitted solvers do) and fills the template

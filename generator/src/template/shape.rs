@@ -13,7 +13,7 @@ use std::collections::{BTreeSet, HashMap};
 use thiserror::Error;
 
 /// Why a template cannot be solved by elimination and eigenvectors (its fields disagree
-/// with the convention of [`super`]). Monomials are rendered with the given names.
+/// with the convention of `crate::template`). Monomials are rendered with the given names.
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
 pub enum ShapeError {
     /// The column blocks do not add up or the last block is not the basis.

@@ -2,7 +2,7 @@
 //!
 //! ## Public API
 //! - [`template_action_matrix`]: fill the template from an instance mod P, Gauss-Jordan,
-//!   and read the action matrix off per the convention of [`super`].
+//!   and read the action matrix off per the convention of `crate::template`.
 //! - [`gb_action_matrix`]: the action matrix from normal forms (row j: coefficients of
 //!   `NF(action * b_j)` on the basis).
 //! - [`validate`]: on fresh random instances (alternately mod P1 and P2) checks that both

@@ -3,8 +3,8 @@
 //! eliminated form `grsrp10` (3 unknowns), a positive-dimensional and an inconsistent system.
 #![allow(dead_code)]
 
-use mingen::algebra::{Fp, Poly, Ring};
-use mingen::quotient::{InstanceRng, InstanceSource};
+use mingen::__internal::algebra::{Fp, Poly, Ring};
+use mingen::__internal::quotient::{InstanceRng, InstanceSource};
 use rand::Rng;
 
 type P3<const P: u32> = [Poly<Fp<P>>; 3];
@@ -43,7 +43,7 @@ fn cayley<const P: u32>(rng: &mut InstanceRng) -> [[Fp<P>; 3]; 3] {
         let qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
         let one = Fp::<P>::new(1);
         let two = Fp::<P>::new(2);
-        let Some(s) = mingen::algebra::Field::inv(&(one + qq)) else {
+        let Some(s) = mingen::__internal::algebra::Field::inv(&(one + qq)) else {
             continue;
         };
         let skew = [

@@ -1,16 +1,16 @@
 //! Per-call time of the two forms of emitted coefficient code on the same data:
-//! `cargo run --release -p mingen-example --example code_forms`.
+//! `cargo run --release -p workspace-tests --example code_forms`.
 //!
 //! Prints, for each problem built in both forms (`src/lib.rs`'s `inline` and `table`
 //! modules), the microseconds per `solve` of each form, interleaved in rounds so that drift
 //! of the machine's speed hits both alike.
 
-use mingen_example as ex;
 use mingen_runtime::{FlatValues, MinimalSolver};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::hint::black_box;
 use std::time::Instant;
+use workspace_tests as ex;
 
 fn per_call<S: MinimalSolver>(data: &[S::Data]) -> f64 {
     let t = Instant::now();

@@ -1,4 +1,4 @@
-//! Scene construction and solution matching shared by the planted-solution tests.
+//! Scene construction and solution matching of the planted-solution tests (`corpus.rs`).
 
 #![allow(dead_code)]
 

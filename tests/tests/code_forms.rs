@@ -1,11 +1,11 @@
-//! The table form of emitted solvers (`mingen::emit::CodeForm::Table`, the form large
+//! The table form of emitted solvers (`mingen::CodeForm::Table`, the form large
 //! templates get) computes the same bits as the inline form: both solvers of each problem
 //! run on the same random data and must return identical solutions.
 
-use mingen_example as ex;
 use mingen_runtime::{FlatValues, MinimalSolver};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use workspace_tests as ex;
 
 /// Solves `instances` random data vectors (entries uniform in [-1, 1]) with both solvers and
 /// returns the number of solutions found; panics at the first difference.

@@ -1,0 +1,238 @@
+//! `mingen inspect`: a problem and its plan, as text or one JSON object.
+
+use super::{emit, CliError};
+use mingen::__internal::algebra::MonomialOrder;
+use mingen::{plan_file, Problem, SolverPlan, TemplateOptions};
+use serde_json::{json, Map, Value};
+use std::path::PathBuf;
+
+/// The language-level facts about a problem, as a JSON object that later stages (Gröbner
+/// basis, template) extend with their own keys.
+fn problem_summary(p: &Problem) -> Map<String, Value> {
+    let names = p.unknown_names();
+    let equations = p.expand();
+    let mut m = Map::new();
+    m.insert("name".into(), json!(p.name()));
+    m.insert("unknowns".into(), json!(names));
+    m.insert(
+        "data".into(),
+        Value::Array(
+            p.layout
+                .data
+                .iter()
+                .map(|d| {
+                    json!({
+                        "name": d.name,
+                        "kind": d.kind.keyword(),
+                        "len": d.len,
+                        "slots": d.slot_count(),
+                        "first_slot": d.first_slot,
+                    })
+                })
+                .collect(),
+        ),
+    );
+    m.insert("data_slots".into(), json!(p.layout.data_slot_count()));
+    // The order of the numbers on a line of `audit --instances-from`.
+    m.insert("data_slot_names".into(), json!(p.layout.data_slot_names()));
+    m.insert("equations".into(), json!(equations.len()));
+    m.insert(
+        "equation_degrees".into(),
+        json!(equations
+            .iter()
+            .map(|e| e.degree().unwrap_or(0))
+            .collect::<Vec<_>>()),
+    );
+    m.insert(
+        "equation_supports".into(),
+        json!(equations
+            .iter()
+            .map(|e| e
+                .support(MonomialOrder::Grevlex)
+                .iter()
+                .map(|mono| mono.display_with(&names))
+                .collect::<Vec<_>>())
+            .collect::<Vec<_>>()),
+    );
+    m.insert(
+        "eliminated".into(),
+        json!(p
+            .layout
+            .eliminate
+            .iter()
+            .filter_map(|&i| names.get(i).cloned())
+            .collect::<Vec<_>>()),
+    );
+    m
+}
+
+pub(super) fn inspect(
+    file: &PathBuf,
+    as_json: bool,
+    options: &TemplateOptions,
+) -> Result<(), CliError> {
+    let parsed = Problem::from_file(file)?;
+    let plan = plan_file(file, options)?;
+    // The planned problem: the file's, with what planning added (automatic elimination).
+    let p = &plan.problem;
+    let mut summary = problem_summary(p);
+    summary.insert(
+        "eliminated_automatically".into(),
+        json!(parsed.layout.eliminate.is_empty() && !p.layout.eliminate.is_empty()),
+    );
+    if let Value::Object(algebra) = plan.summary_json() {
+        summary.extend(algebra);
+    }
+    if as_json {
+        let text = serde_json::to_string_pretty(&Value::Object(summary)).unwrap_or_default();
+        return emit(&format!("{text}\n"));
+    }
+    let names = p.unknown_names();
+    let mut out = String::new();
+    outln!(out, "problem {}", p.name());
+    outln!(out, "unknowns ({}): {}", names.len(), names.join(" "));
+    if !p.layout.eliminate.is_empty() {
+        let el = plan.eliminated_names();
+        let how = if !parsed.layout.eliminate.is_empty() {
+            ""
+        } else if p.substitution().is_some() {
+            " (automatic: solved from the affine equations and substituted into the others; `option auto_eliminate = no` keeps them)"
+        } else {
+            " (automatic: they appear only linearly, with data coefficients; `option auto_eliminate = no` keeps them)"
+        };
+        outln!(out, "eliminate: {}{how}", el.join(" "));
+    }
+    outln!(out, "data ({} slots):", p.layout.data_slot_count());
+    for d in &p.layout.data {
+        let len = d.len.map(|n| format!("[{n}]")).unwrap_or_default();
+        outln!(out, "  {}{}: {}", d.name, len, d.kind.keyword());
+    }
+    outln!(
+        out,
+        "data slot order (a line of audit --instances-from): {}",
+        p.layout.data_slot_names().join(" ")
+    );
+    let lines = p.equation_lines();
+    let equations = p.expand();
+    outln!(out, "equations: {}", equations.len());
+    for (i, (e, line)) in equations.iter().zip(&lines).enumerate() {
+        let support: Vec<String> = e
+            .support(MonomialOrder::Grevlex)
+            .iter()
+            .map(|m| m.display_with(&names))
+            .collect();
+        let data_terms: usize = e.terms().map(|(_, c)| c.len()).sum();
+        outln!(
+            out,
+            "  [{i}] line {line}: degree {}, {} monomials, {} data terms: {}",
+            e.degree().unwrap_or(0),
+            support.len(),
+            data_terms,
+            support.join(" ")
+        );
+    }
+    print_plan(&mut out, &plan);
+    emit(&out)
+}
+
+/// The algebra part of `inspect`: count, basis, template and how it was shrunk.
+fn print_plan(out: &mut String, plan: &SolverPlan) {
+    let names = plan.variable_names();
+    let g = &plan.generated;
+    let t = &g.built.template;
+    outln!(out, "solutions: {}", g.count);
+    if plan.problem.nonzero_count() > 0 {
+        let divisions = plan.problem.divisions();
+        let divided = divisions
+            .iter()
+            .filter(|d| d.iter().any(|&k| k > 0))
+            .count();
+        let saturation = if plan.problem.is_saturated() {
+            "kept (a hidden unknown per nonzero)"
+        } else {
+            "dropped (the divided system has the same solutions without it)"
+        };
+        if divided == 0 {
+            outln!(
+                out,
+                "nonzero: divides no equation exactly; saturation {saturation}"
+            );
+        } else {
+            outln!(
+                out,
+                "nonzero: divided out of {divided} of {} equations; saturation {saturation}",
+                divisions.len()
+            );
+        }
+    }
+    if let Some(kept) = plan.problem.independent() {
+        outln!(
+            out,
+            "equations kept: {} (the others are linear combinations of them)",
+            kept.len()
+        );
+    }
+    outln!(
+        out,
+        "basis ({}): {}",
+        t.basis.len(),
+        t.basis
+            .iter()
+            .map(|m| m.display_with(&names))
+            .collect::<Vec<_>>()
+            .join(" ")
+    );
+    outln!(out, "basis from: {}", g.built.basis_choice);
+    outln!(out, "action: {}", t.action.display_with(&names));
+    if let Some(r) = &t.reduction {
+        outln!(
+            out,
+            "equations: row-reduced on the data first ({} x {} coefficient matrix), pivots {}",
+            r.len(),
+            r.monomials.len(),
+            r.pivots
+                .iter()
+                .map(|&p| r.monomials[p].display_with(&names))
+                .collect::<Vec<_>>()
+                .join(" ")
+        );
+    }
+    let (rows, cols) = t.eliminated_size();
+    outln!(
+        out,
+        "template: {rows} x {cols} ({} excess, {} reducible, {} basis columns)",
+        t.n_excess - t.n_dependent,
+        t.n_reducible,
+        t.basis.len()
+    );
+    if t.n_dependent > 0 {
+        outln!(
+            out,
+            "  (and {} excess columns that are linear combinations of the others, left out)",
+            t.n_dependent
+        );
+    }
+    outln!(out, "shrinking:");
+    for (step, r, c) in &g.built.history {
+        outln!(out, "  {r:>5} x {c:<5} {step}");
+    }
+    outln!(out, "template per action variable:");
+    for (v, size) in &g.per_action {
+        let name = v.display_with(&names);
+        match size {
+            Some((r, c)) => outln!(out, "  {name:<6} {r} x {c}"),
+            None => outln!(out, "  {name:<6} failed"),
+        }
+    }
+    if let Some(v) = &g.validation {
+        outln!(out, "validation: {v:?}");
+    }
+    outln!(
+        out,
+        "seconds: {:.3} (analysis {:.3}, templates {:.3}, validation {:.3})",
+        plan.seconds,
+        g.seconds.0,
+        g.seconds.1,
+        g.seconds.2
+    );
+}

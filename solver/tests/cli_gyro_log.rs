@@ -42,8 +42,24 @@ impl Recording {
             writeln!(frames, "{:.6}", 100.0 + n as f64 / 30.0).unwrap();
         }
         std::fs::write(dir.join("frames.txt"), frames).unwrap();
+        // The matches are imaged through the recording's camera: pixels of another
+        // camera's image would lie outside this one's and be refused.
+        let camera = dir.join("camera.json");
+        std::fs::write(
+            &camera,
+            r#"{"fx": 600, "fy": 600, "cx": 400, "cy": 300, "width": 800, "height": 600, "readout": 5e-5}"#,
+        )
+        .unwrap();
         let sim = dir.join("sim.json");
-        let o = rspose(&["simulate", "--seed", "1", "-o", sim.to_str().unwrap()]);
+        let o = rspose(&[
+            "simulate",
+            "--seed",
+            "1",
+            "--camera",
+            camera.to_str().unwrap(),
+            "-o",
+            sim.to_str().unwrap(),
+        ]);
         assert!(o.status.success(), "{}", stderr(&o));
         let v: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(&sim).unwrap()).unwrap();

@@ -501,7 +501,8 @@ impl PairFile {
         Some(log.rotation_between(t1, t2).transpose())
     }
 
-    /// Check every field: camera parameters, finite gyro, finite pixels, and (if present) a
+    /// Check every field: camera parameters, finite gyro, finite pixels within the image
+    /// extended by [`crate::model::camera::OUTSIDE_IMAGE_MARGIN`] times its size, and (if present) a
     /// rotation ground truth that is a rotation, a unit translation, finite velocities and one
     /// inlier flag per match.
     pub fn validate(&self) -> Result<(), PairFileError> {
@@ -565,6 +566,18 @@ impl PairFile {
                     format!("matches[{i}]"),
                     "non-finite pixel coordinate",
                 ));
+            }
+            for (k, p) in m.iter().enumerate() {
+                let camera = &self.cameras[k];
+                if !camera.pixel_in_range(*p) {
+                    return Err(invalid(
+                        format!("matches[{i}][{k}]"),
+                        format!(
+                            "pixel ({:?}, {:?}) of image {} is far outside the {:?}x{:?} image (at most one image size beyond each side)",
+                            p[0], p[1], k + 1, camera.width, camera.height
+                        ),
+                    ));
+                }
             }
         }
         if let Some(gt) = &self.ground_truth {

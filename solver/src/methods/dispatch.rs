@@ -131,6 +131,17 @@ pub fn validate_input(
                     image: k + 1,
                 });
             }
+            let camera = if k == 0 { &view1.camera } else { &view2.camera };
+            if !camera.pixel_in_range(*p) {
+                return Err(EstimateError::PixelOutsideImage {
+                    index,
+                    image: k + 1,
+                    u: p[0],
+                    v: p[1],
+                    width: camera.width,
+                    height: camera.height,
+                });
+            }
         }
     }
     crate::model::epipolar::observe_matches(&view1.camera, &view2.camera, matches)?;
@@ -225,6 +236,9 @@ pub fn estimate_relative_pose(
         &options.quality,
         options.robust.seed,
     );
+    if let Some(fit) = est.noise_fit {
+        est.quality.flag_gyro_noise(fit.gyro_noise);
+    }
     let finite = est.rotation.iter().all(|x| x.is_finite())
         && est.translation.iter().all(|x| x.is_finite())
         && (est.translation.norm() - 1.0).abs() < 1e-6;

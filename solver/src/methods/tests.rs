@@ -49,6 +49,16 @@ fn input_errors_are_typed() {
         estimate_relative_pose(&v1, &v2, &m, &o),
         Err(EstimateError::NonFinitePixel { index: 3, image: 2 })
     );
+    let mut m = p.matches.clone();
+    m[2][0][0] -= 1e6;
+    assert!(matches!(
+        estimate_relative_pose(&v1, &v2, &m, &o),
+        Err(EstimateError::PixelOutsideImage {
+            index: 2,
+            image: 1,
+            ..
+        })
+    ));
     assert!(matches!(
         estimate_relative_pose(&v1, &v2, &p.matches[..4], &o),
         Err(EstimateError::TooFewMatches {

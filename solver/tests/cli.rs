@@ -636,3 +636,53 @@ fn collinear_matches_raise_collinear() {
         assert!(flags.contains(&"collinear".into()), "{method}: {flags:?}");
     }
 }
+
+#[test]
+fn usage_errors_are_one_line() {
+    for args in [
+        &["estimate"][..],
+        &["estimate", "x.json", "--bogus"],
+        &["frobnicate"],
+    ] {
+        let o = rspose(args);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.starts_with("rspose: "), "{err}");
+    }
+    let help = rspose(&["--help"]);
+    assert_eq!(help.status.code(), Some(0));
+}
+
+#[test]
+fn compare_names_the_file_of_an_invalid_field() {
+    let d = scratch("compare-field");
+    let p = edited_pair(&d, |v| v["matches"][0][1][1] = serde_json::json!(-1e7));
+    let o = rspose(&["compare", p.to_str().unwrap()]);
+    assert_one_line_refusal(
+        &o,
+        &format!("{}: invalid field `matches[0][1]`", p.display()),
+    );
+}
+
+#[test]
+fn compare_exits_1_when_no_method_estimates_any_pair() {
+    let d = scratch("compare-none");
+    // Three matches: too few for every method but `grsrp-gravity`, whose one minimal
+    // sample of random matches has no solution.
+    let p = edited_pair(&d, |v| {
+        v["matches"] = serde_json::json!([
+            [[100, 200], [300, 40]],
+            [[1500, 200], [1300, 40]],
+            [[800, 900], [700, 1000]]
+        ]);
+        v["ground_truth"]["inliers"] = serde_json::json!([true, true, true]);
+    });
+    let o = rspose(&["compare", p.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("no method estimated any"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -223,3 +223,25 @@ fn samples_not_covering_a_frame_are_rejected() {
     });
     r.assert_rejected("do not cover frame 5's readout");
 }
+
+#[test]
+fn an_empty_match_list_is_refused_and_nothing_written() {
+    let r = Recording::new("no-matches");
+    std::fs::write(
+        r.path("matches.json"),
+        r#"{"frames": [5, 6], "matches": []}"#,
+    )
+    .unwrap();
+    r.assert_rejected("`matches` is empty");
+}
+
+#[test]
+fn matches_far_outside_the_image_are_refused_and_nothing_written() {
+    let r = Recording::new("far-matches");
+    std::fs::write(
+        r.path("matches.json"),
+        r#"{"frames": [5, 6], "matches": [[[1e300, 10], [20, 30]]]}"#,
+    )
+    .unwrap();
+    r.assert_rejected("matches[0][0]");
+}

@@ -78,7 +78,7 @@ pub fn pair_paths(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, CliError> {
 }
 
 fn load(path: &Path) -> Result<PairFile, CliError> {
-    let pair = PairFile::load(path).map_err(|e| CliError::input(e.to_string()))?;
+    let pair = super::load_pair(path)?;
     if reference_rotation(&pair).is_none() {
         return Err(CliError::input(format!(
             "{}: no rotation reference (neither ground_truth nor a gyro_log spanning both frames)",
@@ -155,6 +155,13 @@ pub fn run(a: Args) -> Result<(), CliError> {
         println!("{v}");
     } else {
         print!("{}", to_markdown(&rows));
+    }
+    // Valid pairs on which nothing could be estimated: an answer-less run, not a success.
+    if rows.iter().all(|r| r.failures == r.pairs) {
+        return Err(CliError::failed(format!(
+            "no method estimated any of the {} pairs",
+            pairs.len()
+        )));
     }
     Ok(())
 }

@@ -283,6 +283,13 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let (csv, full_log) = load_gyro_csv(&a.gyro, &calibration)?;
     let times = load_frame_times(&a.frame_times)?;
     let m: MatchesFile = parse_json(&a.matches)?;
+    // A pair without matches has nothing to estimate; refuse it here rather than write it.
+    if m.matches.is_empty() {
+        return Err(CliError::input(format!(
+            "{}: `matches` is empty (a pair needs at least one match)",
+            a.matches.display()
+        )));
+    }
     let frames = match (&a.frames, m.frames) {
         (Some(f), _) => [f[0], f[1]],
         (None, Some(f)) => f,

@@ -686,3 +686,20 @@ fn compare_exits_1_when_no_method_estimates_any_pair() {
         stderr(&o)
     );
 }
+
+#[test]
+fn calibrate_refuses_a_grid_too_large_to_search() {
+    let pair = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/cc9pro/pair-100-101.json"
+    );
+    let o = rspose(&[
+        "calibrate",
+        pair,
+        "--readout-ms",
+        "0:40:0.01",
+        "--offset-ms",
+        "-15:15:0.01",
+    ]);
+    assert_one_line_refusal(&o, "too large");
+}

@@ -31,6 +31,25 @@ fn validate_options(o: &EstimateOptions) -> Result<(), EstimateError> {
             return bad(name, "must be finite and positive");
         }
     }
+    // A negative or non-finite damping or step makes the refinement diverge or stall
+    // without an error of its own.
+    let lm = &o.refinement;
+    for (name, x) in [
+        ("refinement.initial_damping", lm.initial_damping),
+        ("refinement.fd_step", lm.fd_step),
+    ] {
+        if !(x.is_finite() && x > 0.0) {
+            return bad(name, "must be finite and positive");
+        }
+    }
+    for (name, x) in [
+        ("refinement.cost_tolerance", lm.cost_tolerance),
+        ("refinement.step_tolerance", lm.step_tolerance),
+    ] {
+        if !(x.is_finite() && x >= 0.0) {
+            return bad(name, "must be finite and non-negative");
+        }
+    }
     let a = o.robust.rolling_shutter_allowance;
     if !(a.is_finite() && a >= 0.0) {
         return bad(

@@ -42,13 +42,19 @@ pub fn pair_file_error(e: &PairFileError) -> PyErr {
 }
 
 /// `obj` as a float64 numpy array (`numpy.asarray(obj, dtype=float64)`); `TypeError`
-/// naming `name` if it is not numbers.
+/// naming `name` if it is not numbers or is complex.
 pub fn float_array<'py>(
     obj: &Bound<'py, PyAny>,
     name: &str,
 ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
     let py = obj.py();
     let np = py.import("numpy")?;
+    // numpy converts complex to float64 by dropping the imaginary part (a warning only).
+    if np.getattr("iscomplexobj")?.call1((obj,))?.is_truthy()? {
+        return Err(PyTypeError::new_err(format!(
+            "{name}: expected an array of real numbers, got complex values"
+        )));
+    }
     let kwargs = PyDict::new(py);
     kwargs.set_item("dtype", np.getattr("float64")?)?;
     let array = np

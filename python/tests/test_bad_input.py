@@ -210,3 +210,18 @@ def test_garbage_never_crashes(good):
                 assert np.all(np.isfinite(e.rotation)) and abs(np.linalg.norm(e.translation) - 1) < 1e-6
             except (ValueError, rspose.NoSolutionError):
                 pass
+
+
+def test_complex_arrays_and_bad_refinement_options_are_refused(good):
+    x = np.array(good["matches"], dtype=float)
+    x1, x2, g = x[:, 0], x[:, 1], good["gyro"]
+    with pytest.raises(TypeError, match="x1: expected an array of real numbers, got complex values"):
+        rspose.estimate_relative_pose(x1 + 1j, x2, CAMERA, *g)
+    with pytest.raises(ValueError, match=r"^invalid option `refinement.initial_damping`: must be finite and positive$"):
+        rspose.estimate_relative_pose(x1, x2, CAMERA, *g, refinement={"initial_damping": -1.0})
+
+
+def test_solve_grsrp_refuses_an_r0_that_is_not_a_rotation(good):
+    x = np.array(good["matches"], dtype=float)[:5]
+    with pytest.raises(ValueError, match="r0 must be a rotation matrix"):
+        rspose.solve_grsrp(x[:, 0], x[:, 1], CAMERA, good["gyro"][0], good["gyro"][1], 2 * np.eye(3))

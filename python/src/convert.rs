@@ -72,6 +72,33 @@ pub fn float_array<'py>(
         .map_err(|_| PyTypeError::new_err(format!("{name}: expected an array of numbers")))
 }
 
+/// An optional non-negative integer argument `name` (at most `max`): `TypeError` for
+/// anything but an int (a bool included), `ValueError` for an int out of range (which pyo3
+/// would raise as `OverflowError`, an error callers validating input do not expect).
+pub fn int_arg(v: Option<&Bound<'_, PyAny>>, name: &str, max: u64) -> PyResult<Option<u64>> {
+    let Some(v) = v.filter(|v| !v.is_none()) else {
+        return Ok(None);
+    };
+    let not_an_int =
+        || PyTypeError::new_err(format!("{name}: expected an integer, got {}", type_name(v)));
+    if v.is_instance_of::<pyo3::types::PyBool>() {
+        return Err(not_an_int());
+    }
+    let out_of_range = || {
+        PyValueError::new_err(format!(
+            "{name} must be an integer from 0 to {max}, got {v}"
+        ))
+    };
+    match v.extract::<u64>() {
+        Ok(x) if x <= max => Ok(Some(x)),
+        Ok(_) => Err(out_of_range()),
+        Err(e) if e.is_instance_of::<pyo3::exceptions::PyOverflowError>(v.py()) => {
+            Err(out_of_range())
+        }
+        Err(_) => Err(not_an_int()),
+    }
+}
+
 /// The Python type name of `obj`.
 pub fn type_name(obj: &Bound<'_, PyAny>) -> String {
     obj.get_type()

@@ -225,3 +225,14 @@ def test_solve_grsrp_refuses_an_r0_that_is_not_a_rotation(good):
     x = np.array(good["matches"], dtype=float)[:5]
     with pytest.raises(ValueError, match="r0 must be a rotation matrix"):
         rspose.solve_grsrp(x[:, 0], x[:, 1], CAMERA, good["gyro"][0], good["gyro"][1], 2 * np.eye(3))
+
+
+def test_out_of_range_integers_are_value_errors():
+    with pytest.raises(ValueError, match="points must be an integer from 0 to"):
+        rspose.simulate(points=2**70)
+    with pytest.raises(ValueError, match=f"seed must be an integer from 0 to {2**64 - 1}, got -1"):
+        rspose.simulate(seed=-1)
+    with pytest.raises(TypeError, match="points: expected an integer, got bool"):
+        rspose.simulate(points=True)
+    with pytest.raises(ValueError, match="threads must be an integer from 0 to"):
+        rspose.estimate_many([], threads=2**70)

@@ -236,3 +236,9 @@ def test_out_of_range_integers_are_value_errors():
         rspose.simulate(points=True)
     with pytest.raises(ValueError, match="threads must be an integer from 0 to"):
         rspose.estimate_many([], threads=2**70)
+
+
+def test_a_bool_camera_parameter_is_a_type_error():
+    with pytest.raises(TypeError, match="Camera: `fx` must be a number, got bool"):
+        rspose.Camera(fx=True, fy=640.0, cx=960.0, cy=540.0, width=1920.0, height=1080.0, readout=6e-5)
+    assert rspose.Camera(640, 640, 960, 540, 1920, 1080, 0).fx == 640.0

@@ -703,3 +703,15 @@ fn calibrate_refuses_a_grid_too_large_to_search() {
     ]);
     assert_one_line_refusal(&o, "too large");
 }
+
+#[test]
+fn compare_refuses_a_pair_every_method_refuses() {
+    let d = scratch("compare-identical");
+    let p = edited_pair(&d, |v| {
+        let first = v["matches"][0].clone();
+        v["matches"] = serde_json::json!(vec![first; 50]);
+        v["ground_truth"]["inliers"] = serde_json::json!(vec![true; 50]);
+    });
+    let o = rspose(&["compare", p.to_str().unwrap()]);
+    assert_one_line_refusal(&o, &format!("{}: degenerate input", p.display()));
+}

@@ -229,6 +229,9 @@ class Quality(TypedDict):
     too_few_inliers: bool
     translation_undetermined: bool
     near_planar: bool
+    low_inlier_ratio: bool
+    collinear: bool
+    gyro_noise_runaway: bool
 
 class Estimate:
     """A relative pose (x2 = R x1 + t between the row-0 poses) and its quality report."""
@@ -265,7 +268,8 @@ class Estimate:
     def homography_px(self) -> float: ...
     @property
     def flags(self) -> list[str]:
-        """Raised flags among too_few_inliers, translation_undetermined, near_planar."""
+        """Raised flags among too_few_inliers, translation_undetermined, near_planar,
+        low_inlier_ratio, collinear, gyro_noise_runaway."""
     @property
     def quality(self) -> Quality: ...
     @property

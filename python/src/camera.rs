@@ -34,25 +34,50 @@ fn direction_of(name: &str) -> PyResult<ReadoutDirection> {
     })
 }
 
+/// A camera parameter `name` as a float: `TypeError` for a bool (which Python would take
+/// as 0 or 1, hiding a misplaced flag) or anything that is not a real number.
+fn real(v: &Bound<'_, PyAny>, name: &str) -> PyResult<f64> {
+    let not_a_number = || {
+        PyTypeError::new_err(format!(
+            "Camera: `{name}` must be a number, got {}",
+            type_name(v)
+        ))
+    };
+    if v.is_instance_of::<pyo3::types::PyBool>() {
+        return Err(not_a_number());
+    }
+    v.extract::<f64>().map_err(|_| not_a_number())
+}
+
 #[pymethods]
 impl Camera {
     #[new]
     #[pyo3(signature = (fx, fy, cx, cy, width, height, readout, *, readout_direction="top_to_bottom"))]
     #[allow(clippy::too_many_arguments)]
     fn new(
-        fx: f64,
-        fy: f64,
-        cx: f64,
-        cy: f64,
-        width: f64,
-        height: f64,
-        readout: f64,
+        fx: &Bound<'_, PyAny>,
+        fy: &Bound<'_, PyAny>,
+        cx: &Bound<'_, PyAny>,
+        cy: &Bound<'_, PyAny>,
+        width: &Bound<'_, PyAny>,
+        height: &Bound<'_, PyAny>,
+        readout: &Bound<'_, PyAny>,
         readout_direction: &str,
     ) -> PyResult<Self> {
+        let [fx, fy, cx, cy, width, height, readout] = [
+            (fx, "fx"),
+            (fy, "fy"),
+            (cx, "cx"),
+            (cy, "cy"),
+            (width, "width"),
+            (height, "height"),
+            (readout, "readout"),
+        ]
+        .map(|(v, name)| real(v, name));
         Ok(Camera {
             inner: RsCamera {
                 readout_direction: direction_of(readout_direction)?,
-                ..RsCamera::pinhole(fx, fy, cx, cy, width, height, readout)
+                ..RsCamera::pinhole(fx?, fy?, cx?, cy?, width?, height?, readout?)
             },
         })
     }

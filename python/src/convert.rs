@@ -42,13 +42,19 @@ pub fn pair_file_error(e: &PairFileError) -> PyErr {
 }
 
 /// `obj` as a float64 numpy array (`numpy.asarray(obj, dtype=float64)`); `TypeError`
-/// naming `name` if it is not numbers.
+/// naming `name` if it is not numbers or is complex.
 pub fn float_array<'py>(
     obj: &Bound<'py, PyAny>,
     name: &str,
 ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
     let py = obj.py();
     let np = py.import("numpy")?;
+    // numpy converts complex to float64 by dropping the imaginary part (a warning only).
+    if np.getattr("iscomplexobj")?.call1((obj,))?.is_truthy()? {
+        return Err(PyTypeError::new_err(format!(
+            "{name}: expected an array of real numbers, got complex values"
+        )));
+    }
     let kwargs = PyDict::new(py);
     kwargs.set_item("dtype", np.getattr("float64")?)?;
     let array = np
@@ -64,6 +70,33 @@ pub fn float_array<'py>(
     array
         .cast_into::<PyArrayDyn<f64>>()
         .map_err(|_| PyTypeError::new_err(format!("{name}: expected an array of numbers")))
+}
+
+/// An optional non-negative integer argument `name` (at most `max`): `TypeError` for
+/// anything but an int (a bool included), `ValueError` for an int out of range (which pyo3
+/// would raise as `OverflowError`, an error callers validating input do not expect).
+pub fn int_arg(v: Option<&Bound<'_, PyAny>>, name: &str, max: u64) -> PyResult<Option<u64>> {
+    let Some(v) = v.filter(|v| !v.is_none()) else {
+        return Ok(None);
+    };
+    let not_an_int =
+        || PyTypeError::new_err(format!("{name}: expected an integer, got {}", type_name(v)));
+    if v.is_instance_of::<pyo3::types::PyBool>() {
+        return Err(not_an_int());
+    }
+    let out_of_range = || {
+        PyValueError::new_err(format!(
+            "{name} must be an integer from 0 to {max}, got {v}"
+        ))
+    };
+    match v.extract::<u64>() {
+        Ok(x) if x <= max => Ok(Some(x)),
+        Ok(_) => Err(out_of_range()),
+        Err(e) if e.is_instance_of::<pyo3::exceptions::PyOverflowError>(v.py()) => {
+            Err(out_of_range())
+        }
+        Err(_) => Err(not_an_int()),
+    }
 }
 
 /// The Python type name of `obj`.

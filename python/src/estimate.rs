@@ -195,7 +195,7 @@ pub fn estimate_many<'py>(
     method: &str,
     rows: &str,
     preset: &str,
-    threads: Option<usize>,
+    threads: Option<&Bound<'py, PyAny>>,
     errors: &str,
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyList>> {
@@ -209,6 +209,8 @@ pub fn estimate_many<'py>(
             )))
         }
     };
+    let threads =
+        crate::convert::int_arg(threads, "threads", usize::MAX as u64)?.map(|n| n as usize);
     if threads == Some(0) {
         return Err(PyValueError::new_err("threads must be at least 1"));
     }

@@ -42,7 +42,7 @@ fn simulate(
     py: Python<'_>,
     camera: Option<&Bound<'_, PyAny>>,
     camera2: Option<&Bound<'_, PyAny>>,
-    points: Option<usize>,
+    points: Option<&Bound<'_, PyAny>>,
     min_depth: Option<f64>,
     max_depth: Option<f64>,
     rotation_std_deg: Option<f64>,
@@ -53,9 +53,11 @@ fn simulate(
     gyro_noise: Option<f64>,
     outlier_fraction: Option<f64>,
     gravity_noise_deg: Option<f64>,
-    seed: Option<u64>,
+    seed: Option<&Bound<'_, PyAny>>,
     plane_depth: Option<f64>,
 ) -> PyResult<Pair> {
+    let points = convert::int_arg(points, "points", usize::MAX as u64)?.map(|n| n as usize);
+    let seed = convert::int_arg(seed, "seed", u64::MAX)?;
     let d = SimulationOptions::default();
     let options = SimulationOptions {
         camera: camera.map(camera_of).transpose()?.unwrap_or(d.camera),

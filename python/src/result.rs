@@ -98,7 +98,8 @@ impl Estimate {
         self.inner.quality.homography_px
     }
     /// Names of the raised quality flags: ``too_few_inliers``,
-    /// ``translation_undetermined``, ``near_planar``.
+    /// ``translation_undetermined``, ``near_planar``, ``low_inlier_ratio``, ``collinear``,
+    /// ``gyro_noise_runaway`` (``docs/ROBUSTNESS.md``).
     #[getter]
     fn flags(&self) -> Vec<&'static str> {
         self.inner.quality.flags()

@@ -147,8 +147,13 @@ pub fn solve_grsrp<'py>(
         None,
     )?;
     let r0 = matrix_from_rows(&matrix_rows(r0, "r0")?);
-    if !r0.iter().all(|x| x.is_finite()) {
-        return Err(PyValueError::new_err("r0 must be finite"));
+    // The solver linearises about r0 as a rotation; any other matrix gives poses that are
+    // not rotations, without an error.
+    if !r0.iter().all(|x| x.is_finite())
+        || (r0.transpose() * r0 - Matrix3::identity()).norm() > 1e-6
+        || r0.determinant() < 0.0
+    {
+        return Err(PyValueError::new_err("r0 must be a rotation matrix"));
     }
     let data = PointData::new(&v1, &v2, &matches).map_err(unobservable)?;
     let sample = GrsrpSample::from_points(&data, &[0, 1, 2, 3, 4], r0);

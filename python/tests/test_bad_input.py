@@ -210,3 +210,35 @@ def test_garbage_never_crashes(good):
                 assert np.all(np.isfinite(e.rotation)) and abs(np.linalg.norm(e.translation) - 1) < 1e-6
             except (ValueError, rspose.NoSolutionError):
                 pass
+
+
+def test_complex_arrays_and_bad_refinement_options_are_refused(good):
+    x = np.array(good["matches"], dtype=float)
+    x1, x2, g = x[:, 0], x[:, 1], good["gyro"]
+    with pytest.raises(TypeError, match="x1: expected an array of real numbers, got complex values"):
+        rspose.estimate_relative_pose(x1 + 1j, x2, CAMERA, *g)
+    with pytest.raises(ValueError, match=r"^invalid option `refinement.initial_damping`: must be finite and positive$"):
+        rspose.estimate_relative_pose(x1, x2, CAMERA, *g, refinement={"initial_damping": -1.0})
+
+
+def test_solve_grsrp_refuses_an_r0_that_is_not_a_rotation(good):
+    x = np.array(good["matches"], dtype=float)[:5]
+    with pytest.raises(ValueError, match="r0 must be a rotation matrix"):
+        rspose.solve_grsrp(x[:, 0], x[:, 1], CAMERA, good["gyro"][0], good["gyro"][1], 2 * np.eye(3))
+
+
+def test_out_of_range_integers_are_value_errors():
+    with pytest.raises(ValueError, match="points must be an integer from 0 to"):
+        rspose.simulate(points=2**70)
+    with pytest.raises(ValueError, match=f"seed must be an integer from 0 to {2**64 - 1}, got -1"):
+        rspose.simulate(seed=-1)
+    with pytest.raises(TypeError, match="points: expected an integer, got bool"):
+        rspose.simulate(points=True)
+    with pytest.raises(ValueError, match="threads must be an integer from 0 to"):
+        rspose.estimate_many([], threads=2**70)
+
+
+def test_a_bool_camera_parameter_is_a_type_error():
+    with pytest.raises(TypeError, match="Camera: `fx` must be a number, got bool"):
+        rspose.Camera(fx=True, fy=640.0, cx=960.0, cy=540.0, width=1920.0, height=1080.0, readout=6e-5)
+    assert rspose.Camera(640, 640, 960, 540, 1920, 1080, 0).fx == 640.0

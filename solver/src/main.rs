@@ -9,7 +9,15 @@ mod cli;
 use clap::Parser;
 
 fn main() {
-    let args = cli::Cli::parse();
+    let args = match cli::Cli::try_parse() {
+        Ok(args) => args,
+        // Help and version go to stdout with exit 0, as clap prints them.
+        Err(e) if !e.use_stderr() => e.exit(),
+        Err(e) => {
+            eprintln!("rspose: {}", cli::usage_error_line(&e.render().to_string()));
+            std::process::exit(2);
+        }
+    };
     match cli::run(args) {
         Ok(()) => {}
         Err(e) => {

@@ -543,3 +543,175 @@ fn fisheye_cameras_simulate_estimate_and_refuse_bad_pixels() {
     assert_bad_input(&rspose(&["estimate", bad.to_str().unwrap()]), "not both");
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// Asserts exit 2 with exactly one line on stderr naming `needle`, at most 300 characters.
+fn assert_one_line_refusal(o: &Output, needle: &str) {
+    assert_bad_input(o, needle);
+    let err = stderr(o);
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(err.len() < 300, "{err}");
+}
+
+#[test]
+fn pixels_far_outside_the_image_are_refused_naming_the_match() {
+    let d = scratch("outside");
+    let p = edited_pair(&d, |v| v["matches"][4][0][0] = serde_json::json!(-1e6));
+    let o = rspose(&["estimate", p.to_str().unwrap()]);
+    assert_one_line_refusal(&o, "matches[4][0]");
+}
+
+#[test]
+fn a_sub_pixel_image_size_is_refused_in_one_short_line() {
+    let d = scratch("tiny-width");
+    let p = edited_pair(&d, |v| v["camera"]["width"] = serde_json::json!(1e-320));
+    let o = rspose(&["estimate", p.to_str().unwrap()]);
+    assert_one_line_refusal(&o, "camera.width/height");
+}
+
+#[test]
+fn a_principal_point_far_outside_the_image_is_refused() {
+    let d = scratch("far-cx");
+    let p = edited_pair(&d, |v| v["camera"]["cx"] = serde_json::json!(1e6));
+    let o = rspose(&["estimate", p.to_str().unwrap()]);
+    assert_one_line_refusal(&o, "camera.cx");
+}
+
+/// The quality flags `rspose estimate --json` reports for the simulated pair with its
+/// matches replaced by `matches`.
+fn flags_with_matches(name: &str, method: &str, matches: serde_json::Value) -> Vec<String> {
+    let d = scratch(name);
+    let p = edited_pair(&d, |v| {
+        v["matches"] = matches;
+        v.as_object_mut().unwrap().remove("ground_truth");
+    });
+    let o = rspose(&[
+        "estimate",
+        p.to_str().unwrap(),
+        "--method",
+        method,
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let flags = v["flags"].as_array().expect("flags");
+    flags
+        .iter()
+        .map(|f| f.as_str().unwrap().to_string())
+        .collect()
+}
+
+#[test]
+fn random_matches_raise_low_inlier_ratio_or_gyro_noise_runaway() {
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+    let matches: Vec<_> = (0..500)
+        .map(|_| {
+            let mut p = || [rng.gen_range(0.0..1920.0), rng.gen_range(0.0..1080.0)];
+            [p(), p()]
+        })
+        .collect();
+    for method in ["grsrp+", "rectified", "gsrp"] {
+        let flags = flags_with_matches("random", method, serde_json::json!(matches));
+        // Few chance inliers, or many because the gyro-noise fit ran away to accept them.
+        let warned = ["low_inlier_ratio", "gyro_noise_runaway"]
+            .iter()
+            .any(|f| flags.contains(&f.to_string()));
+        assert!(warned, "{method}: {flags:?}");
+    }
+}
+
+#[test]
+fn collinear_matches_raise_collinear() {
+    let matches: Vec<_> = (0..300)
+        .map(|i| {
+            let i = i as f64;
+            [
+                [10.0 + 3.0 * i, 20.0 + 2.0 * i],
+                [15.0 + 3.0 * i, 22.0 + 2.0 * i],
+            ]
+        })
+        .collect();
+    for method in ["grsrp+", "rectified"] {
+        let flags = flags_with_matches("collinear", method, serde_json::json!(matches));
+        assert!(flags.contains(&"collinear".into()), "{method}: {flags:?}");
+    }
+}
+
+#[test]
+fn usage_errors_are_one_line() {
+    for args in [
+        &["estimate"][..],
+        &["estimate", "x.json", "--bogus"],
+        &["frobnicate"],
+    ] {
+        let o = rspose(args);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.starts_with("rspose: "), "{err}");
+    }
+    let help = rspose(&["--help"]);
+    assert_eq!(help.status.code(), Some(0));
+}
+
+#[test]
+fn compare_names_the_file_of_an_invalid_field() {
+    let d = scratch("compare-field");
+    let p = edited_pair(&d, |v| v["matches"][0][1][1] = serde_json::json!(-1e7));
+    let o = rspose(&["compare", p.to_str().unwrap()]);
+    assert_one_line_refusal(
+        &o,
+        &format!("{}: invalid field `matches[0][1]`", p.display()),
+    );
+}
+
+#[test]
+fn compare_exits_1_when_no_method_estimates_any_pair() {
+    let d = scratch("compare-none");
+    // Three matches: too few for every method but `grsrp-gravity`, whose one minimal
+    // sample of random matches has no solution.
+    let p = edited_pair(&d, |v| {
+        v["matches"] = serde_json::json!([
+            [[100, 200], [300, 40]],
+            [[1500, 200], [1300, 40]],
+            [[800, 900], [700, 1000]]
+        ]);
+        v["ground_truth"]["inliers"] = serde_json::json!([true, true, true]);
+    });
+    let o = rspose(&["compare", p.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("no method estimated any"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn calibrate_refuses_a_grid_too_large_to_search() {
+    let pair = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/cc9pro/pair-100-101.json"
+    );
+    let o = rspose(&[
+        "calibrate",
+        pair,
+        "--readout-ms",
+        "0:40:0.01",
+        "--offset-ms",
+        "-15:15:0.01",
+    ]);
+    assert_one_line_refusal(&o, "too large");
+}
+
+#[test]
+fn compare_refuses_a_pair_every_method_refuses() {
+    let d = scratch("compare-identical");
+    let p = edited_pair(&d, |v| {
+        let first = v["matches"][0].clone();
+        v["matches"] = serde_json::json!(vec![first; 50]);
+        v["ground_truth"]["inliers"] = serde_json::json!(vec![true; 50]);
+    });
+    let o = rspose(&["compare", p.to_str().unwrap()]);
+    assert_one_line_refusal(&o, &format!("{}: degenerate input", p.display()));
+}

@@ -42,8 +42,24 @@ impl Recording {
             writeln!(frames, "{:.6}", 100.0 + n as f64 / 30.0).unwrap();
         }
         std::fs::write(dir.join("frames.txt"), frames).unwrap();
+        // The matches are imaged through the recording's camera: pixels of another
+        // camera's image would lie outside this one's and be refused.
+        let camera = dir.join("camera.json");
+        std::fs::write(
+            &camera,
+            r#"{"fx": 600, "fy": 600, "cx": 400, "cy": 300, "width": 800, "height": 600, "readout": 5e-5}"#,
+        )
+        .unwrap();
         let sim = dir.join("sim.json");
-        let o = rspose(&["simulate", "--seed", "1", "-o", sim.to_str().unwrap()]);
+        let o = rspose(&[
+            "simulate",
+            "--seed",
+            "1",
+            "--camera",
+            camera.to_str().unwrap(),
+            "-o",
+            sim.to_str().unwrap(),
+        ]);
         assert!(o.status.success(), "{}", stderr(&o));
         let v: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(&sim).unwrap()).unwrap();
@@ -206,4 +222,26 @@ fn samples_not_covering_a_frame_are_rejected() {
         l.drain(1..61);
     });
     r.assert_rejected("do not cover frame 5's readout");
+}
+
+#[test]
+fn an_empty_match_list_is_refused_and_nothing_written() {
+    let r = Recording::new("no-matches");
+    std::fs::write(
+        r.path("matches.json"),
+        r#"{"frames": [5, 6], "matches": []}"#,
+    )
+    .unwrap();
+    r.assert_rejected("`matches` is empty");
+}
+
+#[test]
+fn matches_far_outside_the_image_are_refused_and_nothing_written() {
+    let r = Recording::new("far-matches");
+    std::fs::write(
+        r.path("matches.json"),
+        r#"{"frames": [5, 6], "matches": [[[1e300, 10], [20, 30]]]}"#,
+    )
+    .unwrap();
+    r.assert_rejected("matches[0][0]");
 }

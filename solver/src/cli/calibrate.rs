@@ -2,7 +2,6 @@
 
 use super::compare::pair_paths;
 use super::CliError;
-use rspose::data::pair_file::PairFile;
 use rspose::estimation::calibrate::{calibrate, CalibrationOptions, Range};
 use std::path::PathBuf;
 
@@ -70,7 +69,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let paths = pair_paths(&a.pairs)?;
     let pairs = paths
         .iter()
-        .map(|p| PairFile::load(p).map_err(|e| CliError::input(e.to_string())))
+        .map(|p| super::load_pair(p))
         .collect::<Result<Vec<_>, _>>()?;
     let c = calibrate(&pairs, &options).map_err(|e| {
         let msg = match &e {

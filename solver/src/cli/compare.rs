@@ -78,7 +78,7 @@ pub fn pair_paths(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, CliError> {
 }
 
 fn load(path: &Path) -> Result<PairFile, CliError> {
-    let pair = PairFile::load(path).map_err(|e| CliError::input(e.to_string()))?;
+    let pair = super::load_pair(path)?;
     if reference_rotation(&pair).is_none() {
         return Err(CliError::input(format!(
             "{}: no rotation reference (neither ground_truth nor a gyro_log spanning both frames)",
@@ -124,6 +124,24 @@ pub fn run(a: Args) -> Result<(), CliError> {
             ..options[k].clone()
         }
     };
+    // A pair whose input every method refuses (too few or only identical matches) is bad
+    // input, reported as `estimate` would; a pair some method can run is compared.
+    for (pair, path) in pairs.iter().zip(&paths) {
+        let at = |e: &dyn std::fmt::Display| CliError::input(format!("{}: {e}", path.display()));
+        let (v1, v2) = a.rows.views(pair).map_err(|e| at(&e))?;
+        let refusals: Vec<rspose::EstimateError> = methods
+            .iter()
+            .filter_map(|&m| {
+                rspose::methods::validate_input(&v1, &v2, &pair.matches, &options_for(m, pair))
+                    .err()
+            })
+            .collect();
+        if refusals.len() == methods.len() {
+            if let Some(e) = refusals.last() {
+                return Err(at(e));
+            }
+        }
+    }
     let mut rows = run_real(&pairs, &methods, options_for, a.rows);
     if a.refine_readout {
         let refined = |method, pair: &PairFile| rspose::EstimateOptions {
@@ -155,6 +173,13 @@ pub fn run(a: Args) -> Result<(), CliError> {
         println!("{v}");
     } else {
         print!("{}", to_markdown(&rows));
+    }
+    // Valid pairs on which nothing could be estimated: an answer-less run, not a success.
+    if rows.iter().all(|r| r.failures == r.pairs) {
+        return Err(CliError::failed(format!(
+            "no method estimated any of the {} pairs",
+            pairs.len()
+        )));
     }
     Ok(())
 }

@@ -74,7 +74,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         .method
         .parse()
         .map_err(|e: rspose::methods::ParseMethodError| CliError::input(e.to_string()))?;
-    let pair = PairFile::load(&a.pair).map_err(|e| CliError::input(e.to_string()))?;
+    let pair = super::load_pair(&a.pair)?;
     let mut options = preset_options(a.preset, method, a.seed);
     if let Some(m) = a.grsrp_model {
         options.grsrp_model = m;

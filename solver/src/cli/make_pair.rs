@@ -99,8 +99,30 @@ struct MatchesFile {
     frames: Option<[usize; 2]>,
 }
 
+/// The largest input file `make-pair` reads, bytes (256 MiB): hours of a 200 Hz gyro log.
+/// The files are read whole, so a larger one would exhaust the memory of a small machine;
+/// a longer recording is cut around the frames first.
+pub const MAX_INPUT_BYTES: u64 = 256 << 20;
+
+/// Reads a text input of at most [`MAX_INPUT_BYTES`] (devices and pipes included: the read
+/// stops one byte past the limit).
 fn read(path: &Path) -> Result<String, CliError> {
-    std::fs::read_to_string(path).map_err(|e| CliError::input(format!("{}: {e}", path.display())))
+    use std::io::Read;
+    let io = |e: std::io::Error| CliError::input(format!("{}: {e}", path.display()));
+    let mut text = String::new();
+    std::fs::File::open(path)
+        .map_err(io)?
+        .take(MAX_INPUT_BYTES + 1)
+        .read_to_string(&mut text)
+        .map_err(io)?;
+    if text.len() as u64 > MAX_INPUT_BYTES {
+        return Err(CliError::input(format!(
+            "{}: larger than the {} MiB make-pair reads (cut the recording around the frames)",
+            path.display(),
+            MAX_INPUT_BYTES >> 20
+        )));
+    }
+    Ok(text)
 }
 
 fn parse_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, CliError> {
@@ -283,6 +305,13 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let (csv, full_log) = load_gyro_csv(&a.gyro, &calibration)?;
     let times = load_frame_times(&a.frame_times)?;
     let m: MatchesFile = parse_json(&a.matches)?;
+    // A pair without matches has nothing to estimate; refuse it here rather than write it.
+    if m.matches.is_empty() {
+        return Err(CliError::input(format!(
+            "{}: `matches` is empty (a pair needs at least one match)",
+            a.matches.display()
+        )));
+    }
     let frames = match (&a.frames, m.frames) {
         (Some(f), _) => [f[0], f[1]],
         (None, Some(f)) => f,

@@ -115,3 +115,28 @@ pub fn check_output_dir(path: &std::path::Path) -> Result<(), CliError> {
         )))
     }
 }
+
+/// Reads and validates a pair file for a command, every error as one line naming the file
+/// (an invalid field's message names the field but not the file it is in).
+pub fn load_pair(path: &std::path::Path) -> Result<rspose::PairFile, CliError> {
+    use rspose::data::pair_file::PairFileError;
+    rspose::PairFile::load(path).map_err(|e| match e {
+        PairFileError::InvalidField { .. } => CliError::input(format!("{}: {e}", path.display())),
+        e => CliError::input(e.to_string()),
+    })
+}
+
+/// A clap error as the one line `rspose` prints for bad input: its message lines up to the
+/// usage, joined, without clap's `error:` prefix and its tips.
+pub fn usage_error_line(rendered: &str) -> String {
+    rendered
+        .lines()
+        .map(str::trim)
+        .take_while(|l| !l.starts_with("Usage:"))
+        .filter(|l| !l.is_empty() && !l.starts_with("tip:"))
+        .collect::<Vec<_>>()
+        .join(" ")
+        .trim_start_matches("error: ")
+        .to_string()
+        + " (see --help)"
+}

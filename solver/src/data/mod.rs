@@ -5,6 +5,7 @@
 pub mod atomic_file;
 pub mod instances;
 pub mod kalibr;
+pub mod mutate;
 pub mod opencv_calibration;
 pub mod pair_estimate;
 pub mod pair_file;

@@ -357,14 +357,94 @@ fn log_error(e: GyroLogError) -> PairFileError {
     invalid(field, e.to_string())
 }
 
-/// `gravity`: two 3-vectors, or absent/null. Parsed from a JSON value so that every shape
-/// error (one view only, a vector of two numbers, a string) names the field.
+/// `gravity`: two 3-vectors, or absent/null. Read with a bounded shape (at most two views
+/// of three numbers; anything longer is refused at its first extra element, without
+/// building it in memory), and every shape error (one view only, a vector of two numbers,
+/// a string) names the field with [`gravity_from_json`]'s messages.
 fn gravity_field<'de, D: serde::Deserializer<'de>>(
     d: D,
 ) -> Result<Option<[[f64; 3]; 2]>, D::Error> {
-    use serde::de::Error;
-    let value = serde_json::Value::deserialize(d)?;
-    gravity_from_json(&value).map_err(D::Error::custom)
+    d.deserialize_any(GravityVisitor)
+}
+
+/// The message of a `gravity` that is not two views.
+const GRAVITY_VIEWS: &str =
+    "field `gravity`: expected one direction [gx, gy, gz] for each of the two views";
+
+/// The message of a view `k` of `gravity` that is not three numbers.
+fn gravity_view_message(k: usize) -> String {
+    format!(
+        "field `gravity[{k}]`: expected three numbers [gx, gy, gz] (gravity is given for both views or neither)"
+    )
+}
+
+/// Reads `gravity` as null or a sequence of exactly two [`GravityView`]s.
+struct GravityVisitor;
+
+impl<'de> serde::de::Visitor<'de> for GravityVisitor {
+    type Value = Option<[[f64; 3]; 2]>;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str(GRAVITY_VIEWS)
+    }
+
+    fn visit_unit<E: serde::de::Error>(self) -> Result<Self::Value, E> {
+        Ok(None)
+    }
+
+    fn visit_none<E: serde::de::Error>(self) -> Result<Self::Value, E> {
+        Ok(None)
+    }
+
+    fn visit_bool<E: serde::de::Error>(self, _: bool) -> Result<Self::Value, E> {
+        Err(E::custom(GRAVITY_VIEWS))
+    }
+
+    fn visit_i64<E: serde::de::Error>(self, _: i64) -> Result<Self::Value, E> {
+        Err(E::custom(GRAVITY_VIEWS))
+    }
+
+    fn visit_u64<E: serde::de::Error>(self, _: u64) -> Result<Self::Value, E> {
+        Err(E::custom(GRAVITY_VIEWS))
+    }
+
+    fn visit_f64<E: serde::de::Error>(self, _: f64) -> Result<Self::Value, E> {
+        Err(E::custom(GRAVITY_VIEWS))
+    }
+
+    fn visit_str<E: serde::de::Error>(self, _: &str) -> Result<Self::Value, E> {
+        Err(E::custom(GRAVITY_VIEWS))
+    }
+
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, _: A) -> Result<Self::Value, A::Error> {
+        Err(serde::de::Error::custom(GRAVITY_VIEWS))
+    }
+
+    fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
+        use serde::de::Error;
+        let mut out = [[0.0; 3]; 2];
+        for (k, view) in out.iter_mut().enumerate() {
+            *view = seq
+                .next_element::<GravityView>()
+                .map_err(|_| A::Error::custom(gravity_view_message(k)))?
+                .ok_or_else(|| A::Error::custom(GRAVITY_VIEWS))?
+                .0;
+        }
+        if seq.next_element::<serde::de::IgnoredAny>()?.is_some() {
+            return Err(A::Error::custom(GRAVITY_VIEWS));
+        }
+        Ok(Some(out))
+    }
+}
+
+/// One view of `gravity`: exactly three numbers (any other shape is an error the caller
+/// replaces with the field's message).
+struct GravityView([f64; 3]);
+
+impl<'de> Deserialize<'de> for GravityView {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        Ok(GravityView(<[f64; 3]>::deserialize(d)?))
+    }
 }
 
 /// The `gravity` field of a pair file from its JSON value: `null` (no gravity) or one
@@ -375,9 +455,10 @@ pub fn gravity_from_json(value: &serde_json::Value) -> Result<Option<[[f64; 3]; 
     if value.is_null() {
         return Ok(None);
     }
-    let views = value.as_array().filter(|a| a.len() == 2).ok_or_else(|| {
-        "field `gravity`: expected one direction [gx, gy, gz] for each of the two views".to_string()
-    })?;
+    let views = value
+        .as_array()
+        .filter(|a| a.len() == 2)
+        .ok_or_else(|| GRAVITY_VIEWS.to_string())?;
     let mut out = [[0.0; 3]; 2];
     for (k, v) in views.iter().enumerate() {
         let numbers: Option<Vec<f64>> = v
@@ -385,11 +466,7 @@ pub fn gravity_from_json(value: &serde_json::Value) -> Result<Option<[[f64; 3]; 
             .filter(|a| a.len() == 3)
             .map(|a| a.iter().map(|x| x.as_f64()).collect())
             .and_then(|x: Option<Vec<f64>>| x);
-        let numbers = numbers.ok_or_else(|| {
-            format!(
-                "field `gravity[{k}]`: expected three numbers [gx, gy, gz] (gravity is given for both views or neither)"
-            )
-        })?;
+        let numbers = numbers.ok_or_else(|| gravity_view_message(k))?;
         out[k].copy_from_slice(&numbers);
     }
     Ok(Some(out))
@@ -501,7 +578,8 @@ impl PairFile {
         Some(log.rotation_between(t1, t2).transpose())
     }
 
-    /// Check every field: camera parameters, finite gyro, finite pixels, and (if present) a
+    /// Check every field: camera parameters, finite gyro, finite pixels within the image
+    /// extended by [`crate::model::camera::OUTSIDE_IMAGE_MARGIN`] times its size, and (if present) a
     /// rotation ground truth that is a rotation, a unit translation, finite velocities and one
     /// inlier flag per match.
     pub fn validate(&self) -> Result<(), PairFileError> {
@@ -565,6 +643,18 @@ impl PairFile {
                     format!("matches[{i}]"),
                     "non-finite pixel coordinate",
                 ));
+            }
+            for (k, p) in m.iter().enumerate() {
+                let camera = &self.cameras[k];
+                if !camera.pixel_in_range(*p) {
+                    return Err(invalid(
+                        format!("matches[{i}][{k}]"),
+                        format!(
+                            "pixel ({:?}, {:?}) of image {} is far outside the {:?}x{:?} image (at most one image size beyond each side)",
+                            p[0], p[1], k + 1, camera.width, camera.height
+                        ),
+                    ));
+                }
             }
         }
         if let Some(gt) = &self.ground_truth {

@@ -48,6 +48,17 @@ pub enum CalibrationError {
         /// What is missing.
         source: GyroLogError,
     },
+    /// The search would take too long: more than [`MAX_GRID_CELLS`] coarse cells, or more
+    /// than [`MAX_GRID_WORK`] cells × matches.
+    #[error("search grid of {readouts} readouts x {offsets} offsets over {matches} matches is too large (at most {max_cells} cells and {max_work:e} cells x matches); use a coarser step or a narrower range", max_cells = MAX_GRID_CELLS, max_work = MAX_GRID_WORK)]
+    GridTooLarge {
+        /// Readout values of the grid.
+        readouts: usize,
+        /// Offset values of the grid.
+        offsets: usize,
+        /// Matches the cost sums over (after [`MAX_PAIR_MATCHES`]).
+        matches: usize,
+    },
     /// A pair's match has a pixel without a bearing in its camera.
     #[error("pair {pair}: {source}")]
     Unobservable {
@@ -98,6 +109,19 @@ pub struct Range {
     /// Step, s.
     pub step: f64,
 }
+
+/// Most coarse grid cells (readouts × offsets) a calibration searches: the default grid
+/// has about a thousand, and each cell costs a pass over every match.
+pub const MAX_GRID_CELLS: usize = 100_000;
+
+/// Most cells × matches of a search, which bounds its time (about a minute on one core).
+pub const MAX_GRID_WORK: f64 = 1e8;
+
+/// Most matches of one pair that enter the cost: a pair with more is subsampled with a
+/// deterministic stride (every k-th match), since the readout and offset are
+/// determined by a few thousand matches spread over the image and the cost's time grows
+/// with their number.
+pub const MAX_PAIR_MATCHES: usize = 5_000;
 
 impl Range {
     fn values(&self, name: &'static str) -> Result<Vec<f64>, CalibrationError> {
@@ -322,6 +346,7 @@ pub fn calibrate(
         let [cam1, cam2] = p.cameras;
         let observations = observe_matches(&cam1, &cam2, &p.matches)
             .map_err(|source| CalibrationError::Unobservable { pair: i, source })?;
+        let stride = observations.len().div_ceil(MAX_PAIR_MATCHES).max(1);
         data.push(PairData {
             log,
             frame_times: spec.frame_times,
@@ -329,11 +354,20 @@ pub fn calibrate(
             focal: 0.5 * (cam1.mean_focal() + cam2.mean_focal()),
             bearings: observations
                 .iter()
+                .step_by(stride)
                 .map(|[a, b]| (a.line, a.bearing, b.line, b.bearing))
                 .collect(),
         });
     }
-    let total: usize = pairs.iter().map(|p| p.matches.len()).sum();
+    let total: usize = data.iter().map(|d| d.bearings.len()).sum();
+    let cells = readouts.len() * offsets.len();
+    if cells > MAX_GRID_CELLS || cells as f64 * total as f64 > MAX_GRID_WORK {
+        return Err(CalibrationError::GridTooLarge {
+            readouts: readouts.len(),
+            offsets: offsets.len(),
+            matches: total,
+        });
+    }
     let tau = options.loss_scale_px;
     let grid: Vec<Vec<f64>> = readouts
         .iter()

@@ -31,6 +31,25 @@ fn validate_options(o: &EstimateOptions) -> Result<(), EstimateError> {
             return bad(name, "must be finite and positive");
         }
     }
+    // A negative or non-finite damping or step makes the refinement diverge or stall
+    // without an error of its own.
+    let lm = &o.refinement;
+    for (name, x) in [
+        ("refinement.initial_damping", lm.initial_damping),
+        ("refinement.fd_step", lm.fd_step),
+    ] {
+        if !(x.is_finite() && x > 0.0) {
+            return bad(name, "must be finite and positive");
+        }
+    }
+    for (name, x) in [
+        ("refinement.cost_tolerance", lm.cost_tolerance),
+        ("refinement.step_tolerance", lm.step_tolerance),
+    ] {
+        if !(x.is_finite() && x >= 0.0) {
+            return bad(name, "must be finite and non-negative");
+        }
+    }
     let a = o.robust.rolling_shutter_allowance;
     if !(a.is_finite() && a >= 0.0) {
         return bad(
@@ -131,6 +150,17 @@ pub fn validate_input(
                     image: k + 1,
                 });
             }
+            let camera = if k == 0 { &view1.camera } else { &view2.camera };
+            if !camera.pixel_in_range(*p) {
+                return Err(EstimateError::PixelOutsideImage {
+                    index,
+                    image: k + 1,
+                    u: p[0],
+                    v: p[1],
+                    width: camera.width,
+                    height: camera.height,
+                });
+            }
         }
     }
     crate::model::epipolar::observe_matches(&view1.camera, &view2.camera, matches)?;
@@ -225,6 +255,9 @@ pub fn estimate_relative_pose(
         &options.quality,
         options.robust.seed,
     );
+    if let Some(fit) = est.noise_fit {
+        est.quality.flag_gyro_noise(fit.gyro_noise);
+    }
     let finite = est.rotation.iter().all(|x| x.is_finite())
         && est.translation.iter().all(|x| x.is_finite())
         && (est.translation.norm() - 1.0).abs() < 1e-6;

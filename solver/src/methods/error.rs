@@ -34,6 +34,24 @@ pub enum EstimateError {
         /// 1 or 2.
         image: usize,
     },
+    /// A pixel lies further outside its image than
+    /// [`OUTSIDE_IMAGE_MARGIN`](crate::model::camera::OUTSIDE_IMAGE_MARGIN) times its size
+    /// (coordinates in another frame or unit).
+    #[error("match {index}: pixel ({u:?}, {v:?}) in image {image} is far outside the image ({width:?}x{height:?}; at most one image size beyond each side)")]
+    PixelOutsideImage {
+        /// Index of the match.
+        index: usize,
+        /// 1 or 2.
+        image: usize,
+        /// Column.
+        u: f64,
+        /// Row.
+        v: f64,
+        /// The image's width, pixels.
+        width: f64,
+        /// The image's height, pixels.
+        height: f64,
+    },
     /// Too few matches for the method.
     #[error("method {method} needs at least {needed} matches, got {got}")]
     TooFewMatches {

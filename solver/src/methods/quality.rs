@@ -12,7 +12,20 @@
 //!   admits two essential matrices (and a homography fits every pure rotation too), so the
 //!   pose may be the wrong one.
 //!
-//! Both compare with the epipolar residual, so they adapt to the matching noise. For `gsrp`
+//! - **Low inlier ratio**: fewer than [`QualityOptions::min_inlier_ratio`] of the matches
+//!   are inliers. Random matches leave a few percent of chance inliers under any pose, so a
+//!   pose resting on so few is not evidence of the scene.
+//! - **Collinear**: the inliers' pixels in either image lie near one line (their spread
+//!   across their main axis is below [`QualityOptions::min_spread_ratio`] times the image's
+//!   smaller side). Points on a line do not determine the epipolar geometry: every pose
+//!   whose epipolar planes contain the line fits them, so the reported one is arbitrary.
+//! - **Gyro noise runaway**: the gyro-rate noise fitted to the pair (gyro-aided methods)
+//!   exceeds [`MAX_PLAUSIBLE_GYRO_NOISE`]. A gyroscope that noisy carries no information;
+//!   such a fit means the noise model absorbed residuals the pose does not explain, and the
+//!   inliers classified with it are not trustworthy. Raised by the estimate after the fit
+//!   ([`Quality::flag_gyro_noise`]).
+//!
+//! Both the parallax and homography flags compare with the epipolar residual, so they adapt to the matching noise. For `gsrp`
 //! on strongly distorted rolling-shutter images that residual is inflated by the model's
 //! error, which makes the flags more likely: a warning that the model does not explain the
 //! data either.
@@ -46,7 +59,19 @@ pub struct QualityOptions {
     /// Transfer error within which a match supports a homography hypothesis, pixels
     /// (default 2).
     pub homography_threshold_px: f64,
+    /// A smaller fraction of inliers raises `low_inlier_ratio` (default 0.2: random matches
+    /// keep well under a tenth as chance inliers, real pairs most of theirs).
+    pub min_inlier_ratio: f64,
+    /// Inlier pixels whose spread across their main axis (standard deviation, in either
+    /// image) is below this fraction of the image's smaller side raise `collinear`
+    /// (default 0.01).
+    pub min_spread_ratio: f64,
 }
+
+/// A fitted gyro-rate noise above this (rad/s per axis) raises `gyro_noise_runaway`: far
+/// beyond any real gyroscope's noise, and above which the gyro no longer constrains the
+/// rows' rotations.
+pub const MAX_PLAUSIBLE_GYRO_NOISE: f64 = 1.0;
 
 impl Default for QualityOptions {
     fn default() -> Self {
@@ -55,6 +80,8 @@ impl Default for QualityOptions {
             min_parallax_ratio: 5.0,
             max_homography_ratio: 4.0,
             homography_threshold_px: 2.0,
+            min_inlier_ratio: 0.2,
+            min_spread_ratio: 0.01,
         }
     }
 }
@@ -76,6 +103,13 @@ pub struct Quality {
     pub translation_undetermined: bool,
     /// One homography explains nearly all inliers (planar scene or pure rotation).
     pub near_planar: bool,
+    /// A smaller fraction of the matches than [`QualityOptions::min_inlier_ratio`] are
+    /// inliers.
+    pub low_inlier_ratio: bool,
+    /// The inliers' pixels in one image lie near a line: the pose is not determined.
+    pub collinear: bool,
+    /// The fitted gyro-rate noise exceeds [`MAX_PLAUSIBLE_GYRO_NOISE`].
+    pub gyro_noise_runaway: bool,
 }
 
 impl Quality {
@@ -85,11 +119,46 @@ impl Quality {
             (self.too_few_inliers, "too_few_inliers"),
             (self.translation_undetermined, "translation_undetermined"),
             (self.near_planar, "near_planar"),
+            (self.low_inlier_ratio, "low_inlier_ratio"),
+            (self.collinear, "collinear"),
+            (self.gyro_noise_runaway, "gyro_noise_runaway"),
         ]
         .into_iter()
         .filter_map(|(on, name)| on.then_some(name))
         .collect()
     }
+
+    /// Raises `gyro_noise_runaway` when the fitted gyro-rate noise `gyro_noise` (rad/s per
+    /// axis) exceeds [`MAX_PLAUSIBLE_GYRO_NOISE`] or is not finite.
+    pub fn flag_gyro_noise(&mut self, gyro_noise: f64) {
+        self.gyro_noise_runaway = gyro_noise.is_nan() || gyro_noise > MAX_PLAUSIBLE_GYRO_NOISE;
+    }
+}
+
+/// The standard deviation of `pixels` across their main axis (the smaller principal
+/// standard deviation), pixels; 0 for fewer than two.
+fn minor_spread(pixels: impl Iterator<Item = [f64; 2]>) -> f64 {
+    let pts: Vec<[f64; 2]> = pixels.collect();
+    if pts.len() < 2 {
+        return 0.0;
+    }
+    let n = pts.len() as f64;
+    let mean = pts
+        .iter()
+        .fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[1] / n]);
+    let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
+    for p in &pts {
+        let (dx, dy) = (p[0] - mean[0], p[1] - mean[1]);
+        sxx += dx * dx / n;
+        sxy += dx * dy / n;
+        syy += dy * dy / n;
+    }
+    // The smaller eigenvalue of the 2x2 covariance.
+    let half_trace = 0.5 * (sxx + syy);
+    let det = sxx * syy - sxy * sxy;
+    (half_trace - (half_trace * half_trace - det).max(0.0).sqrt())
+        .max(0.0)
+        .sqrt()
 }
 
 /// At most this many inliers enter the homography search (a deterministic stride beyond).
@@ -157,14 +226,22 @@ pub fn assess(
         (b2.dot(&n) / (n.norm() * b2.norm())).abs().asin()
     }));
     let homography_px = f * homography_residual(&pts, options.homography_threshold_px / f, seed);
+    let inlier_ratio = n as f64 / matches.len().max(1) as f64;
+    let collinear = [view1, view2].into_iter().enumerate().any(|(k, view)| {
+        let side = view.camera.width.min(view.camera.height);
+        minor_spread(sub.iter().map(|m| m[k])) < options.min_spread_ratio * side
+    });
     Quality {
-        inlier_ratio: n as f64 / matches.len().max(1) as f64,
+        inlier_ratio,
         parallax_px,
         epipolar_px,
         homography_px,
         too_few_inliers: n < options.min_inliers,
         translation_undetermined: parallax_px < options.min_parallax_ratio * epipolar_px,
         near_planar: homography_px < options.max_homography_ratio * epipolar_px,
+        low_inlier_ratio: inlier_ratio < options.min_inlier_ratio,
+        collinear,
+        gyro_noise_runaway: false,
     }
 }
 
@@ -329,5 +406,24 @@ mod tests {
         let mut bad = pts;
         bad[2].0 = Vector3::new(0.5 * (xs[0].x + xs[1].x), 0.5 * (xs[0].y + xs[1].y), 1.0);
         assert!(homography_from_4(&bad).is_none());
+    }
+
+    #[test]
+    fn points_on_a_line_have_no_spread_across_it() {
+        let line = (0..50).map(|i| [10.0 + 3.0 * i as f64, 20.0 + 2.0 * i as f64]);
+        assert!(minor_spread(line) < 1e-9);
+        let grid = (0..100).map(|i| [(i % 10) as f64 * 100.0, (i / 10) as f64 * 100.0]);
+        assert!((minor_spread(grid) - 287.228).abs() < 1e-2);
+    }
+
+    #[test]
+    fn a_runaway_gyro_noise_fit_is_flagged() {
+        let mut q = Quality::default();
+        q.flag_gyro_noise(0.05);
+        assert!(q.flags().is_empty());
+        for runaway in [MAX_PLAUSIBLE_GYRO_NOISE * 1.01, 9.5, f64::NAN] {
+            q.flag_gyro_noise(runaway);
+            assert_eq!(q.flags(), ["gyro_noise_runaway"]);
+        }
     }
 }

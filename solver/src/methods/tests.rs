@@ -49,6 +49,16 @@ fn input_errors_are_typed() {
         estimate_relative_pose(&v1, &v2, &m, &o),
         Err(EstimateError::NonFinitePixel { index: 3, image: 2 })
     );
+    let mut m = p.matches.clone();
+    m[2][0][0] -= 1e6;
+    assert!(matches!(
+        estimate_relative_pose(&v1, &v2, &m, &o),
+        Err(EstimateError::PixelOutsideImage {
+            index: 2,
+            image: 1,
+            ..
+        })
+    ));
     assert!(matches!(
         estimate_relative_pose(&v1, &v2, &p.matches[..4], &o),
         Err(EstimateError::TooFewMatches {
@@ -815,4 +825,32 @@ fn gsrp_never_returns_the_twisted_pair() {
         }
     }
     assert!(twisted.is_empty(), "{twisted:?}");
+}
+
+#[test]
+fn refinement_options_out_of_range_are_refused_naming_the_option() {
+    let p = pair(SimulationOptions {
+        points: 30,
+        ..Default::default()
+    });
+    let (v1, v2) = p.views().unwrap();
+    type Edit = fn(&mut EstimateOptions);
+    let edits: [(Edit, &str); 3] = [
+        (
+            |o| o.refinement.initial_damping = -1.0,
+            "refinement.initial_damping",
+        ),
+        (|o| o.refinement.fd_step = f64::NAN, "refinement.fd_step"),
+        (
+            |o| o.refinement.cost_tolerance = -1e-3,
+            "refinement.cost_tolerance",
+        ),
+    ];
+    for (edit, name) in edits {
+        let mut o = EstimateOptions::for_method(Method::Rectified);
+        edit(&mut o);
+        let e = estimate_relative_pose(&v1, &v2, &p.matches, &o).unwrap_err();
+        assert!(matches!(e, EstimateError::InvalidOption { .. }), "{e}");
+        assert!(e.to_string().contains(name), "{e}");
+    }
 }

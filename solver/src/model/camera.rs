@@ -29,6 +29,13 @@ use thiserror::Error;
 pub const MAX_PIXELS: f64 = 1e7;
 /// Smallest focal length accepted, pixels.
 pub const MIN_FOCAL: f64 = 1e-3;
+/// Smallest image width or height, pixels: an image narrower than one pixel has no pixels.
+pub const MIN_IMAGE_SIZE: f64 = 1.0;
+/// How far the principal point and a match's pixels may lie outside the image, as a
+/// multiple of its width (for `u`, `cx`) or height (for `v`, `cy`): lenient enough for a
+/// decentred lens or a keypoint refined just past the border, and it refuses coordinates
+/// in another frame (shifted, swapped or in other units).
+pub const OUTSIDE_IMAGE_MARGIN: f64 = 1.0;
 /// Largest magnitude of a distortion coefficient accepted (finite, and small enough that
 /// the distortion polynomials stay finite over any image).
 pub const MAX_DISTORTION: f64 = 1e6;
@@ -43,7 +50,7 @@ pub const GRAVITY_NORM_RANGE: std::ops::RangeInclusive<f64> = 1e-6..=1e6;
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum CameraError {
     /// A focal length is not finite or outside `[MIN_FOCAL, MAX_PIXELS]`.
-    #[error("camera focal length `{name}` must be between 1e-3 and 1e7 pixels, got {value}")]
+    #[error("camera focal length `{name}` must be between 1e-3 and 1e7 pixels, got {value:?}")]
     InvalidFocal {
         /// `"f"`, `"fx"` or `"fy"`.
         name: &'static str,
@@ -51,7 +58,7 @@ pub enum CameraError {
         value: f64,
     },
     /// A single-focal model (`SIMPLE_PINHOLE`, `SIMPLE_RADIAL`, `RADIAL`) with `fx != fy`.
-    #[error("camera model {model} has one focal length `f`, but fx = {fx} and fy = {fy}")]
+    #[error("camera model {model} has one focal length `f`, but fx = {fx:?} and fy = {fy:?}")]
     UnequalFocals {
         /// The model's name.
         model: &'static str,
@@ -60,16 +67,23 @@ pub enum CameraError {
         /// `fy`.
         fy: f64,
     },
-    /// The principal point is not finite or further than `MAX_PIXELS` from the origin.
-    #[error("camera principal point `{name}` must be within ±1e7 pixels, got {value}")]
+    /// The principal point is not finite, further than `MAX_PIXELS` from the origin, or
+    /// further outside the image than [`OUTSIDE_IMAGE_MARGIN`] times its size.
+    #[error("camera principal point `{name}` must be within the image extended by its size on each side ({min:?} to {max:?} pixels), got {value:?}")]
     InvalidPrincipalPoint {
         /// `"cx"` or `"cy"`.
         name: &'static str,
         /// The rejected value.
         value: f64,
+        /// The smallest accepted value.
+        min: f64,
+        /// The largest accepted value.
+        max: f64,
     },
     /// A distortion coefficient is not finite or larger than `MAX_DISTORTION` in magnitude.
-    #[error("camera distortion coefficient `{name}` must be finite and within ±1e6, got {value}")]
+    #[error(
+        "camera distortion coefficient `{name}` must be finite and within ±1e6, got {value:?}"
+    )]
     InvalidDistortion {
         /// COLMAP's name of the coefficient, e.g. `"k1"` or `"p2"`.
         name: &'static str,
@@ -78,10 +92,10 @@ pub enum CameraError {
     },
     /// The readout time per line is negative, not finite, or makes a frame's readout longer
     /// than `MAX_FRAME_READOUT` (0 is a global-shutter camera).
-    #[error("camera readout time per line must be >= 0 with lines x readout <= 10 s, got {0}")]
+    #[error("camera readout time per line must be >= 0 with lines x readout <= 10 s, got {0:?}")]
     InvalidReadout(f64),
-    /// The image size is not finite or outside `(0, MAX_PIXELS]`.
-    #[error("camera image size must be positive and at most 1e7 pixels, got {width}x{height}")]
+    /// The image size is not finite or outside `[MIN_IMAGE_SIZE, MAX_PIXELS]`.
+    #[error("camera image size must be between 1 and 1e7 pixels, got {width:?}x{height:?}")]
     InvalidSize {
         /// Width in pixels.
         width: f64,
@@ -110,7 +124,7 @@ pub enum CameraError {
     /// A pixel lies where the camera's distortion is not invertible (a fisheye's or a
     /// polynomial model's fold, beyond the radius where the distortion stops increasing),
     /// so it has no unique bearing.
-    #[error("pixel ({u}, {v}) lies where the {model} distortion is not invertible")]
+    #[error("pixel ({u:?}, {v:?}) lies where the {model} distortion is not invertible")]
     NotInvertible {
         /// The model's name.
         model: &'static str,
@@ -120,7 +134,7 @@ pub enum CameraError {
         v: f64,
     },
     /// Newton's iteration undistorting a pixel did not reach its tolerance.
-    #[error("undistorting pixel ({u}, {v}) with the {model} model did not converge")]
+    #[error("undistorting pixel ({u:?}, {v:?}) with the {model} model did not converge")]
     NotConverged {
         /// The model's name.
         model: &'static str,
@@ -136,7 +150,7 @@ pub enum CameraError {
     )]
     InvalidGyro(f64, f64, f64),
     /// The gravity direction is not finite or its length is zero (or absurd).
-    #[error("gravity must be a finite vector of non-zero length, got [{0}, {1}, {2}]")]
+    #[error("gravity must be a finite vector of non-zero length, got [{0:?}, {1:?}, {2:?}]")]
     InvalidGravity(f64, f64, f64),
 }
 
@@ -409,10 +423,29 @@ impl Camera {
         p
     }
 
+    /// The accepted range of a pixel coordinate (and the principal point) along an image
+    /// side of `size` pixels: the image extended by [`OUTSIDE_IMAGE_MARGIN`] times its size
+    /// on each side.
+    pub fn coordinate_range(size: f64) -> (f64, f64) {
+        (
+            -OUTSIDE_IMAGE_MARGIN * size,
+            (1.0 + OUTSIDE_IMAGE_MARGIN) * size,
+        )
+    }
+
+    /// Whether pixel `p` lies within [`coordinate_range`](Self::coordinate_range) of the
+    /// image in both coordinates (false for a non-finite one).
+    pub fn pixel_in_range(&self, p: [f64; 2]) -> bool {
+        let (u0, u1) = Self::coordinate_range(self.width);
+        let (v0, v1) = Self::coordinate_range(self.height);
+        (u0..=u1).contains(&p[0]) && (v0..=v1).contains(&p[1])
+    }
+
     /// Check that every parameter is finite and physically plausible: focal lengths in
-    /// `[MIN_FOCAL, MAX_PIXELS]` (`fx = fy` for single-focal models), principal point within
-    /// `±MAX_PIXELS`, distortion coefficients within `±MAX_DISTORTION`, size in
-    /// `(0, MAX_PIXELS]`, readout `>= 0` (0: global shutter) with a frame readout
+    /// `[MIN_FOCAL, MAX_PIXELS]` (`fx = fy` for single-focal models), size in
+    /// `[MIN_IMAGE_SIZE, MAX_PIXELS]`, principal point within the image extended by
+    /// [`OUTSIDE_IMAGE_MARGIN`] times its size, distortion coefficients within
+    /// `±MAX_DISTORTION`, readout `>= 0` (0: global shutter) with a frame readout
     /// (`lines × readout`) of at most `MAX_FRAME_READOUT`.
     pub fn validate(&self) -> Result<(), CameraError> {
         let single = self.model.single_focal();
@@ -433,9 +466,22 @@ impl Camera {
                 fy: self.fy,
             });
         }
-        for (name, value) in [("cx", self.cx), ("cy", self.cy)] {
-            if value.is_nan() || value.abs() > MAX_PIXELS {
-                return Err(CameraError::InvalidPrincipalPoint { name, value });
+        let size_ok = |x: f64| (MIN_IMAGE_SIZE..=MAX_PIXELS).contains(&x);
+        if !(size_ok(self.width) && size_ok(self.height)) {
+            return Err(CameraError::InvalidSize {
+                width: self.width,
+                height: self.height,
+            });
+        }
+        for (name, value, size) in [("cx", self.cx, self.width), ("cy", self.cy, self.height)] {
+            let (min, max) = Self::coordinate_range(size);
+            if !(min..=max).contains(&value) {
+                return Err(CameraError::InvalidPrincipalPoint {
+                    name,
+                    value,
+                    min,
+                    max,
+                });
             }
         }
         let names = self.model.param_names();
@@ -445,13 +491,6 @@ impl Camera {
             if value.is_nan() || value.abs() > MAX_DISTORTION {
                 return Err(CameraError::InvalidDistortion { name, value });
             }
-        }
-        let size_ok = |x: f64| x > 0.0 && x <= MAX_PIXELS;
-        if !(size_ok(self.width) && size_ok(self.height)) {
-            return Err(CameraError::InvalidSize {
-                width: self.width,
-                height: self.height,
-            });
         }
         if !(self.readout >= 0.0 && self.readout * self.lines() <= MAX_FRAME_READOUT) {
             return Err(CameraError::InvalidReadout(self.readout));

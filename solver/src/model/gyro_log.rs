@@ -42,6 +42,21 @@ pub fn row_rotation(v: f64, readout: f64, omega: &Vector3<f64>) -> Matrix3<f64> 
 /// bridged.
 pub const MAX_SAMPLE_GAP: f64 = 0.05;
 
+/// A time in seconds printed with a fixed number of decimals, or in exponent notation
+/// when that would take more than a few digits before the point (a timestamp of 1e300
+/// would otherwise print three hundred of them).
+struct Seconds(f64, usize);
+
+impl std::fmt::Display for Seconds {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.0.abs() < 1e12 {
+            write!(f, "{:.*}", self.1, self.0)
+        } else {
+            write!(f, "{:e}", self.0)
+        }
+    }
+}
+
 /// Why a gyro log is unusable. `index` is the 0-based sample index; readers map it to a
 /// file line or field (`rspose` names both).
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -63,7 +78,7 @@ pub enum GyroLogError {
         index: usize,
     },
     /// A timestamp equals the previous one.
-    #[error("sample {index}: duplicate timestamp {time}")]
+    #[error("sample {index}: duplicate timestamp {time:?}")]
     DuplicateTime {
         /// Sample index.
         index: usize,
@@ -71,7 +86,7 @@ pub enum GyroLogError {
         time: f64,
     },
     /// A timestamp is earlier than the previous one.
-    #[error("sample {index}: timestamp {time} is earlier than the previous one ({previous})")]
+    #[error("sample {index}: timestamp {time:?} is earlier than the previous one ({previous:?})")]
     Unsorted {
         /// Sample index.
         index: usize,
@@ -83,7 +98,7 @@ pub enum GyroLogError {
     /// Two consecutive samples are further apart than the rate can be interpolated across
     /// ([`MAX_SAMPLE_GAP`]). The message gives the times; readers add the file line or field
     /// of the sample after the gap (`index`).
-    #[error("gap of {gap:.4} s between the samples at {before:.6} s and {after:.6} s: the rate is interpolated across gaps of at most {max_gap} s (gyros logged at 20 Hz or faster)")]
+    #[error("gap of {} s between the samples at {} s and {} s: the rate is interpolated across gaps of at most {max_gap} s (gyros logged at 20 Hz or faster)", Seconds(*gap, 4), Seconds(*before, 6), Seconds(*after, 6))]
     Gap {
         /// Index of the sample after the gap.
         index: usize,
@@ -98,7 +113,8 @@ pub enum GyroLogError {
     },
     /// The log does not span a time interval that is needed.
     #[error(
-        "the samples ({first:.6} to {last:.6} s) do not cover {what} ({start:.6} to {end:.6} s)"
+        "the samples ({} to {} s) do not cover {what} ({} to {} s)",
+        Seconds(*first, 6), Seconds(*last, 6), Seconds(*start, 6), Seconds(*end, 6)
     )]
     NotCovered {
         /// What needed covering, e.g. "image 1's readout".

@@ -277,3 +277,34 @@ fn a_known_gyro_bias_is_subtracted_from_readings_and_samples() {
         .to_string();
     assert!(e.contains("gyro_bais"), "{e}");
 }
+
+#[test]
+fn a_long_gravity_is_refused_at_its_first_extra_element() {
+    let p = Path::new("pair.json");
+    let good = sample().to_json_string();
+    let long_views = format!(
+        "\"gravity\": [{}[0, 1, 0]], \"unused\": [",
+        "[0, 1, 0], ".repeat(100_000)
+    );
+    let long_vector = format!(
+        "\"gravity\": [[0, 1, {}0], [0, 1, 0]], \"unused\": [",
+        "0, ".repeat(100_000)
+    );
+    for (edit, field) in [
+        (long_views, "field `gravity`"),
+        (long_vector, "field `gravity[0]`"),
+    ] {
+        let text = good.replacen("\"gravity\": [", &edit, 1);
+        let err = PairFile::from_json_str(&text, p).unwrap_err().to_string();
+        assert!(err.contains(field), "{err}");
+    }
+    // The same messages as a gravity built from a JSON value.
+    let err = gravity_from_json(&serde_json::json!([[0, 1, 0], null])).unwrap_err();
+    let text = good.replacen(
+        "\"gravity\": [",
+        "\"gravity\": [[0, 1, 0], null], \"unused\": [",
+        1,
+    );
+    let file_err = PairFile::from_json_str(&text, p).unwrap_err().to_string();
+    assert!(file_err.contains(&err), "{file_err} / {err}");
+}

@@ -509,6 +509,43 @@ fn run_tape<T: Ring>(
     Ok(vals)
 }
 
+/// The largest problem file read, in bytes: far above any minimal problem, small enough to
+/// hold in memory.
+pub const MAX_PROBLEM_FILE_BYTES: u64 = 16 << 20;
+
+/// A problem file's text: a regular file (a FIFO or device is refused, since reading one
+/// may wait forever for a writer) of at most [`MAX_PROBLEM_FILE_BYTES`].
+pub(crate) fn read_problem_text(path: &Path) -> std::io::Result<String> {
+    use std::io::{Error, ErrorKind, Read};
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(Error::new(
+            ErrorKind::InvalidInput,
+            "not a regular file (a directory, FIFO or device); give the problem file itself",
+        ));
+    }
+    let too_large = || {
+        Error::new(
+            ErrorKind::InvalidData,
+            format!(
+                "larger than {} MiB, the most a problem file may have",
+                MAX_PROBLEM_FILE_BYTES >> 20
+            ),
+        )
+    };
+    if meta.len() > MAX_PROBLEM_FILE_BYTES {
+        return Err(too_large());
+    }
+    let mut text = String::new();
+    std::fs::File::open(path)?
+        .take(MAX_PROBLEM_FILE_BYTES + 1)
+        .read_to_string(&mut text)?;
+    if text.len() as u64 > MAX_PROBLEM_FILE_BYTES {
+        return Err(too_large());
+    }
+    Ok(text)
+}
+
 impl Problem {
     /// Parses and checks a problem's source; errors carry `file_name`.
     pub fn parse(source: &str, file_name: &str) -> Result<Problem, LangError> {
@@ -516,11 +553,12 @@ impl Problem {
         Ok(Problem::from_checked(checked))
     }
 
-    /// Reads, parses and checks a problem file.
+    /// Reads, parses and checks a problem file: a regular file of at most
+    /// [`MAX_PROBLEM_FILE_BYTES`] (a FIFO, device or directory is an `Io` error).
     pub fn from_file(path: impl AsRef<Path>) -> Result<Problem, ProblemError> {
         let path = path.as_ref();
         let shown = path.display().to_string();
-        let source = std::fs::read_to_string(path).map_err(|source| ProblemError::Io {
+        let source = read_problem_text(path).map_err(|source| ProblemError::Io {
             path: shown.clone(),
             source,
         })?;

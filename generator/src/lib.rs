@@ -42,7 +42,7 @@ pub use audit::{
 };
 pub use budget::Budget;
 pub use emit::{CodeForm, EmitError};
-pub use expand::{Problem, ProblemError};
+pub use expand::{Problem, ProblemError, MAX_PROBLEM_FILE_BYTES};
 pub use lang::LangError;
 pub use pipeline::{
     emit_plan_from, emit_plan_in, plan, plan_file, plan_source, PipelineError, SolverPlan,

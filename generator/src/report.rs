@@ -177,7 +177,7 @@ fn header_value(source: &str, key: &str) -> Option<String> {
 /// with `audit`.
 pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOptions) -> ReportRow {
     let shown = file.display().to_string();
-    let source = std::fs::read_to_string(file).unwrap_or_default();
+    let source = crate::expand::read_problem_text(file).unwrap_or_default();
     let published = header_value(&source, "published");
     let mut row = ReportRow {
         file: shown.clone(),

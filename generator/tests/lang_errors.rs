@@ -536,6 +536,31 @@ fn binary_reports_errors_with_exit_code_2() {
     assert_eq!(out.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("does-not-exist.mp") && stderr.contains("cannot read"));
+    // Not a regular file: refused at once, never waiting for a writer.
+    let not_files = {
+        let mut v = vec![dir.clone()];
+        #[cfg(unix)]
+        {
+            let fifo = dir.join("fifo.mp");
+            let made = Command::new("mkfifo").arg(&fifo).status();
+            if made.is_ok_and(|s| s.success()) {
+                v.push(fifo);
+            }
+        }
+        v
+    };
+    for path in &not_files {
+        let out = bin().arg("inspect").arg(path).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{}", path.display());
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(stderr.contains("not a regular file"), "{stderr}");
+        assert_eq!(stderr.trim_end().lines().count(), 1);
+    }
+    let huge = dir.join("huge.mp");
+    let f = std::fs::File::create(&huge).unwrap();
+    f.set_len(mingen::MAX_PROBLEM_FILE_BYTES + 1).unwrap();
+    let err = Problem::from_file(&huge).unwrap_err().to_string();
+    assert!(err.contains("larger than 16 MiB"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
 

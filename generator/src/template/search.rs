@@ -101,6 +101,8 @@ pub(crate) fn best_template_within(
     } else {
         Vec::new()
     };
+    // Every basis either sample found: the narrow sample's climbs skip them all.
+    let both_samples: Vec<AlternativeBasis> = bases.iter().chain(&narrow).cloned().collect();
     let search_all = |eqs: &[Poly<Fp<P1>>]| {
         let mut all = search_actions(eqs, basis, gb, opts, deadline, &first);
         let has_distinct = all
@@ -136,11 +138,10 @@ pub(crate) fn best_template_within(
             &mut narrow_work,
             &mut all,
         );
-        let seen: Vec<AlternativeBasis> = bases.iter().chain(&narrow).cloned().collect();
         climb_weights(
             eqs,
             basis,
-            &seen,
+            &both_samples,
             starts,
             visible,
             opts,

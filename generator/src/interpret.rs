@@ -109,7 +109,8 @@ fn check_template(t: &EliminationTemplate) -> Result<(), InterpretError> {
 
 /// Fills the matrix an emitted solver eliminates (row-major,
 /// [`EliminationTemplate::eliminated_size`]: the template without its dependent excess
-/// columns) for these equations.
+/// columns, and the Schur complement of its constant rows when it has a
+/// [`EliminationTemplate::fold`]) for these equations.
 pub fn fill_template(
     template: &EliminationTemplate,
     equations: &[Poly<f64>],
@@ -129,7 +130,8 @@ pub fn fill_template(
         .enumerate()
         .map(|(i, m)| (m, i))
         .collect();
-    let (nr, nc) = template.eliminated_size();
+    // The filled matrix; a fold then forms its Schur complement as the emitted solvers do.
+    let (nr, nc) = template.filled_size();
     let mut m = vec![0.0; nr * nc];
     for (i, row) in template.rows.iter().enumerate() {
         let eq = equations
@@ -158,12 +160,26 @@ pub fn fill_template(
             if !c.is_finite() {
                 return Err(InterpretError::NonFinite { row: i });
             }
-            if let Some(j) = template.eliminated_column(j) {
+            if let Some(j) = template.filled_column(j) {
                 m[i * nc + j] += c;
             }
         }
     }
-    Ok(m)
+    match &template.fold {
+        Some(f) => {
+            let (er, ec) = template.eliminated_size();
+            let mut folded = vec![0.0; er * ec];
+            let mut t = vec![0.0; f.rows];
+            let plan = f.as_plan(template);
+            if !mingen_runtime::fold_constant_rows(&m, &plan, &mut t, &mut folded) {
+                return Err(InterpretError::Malformed(
+                    "the constant-row fold does not match the template".into(),
+                ));
+            }
+            Ok(folded)
+        }
+        None => Ok(m),
+    }
 }
 
 /// The action matrix (|B| x |B|) of the template on these equations, per the convention:
@@ -189,7 +205,7 @@ pub fn action_matrix_and_readouts(
     let mut m = fill_template(template, equations)?;
     let (rows, cols) = template.eliminated_size();
     let pivots = template.pivot_columns();
-    let first_row = template.n_excess - template.n_dependent;
+    let first_row = template.first_reduced_row();
     let reduced = match &template.sparse {
         Some(s) => mingen_runtime::lu_solve_template_sparse(&mut m, &s.as_plan(template)),
         None => mingen_runtime::lu_solve_template(&mut m, rows, cols, pivots, first_row),
@@ -508,6 +524,7 @@ mod tests {
             action: crate::template::Action::var(2, 0),
             sparse: None,
             reduction: None,
+            fold: None,
         };
         (template, vec![e0, e1])
     }

@@ -24,7 +24,7 @@ use crate::emit::{
 use crate::instance::random_data_fp;
 use crate::quotient::{analyse_within, InstanceRng, InstanceSource};
 use crate::rewrite;
-use crate::system::{system, ProblemSource, System};
+use crate::system::{equation_supports, system, ProblemSource, System, SUPPORT_SEED};
 use crate::template::search::best_template_within;
 use crate::template::validate::validate_within;
 use crate::template::{
@@ -240,7 +240,7 @@ pub fn plan(
                 source,
             }
         })?;
-    let supports = equation_supports(&problem, options.seed);
+    let supports = equation_supports(&problem, options.seed ^ SUPPORT_SEED);
     let template_supports = match &generated.built.template.reduction {
         Some(r) => r.reduced_supports(),
         None => supports.clone(),
@@ -253,24 +253,6 @@ pub fn plan(
         seconds: start.elapsed().as_secs_f64(),
         supports,
     })
-}
-
-/// The monomials of each template equation for generic data: the union over two random
-/// instances mod p (a coefficient vanishes by chance in both with probability about 1/p²).
-fn equation_supports(problem: &Problem, seed: u64) -> Vec<Vec<Monomial>> {
-    let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(seed ^ 0x5eed);
-    let mut sets: Vec<HashSet<Monomial>> = Vec::new();
-    for _ in 0..2 {
-        let data = random_data_fp::<{ crate::algebra::P1 }>(&problem.layout, &mut rng);
-        let Ok((equations, _)) = system(problem, &data) else {
-            continue;
-        };
-        sets.resize_with(equations.len(), HashSet::new);
-        for (set, e) in sets.iter_mut().zip(&equations) {
-            set.extend(e.terms().map(|(m, _)| m.clone()));
-        }
-    }
-    sets.into_iter().map(|s| s.into_iter().collect()).collect()
 }
 
 impl SolverPlan {
@@ -408,7 +390,9 @@ pub fn find_template<S: InstanceSource>(
         count: analysis.count,
         source: Box::new(source),
     };
-    let (built, all) = best_template_within(&analysis, opts, &deadline).map_err(counted)?;
+    let constants = src.equation_constants();
+    let (built, all) =
+        best_template_within(&analysis, opts, &deadline, &constants).map_err(counted)?;
     built
         .template
         .check_emittable(&opts.var_names)

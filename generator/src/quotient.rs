@@ -41,6 +41,12 @@ pub trait InstanceSource {
     }
     /// The equations of one random instance over `Z_P`, drawing from `rng`.
     fn instance<const P: u32>(&self, rng: &mut InstanceRng) -> Vec<Poly<Fp<P>>>;
+    /// Each equation's terms with the exact coefficient where it is a number, the same on
+    /// every instance (`None` where it depends on the data), for the fold of constant
+    /// template blocks (`crate::template::fold`); none known by default.
+    fn equation_constants(&self) -> Vec<crate::template::EquationConstants> {
+        Vec::new()
+    }
 }
 
 /// The standard monomials of a zero-dimensional Gröbner basis, descending grevlex.

@@ -6,9 +6,12 @@
 
 use crate::algebra::{Fp, Monomial, Poly, Ring};
 use crate::eliminate::{eliminate_linear_selected, substitute_linear, EliminateError, Eliminated};
+use crate::emit::traced::{TracedValue, Tracer};
 use crate::instance::random_data_fp;
 use crate::quotient::{InstanceRng, InstanceSource};
+use crate::template::EquationConstants;
 use crate::Problem;
+use std::collections::HashSet;
 
 /// A problem viewed as a family of polynomial systems (after elimination, if any).
 pub struct ProblemSource<'a> {
@@ -45,6 +48,62 @@ impl InstanceSource for ProblemSource<'_> {
             .map(|(eqs, _)| eqs)
             .unwrap_or_default()
     }
+    fn equation_constants(&self) -> Vec<EquationConstants> {
+        equation_constants(self.problem, &equation_supports(self.problem, SUPPORT_SEED))
+    }
+}
+
+/// The seed of [`equation_supports`]' instances when planning.
+pub(crate) const SUPPORT_SEED: u64 = 0x5eed;
+
+/// The monomials of each template equation for generic data: the union over two random
+/// instances mod p (a coefficient vanishes by chance in both with probability about 1/p²).
+pub(crate) fn equation_supports(problem: &Problem, seed: u64) -> Vec<Vec<Monomial>> {
+    let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(seed);
+    let mut sets: Vec<HashSet<Monomial>> = Vec::new();
+    for _ in 0..2 {
+        let data = random_data_fp::<{ crate::algebra::P1 }>(&problem.layout, &mut rng);
+        let Ok((equations, _)) = system(problem, &data) else {
+            continue;
+        };
+        sets.resize_with(equations.len(), HashSet::new);
+        for (set, e) in sets.iter_mut().zip(&equations) {
+            set.extend(e.terms().map(|(m, _)| m.clone()));
+        }
+    }
+    sets.into_iter().map(|s| s.into_iter().collect()).collect()
+}
+
+/// The terms of each template equation, with the exact coefficient where it is a number
+/// and `None` where it depends on the data. Coefficients are traced from the data symbols,
+/// so a constant is exact; terms outside `supports` (vanishing on the data family) are
+/// dropped.
+pub(crate) fn equation_constants(
+    problem: &Problem,
+    supports: &[Vec<Monomial>],
+) -> Vec<EquationConstants> {
+    let tracer = Tracer::new();
+    let Ok((equations, _)) = system(problem, &tracer.inputs(problem.layout.data_slot_count()))
+    else {
+        return Vec::new();
+    };
+    equations
+        .iter()
+        .enumerate()
+        .map(|(k, e)| {
+            let support: Option<HashSet<&Monomial>> = supports
+                .get(k)
+                .filter(|s| !s.is_empty())
+                .map(|s| s.iter().collect());
+            e.terms()
+                .filter(|(m, _)| support.as_ref().map_or(true, |s| s.contains(m)))
+                .map(|(m, c)| match c.value() {
+                    TracedValue::Const(q) => (m.clone(), Some(q)),
+                    TracedValue::Node { .. } => (m.clone(), None),
+                })
+                .collect()
+        })
+        .collect()
 }
 
 /// The template's equations for one data instance, and the elimination (with the

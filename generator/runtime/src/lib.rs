@@ -33,6 +33,9 @@
 //!   the Sturm sequence degenerates. The emitted solvers use it at every shipped size.
 //! - [`reduce_equations`]: the equations row-reduced on their data to the pivot monomials
 //!   the generator chose, before the template is filled (smaller templates).
+//! - [`fold_constant_rows`]: the Schur complement of a template's constant rows (multiples
+//!   of equations with numeric coefficients), eliminated by the generator in exact
+//!   arithmetic.
 //! - [`fill_template`], [`zeroed_coefficients`]: the table form of large solvers (the
 //!   template filled from a coefficient array through a constant table).
 //! - [`Stages`]: observer of an emitted solver's stages (`solve_staged`), for timings.
@@ -52,6 +55,7 @@
 pub use nalgebra;
 
 mod coefficient_table;
+mod constant_fold;
 mod dynamic;
 mod eigen;
 mod elim;
@@ -71,6 +75,7 @@ mod sturm;
 mod sturm_sequence;
 
 pub use coefficient_table::{fill_template, zeroed_coefficients};
+pub use constant_fold::{fold_constant_rows, ConstantFold};
 pub use dynamic::{real_eigenpairs_dyn, DynEigenpair, MAX_DYNAMIC_BASIS, STURM_MAX_BASIS};
 pub use eigen::{real_eigenpairs, NEAR_REAL_TOL};
 pub use elim::{gauss_jordan, lu_solve_template, lu_solve_template_fixed, PIVOT_TOL};

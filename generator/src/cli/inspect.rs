@@ -201,10 +201,18 @@ fn print_plan(out: &mut String, plan: &SolverPlan) {
     outln!(
         out,
         "template: {rows} x {cols} ({} excess, {} reducible, {} basis columns)",
-        t.n_excess - t.n_dependent,
+        t.first_reduced_row(),
         t.n_reducible,
         t.basis.len()
     );
+    if t.folded_rows() > 0 {
+        let (fr, fc) = t.filled_size();
+        outln!(
+            out,
+            "  (the Schur complement of the {fr} x {fc} template's {} constant rows, which the generator eliminates)",
+            t.folded_rows()
+        );
+    }
     if t.n_dependent > 0 {
         outln!(
             out,

@@ -32,6 +32,19 @@ pub(crate) fn sparse_lu_plan() -> TokenStream {
     quote!(mingen_runtime::SparseLuPlan)
 }
 
+/// `fold_constant_rows(filled: &[f64], plan: &ConstantFold, t: &mut [f64], out: &mut [f64])
+/// -> bool`: the Schur complement of a template's constant block.
+pub(crate) fn fold_constant_rows() -> TokenStream {
+    quote!(mingen_runtime::fold_constant_rows)
+}
+
+/// The constant of a fold: `ConstantFold<'a>` with the public fields
+/// `rows, folded, cols: usize`, `inv_start, m12_start: &[u32]`, `inv_cols, m12_cols: &[u16]`,
+/// `inv_vals: &[f64]`.
+pub(crate) fn constant_fold() -> TokenStream {
+    quote!(mingen_runtime::ConstantFold)
+}
+
 /// `real_eigenpairs_hqr::<N>`: same signature as `real_eigenpairs` (Hessenberg + Francis
 /// double-shift QR with exceptional shifts + inverse iteration).
 pub(crate) fn real_eigenpairs_hqr() -> TokenStream {

@@ -1,7 +1,7 @@
 //! The solver emitter: one Rust source file per problem.
 
 use super::action::action_matrix_tokens;
-use super::coefficients::{Expr, Program, VarStyle};
+use super::coefficients::{f64_literal, Expr, Program, VarStyle};
 use super::files::generated_header_for_path;
 use super::polish::EquationTerms;
 use super::runtime_api as rt;
@@ -13,7 +13,7 @@ use super::tokens::{doc, lit};
 use super::traced::Traced;
 use super::{CodeForm, EmitError, SolverSpec};
 use crate::algebra::{Monomial, MonomialOrder, Poly};
-use crate::template::{EliminationTemplate, ShapeError};
+use crate::template::{ConstantFold, EliminationTemplate, ShapeError};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::HashMap;
@@ -268,7 +268,7 @@ pub fn emit_solver(spec: &SolverSpec) -> Result<String, EmitError> {
         format!(
             "Elimination template {rows} x {cols} ({} excess, {} reducible, {nb} basis \
              columns){dependent}, action `{}`, at most {nb} solutions.",
-            t.n_excess - t.n_dependent,
+            t.first_reduced_row(),
             t.n_reducible,
             t.action.display_with(&plan.var_names)
         ),
@@ -278,6 +278,18 @@ pub fn emit_solver(spec: &SolverSpec) -> Result<String, EmitError> {
             stats.ops, stats.stmts
         ),
     ];
+    if t.folded_rows() > 0 {
+        let (fr, fc) = t.filled_size();
+        module_doc.insert(
+            4,
+            format!(
+                "It is the Schur complement of the {fr} x {fc} template's {} constant rows \
+                 (multiples of equations with numeric coefficients), eliminated exactly by \
+                 the generator.",
+                t.folded_rows()
+            ),
+        );
+    }
     if let Some((n, m)) = t.reduction_size() {
         module_doc.insert(
             4,
@@ -573,10 +585,10 @@ impl Coefficients {
     fn new(plan: &Plan) -> Result<Self, EmitError> {
         let spec = plan.spec;
         let t = &spec.template;
-        let cols = t.eliminated_size().1;
+        let cols = t.filled_size().1;
         // Template entries (inlinable) or, when the equations are reduced first, the
         // entries of their coefficient matrix; then elimination matrix coefficients (bound
-        // before the solution loop).
+        // before the solution loop). A fold's complement is taken after the fill.
         let (fill_pos, fill_vals) = match &t.reduction {
             Some(red) => super::reduction::equation_entries(red, &spec.equations)?,
             None => {
@@ -585,7 +597,7 @@ impl Coefficients {
                 for (i, row) in t.rows.iter().enumerate() {
                     for (m, c) in spec.equations[row.equation].terms() {
                         // Dependent excess columns are not part of the eliminated matrix.
-                        let Some(col) = t.eliminated_column(plan.column_of[&row.multiplier.mul(m)])
+                        let Some(col) = t.filled_column(plan.column_of[&row.multiplier.mul(m)])
                         else {
                             continue;
                         };
@@ -666,9 +678,25 @@ fn fill_tokens(plan: &Plan, coefficients: &mut Coefficients) -> Result<Fill, Emi
     } else {
         VarStyle::Locals
     };
-    let target = match &t.reduction {
-        Some(red) => super::reduction::equation_matrix_target(red),
-        None => FillTarget {
+    let target = match (&t.reduction, &t.fold) {
+        (Some(red), _) => super::reduction::equation_matrix_target(red),
+        (None, Some(_)) => {
+            let (filled_rows, filled_cols) = t.filled_size();
+            let len = filled_rows * filled_cols;
+            let len_l = lit(len);
+            FillTarget {
+                name: format_ident!("mf"),
+                table: format_ident!("TEMPLATE_FILL"),
+                alloc: if rows <= SMALL_TEMPLATE_ROWS {
+                    quote!(let mut mf = [0.0f64; #len_l];)
+                } else {
+                    quote!(let mut mf = vec![0.0f64; #len_l];)
+                },
+                len,
+                what: "template before its fold",
+            }
+        }
+        (None, None) => FillTarget {
             name: format_ident!("m"),
             table: format_ident!("TEMPLATE_FILL"),
             alloc: alloc.clone(),
@@ -710,12 +738,66 @@ fn fill_tokens(plan: &Plan, coefficients: &mut Coefficients) -> Result<Fill, Emi
             super::reduction::reduce_and_fill_tokens(t, red, &plan.column_of, cols, &alloc)?;
         functions.extend(items);
         code.extend(reduce);
+    } else if let Some(f) = &t.fold {
+        let (items, fold) = fold_tokens(t, f, &alloc);
+        functions.extend(items);
+        code.extend(fold);
     }
     Ok(Fill {
         functions,
         code,
         style,
     })
+}
+
+/// The constant inverse of a template's fold (a static item) and the code that forms the
+/// Schur complement of the filled template `mf` into the template `m` (allocated by
+/// `alloc`).
+fn fold_tokens(
+    t: &EliminationTemplate,
+    f: &ConstantFold,
+    alloc: &TokenStream,
+) -> (TokenStream, TokenStream) {
+    let (rows, cols) = t.eliminated_size();
+    let (rows_l, cols_l, k_l) = (lit(rows), lit(cols), lit(f.rows));
+    let ty = rt::constant_fold();
+    let fold = rt::fold_constant_rows();
+    let starts = f.inv_start.iter().map(|&x| Literal::u32_unsuffixed(x));
+    let inv_cols = f.inv_cols.iter().map(|&x| Literal::u16_unsuffixed(x));
+    let m12_starts = f.m12_start.iter().map(|&x| Literal::u32_unsuffixed(x));
+    let m12_cols = f.m12_cols.iter().map(|&x| Literal::u16_unsuffixed(x));
+    let inv_vals = f.inv_vals.iter().map(|&x| {
+        let v = f64_literal(x.abs());
+        if x < 0.0 {
+            quote!(-#v)
+        } else {
+            quote!(#v)
+        }
+    });
+    (
+        quote! {
+            /// The inverse of the template's constant block (see
+            /// `mingen_runtime::ConstantFold`), computed exactly by the generator.
+            #[rustfmt::skip]
+            pub static CONSTANT_FOLD: #ty<'static> = #ty {
+                rows: #rows_l,
+                folded: #k_l,
+                cols: #cols_l,
+                inv_start: &[#(#starts),*],
+                inv_cols: &[#(#inv_cols),*],
+                inv_vals: &[#(#inv_vals),*],
+                m12_start: &[#(#m12_starts),*],
+                m12_cols: &[#(#m12_cols),*],
+            };
+        },
+        quote! {
+            #alloc
+            let mut fold_scratch = [0.0f64; #k_l];
+            if !#fold(&mf, &CONSTANT_FOLD, &mut fold_scratch, &mut m) {
+                return out;
+            }
+        },
+    )
 }
 
 /// The elimination of the filled template: dense or sparse LU.
@@ -734,7 +816,7 @@ impl Elimination {
     fn new(t: &EliminationTemplate) -> Self {
         let (rows, cols) = t.eliminated_size();
         let (rows_l, cols_l, pivots_l) = (lit(rows), lit(cols), lit(t.pivot_columns()));
-        let first_row = lit(t.n_excess - t.n_dependent);
+        let first_row = lit(t.first_reduced_row());
         match &t.sparse {
             Some(e) => {
                 let ty = rt::sparse_lu_plan();

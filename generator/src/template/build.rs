@@ -267,6 +267,7 @@ pub(crate) fn assemble<const P: u32>(
         action: action.clone(),
         sparse: None,
         reduction: None,
+        fold: None,
     }
 }
 

@@ -41,6 +41,8 @@
 //! - [`select`]: quotient bases chosen among a template's columns;
 //! - [`reduction`]: the equations row-reduced on their data, which templates may be built
 //!   from;
+//! - [`fold`]: the Schur complement of the rows whose coefficients are constants, taken by
+//!   the generator;
 //! - [`explore`]: size tables over orders for developers (not used by the pipeline);
 //! - [`validate`](mod@validate): the template against Gröbner normal forms on fresh instances;
 //! - [`build`]: the template of one action;
@@ -54,6 +56,7 @@ mod candidates;
 mod error;
 mod exclude;
 pub mod explore;
+pub mod fold;
 pub(crate) mod linalg;
 mod options;
 pub mod reduction;
@@ -68,11 +71,13 @@ mod weight_sample;
 pub use action::Action;
 pub use candidates::ShrinkStep;
 pub use error::TemplateError;
+pub use fold::{fold_constant_rows, ConstantFold, EquationConstants};
 pub use options::{ActionChoice, TemplateOptions};
 pub use reduction::{EquationReduction, ReductionError};
 pub use shape::ShapeError;
 pub use sparse_order::{
-    order_for_sparse_elimination, SparseElimination, SPARSE_MIN_GAIN, SPARSE_MIN_PIVOTS,
+    elimination_updates, order_for_sparse_elimination, SparseElimination, SPARSE_MIN_GAIN,
+    SPARSE_MIN_PIVOTS,
 };
 
 pub use build::BuiltTemplate;
@@ -126,6 +131,11 @@ pub struct EliminationTemplate {
     /// The row reduction of the equations on their data the rows refer to (see
     /// [`reduction`]); `None`: the rows are multiples of the equations as given.
     pub reduction: Option<EquationReduction>,
+    /// The rows whose block on some excess columns is constant, folded by an inverse the
+    /// generator computed exactly (see [`fold`]): they are the first `fold.rows` rows, and
+    /// those columns the first `fold.rows` columns; the solver eliminates the Schur
+    /// complement of the rest. `None`: the whole template is eliminated.
+    pub fold: Option<ConstantFold>,
 }
 
 /// The unknowns (the first `visible` variables) that are not in `basis`, in variable

@@ -11,6 +11,7 @@
 
 use super::build::{build_template, BuiltTemplate, DegreeSearch};
 use super::candidates::start_degree;
+use super::fold::{fold_constant_rows, EquationConstants};
 use super::linalg::is_squarefree;
 use super::select::{basis_orders, BasisOrder};
 use super::validate::nf_action_charpoly;
@@ -50,7 +51,7 @@ pub fn best_template(
     analysis: &Analysis,
     opts: &TemplateOptions,
 ) -> Result<(BuiltTemplate, PerAction), TemplateError> {
-    best_template_within(analysis, opts, &opts.budget.start())
+    best_template_within(analysis, opts, &opts.budget.start(), &[])
 }
 
 /// [`best_template`] within a running budget.
@@ -58,6 +59,7 @@ pub(crate) fn best_template_within(
     analysis: &Analysis,
     opts: &TemplateOptions,
     deadline: &Deadline,
+    constants: &[EquationConstants],
 ) -> Result<(BuiltTemplate, PerAction), TemplateError> {
     let (eqs, basis, gb) = (&analysis.equations, &analysis.basis, &analysis.groebner);
     let nvars = basis.first().map(|b| b.nvars()).unwrap_or(0);
@@ -166,7 +168,11 @@ pub(crate) fn best_template_within(
     // equations as given): refinement can reorder them.
     let mut finalists = Vec::new();
     if let Some(b) = choose(&all, opts) {
-        finalists.push(refine(eqs, b, visible, opts, deadline));
+        // The equations as given may have constant blocks to fold (`fold.rs`); the
+        // comparison is of the matrices the solvers eliminate.
+        let mut b = refine(eqs, b, visible, opts, deadline);
+        fold_constant_rows(&mut b.template, constants);
+        finalists.push(b);
     }
     if let (Some((red, reduced)), Some(b)) = (&reduction, choose(&reduced_all, opts)) {
         let mut r = refine(reduced, b, visible, opts, deadline);

@@ -52,23 +52,51 @@ pub enum ShapeError {
 
 impl EliminationTemplate {
     /// Number of columns the elimination turns into pivots: the independent excess columns
-    /// and the reducible ones.
+    /// and the reducible ones, less the columns of a [`EliminationTemplate::fold`].
     pub fn pivot_columns(&self) -> usize {
-        (self.n_excess + self.n_reducible).saturating_sub(self.n_dependent)
+        self.filled_pivot_columns() - self.folded_rows()
     }
 
     /// `(rows, cols)` of the matrix that is eliminated: the template without its dependent
-    /// excess columns. This is the size of the emitted solver's template.
+    /// excess columns and, when it has a [`EliminationTemplate::fold`], without its constant
+    /// rows and their pivot columns (the Schur complement). This is the size of the emitted
+    /// solver's template.
     pub fn eliminated_size(&self) -> (usize, usize) {
+        let (r, c) = self.filled_size();
+        let k = self.folded_rows();
+        (r - k, c - k)
+    }
+
+    /// The column of the eliminated matrix that template column `col` becomes, or `None`
+    /// for a dependent excess column (left out) or a folded constant row's pivot column.
+    pub fn eliminated_column(&self, col: usize) -> Option<usize> {
+        self.filled_column(col)
+            .and_then(|c| c.checked_sub(self.folded_rows()))
+    }
+
+    /// The first row of the eliminated matrix that is not an excess row: the number of its
+    /// independent excess columns.
+    pub fn first_reduced_row(&self) -> usize {
+        self.n_excess - self.n_dependent - self.folded_rows()
+    }
+
+    /// How many constant rows [`EliminationTemplate::fold`] eliminates (0 without one).
+    pub fn folded_rows(&self) -> usize {
+        self.fold.as_ref().map_or(0, |f| f.rows)
+    }
+
+    /// `(rows, cols)` of the matrix the solver fills, before a fold: the template without
+    /// its dependent excess columns (every row, the constant ones included).
+    pub fn filled_size(&self) -> (usize, usize) {
         (
             self.rows.len(),
             self.columns.len().saturating_sub(self.n_dependent),
         )
     }
 
-    /// The column of the eliminated matrix that template column `col` becomes, or `None`
-    /// for a dependent excess column (left out).
-    pub fn eliminated_column(&self, col: usize) -> Option<usize> {
+    /// The column of the filled matrix ([`EliminationTemplate::filled_size`]) that template
+    /// column `col` becomes, or `None` for a dependent excess column.
+    pub fn filled_column(&self, col: usize) -> Option<usize> {
         let first_dependent = self.n_excess.saturating_sub(self.n_dependent);
         if col < first_dependent {
             Some(col)
@@ -77,6 +105,11 @@ impl EliminationTemplate {
         } else {
             Some(col - self.n_dependent)
         }
+    }
+
+    /// [`EliminationTemplate::pivot_columns`] of the filled matrix (before a fold).
+    pub fn filled_pivot_columns(&self) -> usize {
+        (self.n_excess + self.n_reducible).saturating_sub(self.n_dependent)
     }
 
     /// Whether the elimination, the action matrix and the read-out of the solutions are
@@ -218,6 +251,7 @@ mod tests {
             action: super::super::Action::var(2, 0),
             sparse: None,
             reduction: None,
+            fold: None,
         }
     }
 

@@ -13,7 +13,7 @@
 //! [`SPARSE_MIN_GAIN`]; other templates are left as they are. Large steps (a pattern over
 //! half the remaining columns) run as contiguous row operations at run time.
 
-use super::EliminationTemplate;
+use super::{EliminationTemplate, TemplateRow};
 use crate::algebra::Monomial;
 use std::collections::HashMap;
 
@@ -113,18 +113,43 @@ impl Bits {
 /// when equation `e` has the monomials `supports[e]`.
 fn structure(t: &EliminationTemplate, supports: &[Vec<Monomial>]) -> Option<Bits> {
     let (rows, cols) = t.eliminated_size();
+    let k = t.folded_rows();
     let column: HashMap<&Monomial, usize> =
         t.columns.iter().enumerate().map(|(i, m)| (m, i)).collect();
     let mut bits = Bits::new(rows, cols);
-    for (i, row) in t.rows.iter().enumerate() {
+    for (i, row) in t.rows.iter().enumerate().skip(k) {
         for mono in supports.get(row.equation)? {
             let c = *column.get(&row.multiplier.mul(mono))?;
-            if let Some(c) = t.eliminated_column(c) {
-                bits.set(i, c, true);
+            match (t.filled_column(c), &t.fold) {
+                // A folded column: the complement's row gains `M11⁻¹`'s reach into `M12`.
+                (Some(p), Some(f)) if p < k => {
+                    let inv = f.inv_start[p] as usize..f.inv_start[p + 1] as usize;
+                    for &q in &f.inv_cols[inv] {
+                        let q = usize::from(q);
+                        let m12 = f.m12_start[q] as usize..f.m12_start[q + 1] as usize;
+                        for &c in &f.m12_cols[m12] {
+                            bits.set(i - k, usize::from(c), true);
+                        }
+                    }
+                }
+                (Some(c), _) => bits.set(i - k, c - k, true),
+                (None, _) => {}
             }
         }
     }
     Some(bits)
+}
+
+/// Multiply-adds of eliminating `t` as its solver does: along its sparse plan if it has
+/// one, else the dense LU's (an upper bound); a fold's are not included.
+pub fn elimination_updates(t: &EliminationTemplate) -> usize {
+    match &t.sparse {
+        Some(s) => s.sparse_updates,
+        None => {
+            let (rows, cols) = t.eliminated_size();
+            dense_updates(rows, cols, t.pivot_columns(), t.first_reduced_row())
+        }
+    }
 }
 
 /// Multiply-adds of the dense LU with partial pivoting (forward elimination of every row
@@ -265,9 +290,11 @@ fn plan(
 /// the plan's 16-bit indices hold.
 pub fn order_for_sparse_elimination(t: &mut EliminationTemplate, supports: &[Vec<Monomial>]) {
     t.sparse = None;
+    // A fold's rows and columns stay first; the plan permutes those of the complement.
+    let k = t.folded_rows();
     let (rows, cols) = t.eliminated_size();
     let pivots = t.pivot_columns();
-    let first = t.n_excess - t.n_dependent;
+    let first = t.first_reduced_row();
     if pivots < SPARSE_MIN_PIVOTS || pivots > rows || rows > usize::from(u16::MAX) {
         return;
     }
@@ -297,23 +324,42 @@ pub fn order_for_sparse_elimination(t: &mut EliminationTemplate, supports: &[Vec
     if e.sparse_updates.saturating_mul(SPARSE_MIN_GAIN) > e.dense_updates {
         return;
     }
-    // Template columns: eliminated column c is template column c below the dependent
-    // block, c + n_dependent after it.
-    let template_col = |c: usize| if c < first { c } else { c + t.n_dependent };
+    // Template columns: eliminated column c is template column c + k below the dependent
+    // block, c + k + n_dependent after it (k folded columns first).
+    let template_col = |c: usize| {
+        if c < first {
+            c + k
+        } else {
+            c + k + t.n_dependent
+        }
+    };
     let mut columns: Vec<Monomial> = Vec::with_capacity(t.columns.len());
+    columns.extend_from_slice(&t.columns[..k]);
     columns.extend(
         order[..first]
             .iter()
             .map(|&(_, c)| t.columns[template_col(c)].clone()),
     );
-    columns.extend_from_slice(&t.columns[first..t.n_excess]);
+    columns.extend_from_slice(&t.columns[k + first..t.n_excess]);
     columns.extend(
         order[first..]
             .iter()
             .map(|&(_, c)| t.columns[template_col(c)].clone()),
     );
     columns.extend_from_slice(&t.columns[t.n_excess + t.n_reducible..]);
-    t.rows = row_order.iter().map(|&r| t.rows[r].clone()).collect();
+    let mut rows_new: Vec<TemplateRow> = t.rows[..k].to_vec();
+    rows_new.extend(row_order.iter().map(|&r| t.rows[r + k].clone()));
+    // The fold's `M12` patterns name complement columns, which move too.
+    if let Some(f) = &mut t.fold {
+        let mut new_of_old = vec![0u16; cols];
+        for (new_c, &c) in col_order.iter().enumerate() {
+            new_of_old[c] = new_c as u16;
+        }
+        for c in f.m12_cols.iter_mut() {
+            *c = new_of_old[usize::from(*c)];
+        }
+    }
+    t.rows = rows_new;
     t.columns = columns;
     t.sparse = Some(e);
 }

@@ -82,17 +82,19 @@ fn template_matrices<const P: u32>(
         .map(|r| {
             r.into_iter()
                 .enumerate()
-                .filter(|(j, _)| t.eliminated_column(*j).is_some())
+                .filter(|(j, _)| t.filled_column(*j).is_some())
                 .map(|(_, c)| c.0)
                 .collect()
         })
         .collect();
-    let (_, nc) = t.eliminated_size();
-    let npiv = t.pivot_columns();
+    // The whole template, constant rows included: a fold is an exact rewriting of this
+    // elimination (see `fold.rs`).
+    let (_, nc) = t.filled_size();
+    let npiv = t.filled_pivot_columns();
     let piv = gauss_jordan::<P>(&mut m, npiv, true);
     if let Some(j) = (0..npiv).find(|&j| piv.get(j) != Some(&j)) {
         let col = (0..t.columns.len())
-            .find(|&c| t.eliminated_column(c) == Some(j))
+            .find(|&c| t.filled_column(c) == Some(j))
             .unwrap_or(j);
         return Err(TemplateError::Singular {
             instance: 0,

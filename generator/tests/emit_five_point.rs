@@ -139,6 +139,7 @@ fn five_point_template() -> EliminationTemplate {
         action: mingen::__internal::template::Action::var(3, 0),
         sparse: None,
         reduction: None,
+        fold: None,
     }
 }
 
@@ -455,6 +456,7 @@ fn elimination_emission_parses() {
         action: mingen::__internal::template::Action::var(1, 0),
         sparse: None,
         reduction: None,
+        fold: None,
     };
     let cst = |c: Traced| Poly::constant(1, c);
     let sv = Poly::<Traced>::var(1, 0);

@@ -57,6 +57,7 @@ fn five_point_template() -> EliminationTemplate {
         action: mingen::__internal::template::Action::var(3, 0),
         sparse: None,
         reduction: None,
+        fold: None,
     }
 }
 
@@ -277,6 +278,7 @@ fn audit_with_eliminated_unknowns() {
         action: mingen::__internal::template::Action::var(2, 0),
         sparse: None,
         reduction: None,
+        fold: None,
     };
     let widen = |p: &P| {
         Poly::from_terms(

@@ -53,7 +53,7 @@ def markdown(rows):
     def ratio(x):
         return "—" if x is None else f"{x:.2f}"
     head = ["problem", "unknowns", "solutions", "template", "published", "area / std",
-            "area / std whole",
+            "whole / std whole",
             "area / best", "audit: median / p99 log10 residual / failures",
             "other polishing", "seconds"]
     out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
@@ -74,9 +74,10 @@ def markdown(rows):
         cells = [
             f"`{r['problem']}`", unknowns or "—",
             "—" if r["solutions"] is None else str(r["solutions"]),
-            size_text(r) or "none",
+            (size_text(r) or "none")
+            + (f" ({r['folded_rows']} constant rows folded)" if r.get("folded_rows") else ""),
             r["published"] or "—", ratio(r["area_over_std"]),
-            ratio(r["area_over_std_whole"]), ratio(r["area_over_best"]),
+            ratio(r["whole_area_over_std_whole"]), ratio(r["area_over_best"]),
             audit(a, a), audit(a, a and a.get("other_polishing")),
             f"{r['seconds']:.2f}",
         ]

@@ -47,8 +47,12 @@ pub struct ReportRow {
     pub solutions: Option<usize>,
     /// The independent count from the `# Macaulay2:` header line.
     pub macaulay2: Option<String>,
-    /// Template size as eliminated by the solver (rows, columns).
+    /// Template size as eliminated by the solver (rows, columns), after the fold of its
+    /// constant rows if it has one.
     pub template: Option<(usize, usize)>,
+    /// The number of constant rows (and columns) folded before the elimination
+    /// (`template` plus this many of each is the template whole).
+    pub folded: usize,
     /// Size (equations, monomials) of the equations' coefficient matrix the solver
     /// row-reduces before filling the template, if it does.
     pub reduction: Option<(usize, usize)>,
@@ -104,7 +108,9 @@ pub fn problem_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, ReportError> {
 /// eliminating the multiples of those equations first (their solvers' `M(k+1:end,k+1:end)
 /// - M(k+1:end,1:k)/M(1:k,1:k)*M(1:k,k+1:end)`, "Schur complement reduction"): `std` is
 /// then `k` rows and `k` columns smaller than the template it is computed from. mingen
-/// counts its templates whole, so `std-whole` is the size to compare with.
+/// counts its templates the same way (after folding its own constant rows,
+/// `template/fold.rs`), so `std` is the size to compare with, and `std-whole` compares
+/// with mingen's template whole.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PublishedSizes {
     /// With the standard basis of some monomial order.
@@ -191,6 +197,7 @@ pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOpti
         macaulay2: header_value(&source, "Macaulay2")
             .and_then(|v| v.split_whitespace().next().map(str::to_string)),
         template: None,
+        folded: 0,
         reduction: None,
         published_sizes: published
             .as_deref()
@@ -223,6 +230,7 @@ pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOpti
             row.eliminated = p.eliminated_names();
             row.solutions = Some(p.generated.count);
             row.template = Some(t.eliminated_size());
+            row.folded = t.folded_rows();
             row.reduction = t.reduction_size();
             row.action = Some(t.action.display_with(&names));
             row.audit = Some(audit_plan(&p, audit));
@@ -263,10 +271,11 @@ impl ReportRow {
             "solutions": self.solutions,
             "macaulay2": self.macaulay2,
             "template": self.template.map(|(r, c)| json!({"rows": r, "cols": c})),
+            "folded_rows": self.folded,
             "equation_reduction": self.reduction.map(|(r, c)| json!({"rows": r, "cols": c})),
             "published": self.published,
             "area_over_std": self.area_ratio(self.published_sizes.std.map(|(r, c)| r * c)),
-            "area_over_std_whole": self.area_ratio(self.published_sizes.std_whole_area()),
+            "whole_area_over_std_whole": self.whole_area_ratio(self.published_sizes.std_whole_area()),
             "area_over_best": self.area_ratio(self.published_sizes.best_area()),
             "action": self.action,
             "audit": self.audit.as_ref().map(|a| json!({
@@ -295,6 +304,15 @@ impl ReportRow {
         area.filter(|&a| a > 0).map(|a| ours as f64 / a as f64)
     }
 
+    /// [`ReportRow::area_ratio`] with the template counted whole, before the fold of its
+    /// constant rows: the like-for-like ratio to a published size counted whole.
+    pub fn whole_area_ratio(&self, area: Option<usize>) -> Option<f64> {
+        let (r, c) = self.template?;
+        let (r, c) = (r + self.folded, c + self.folded);
+        let ours = r * c + self.reduction.map_or(0, |(n, m)| n * m);
+        area.filter(|&a| a > 0).map(|a| ours as f64 / a as f64)
+    }
+
     fn markdown_cells(&self) -> Vec<String> {
         let dash = || "—".to_string();
         let mut unknowns = self.unknowns.join(", ");
@@ -311,17 +329,23 @@ impl ReportRow {
             self.solutions.map_or_else(dash, |n| n.to_string()),
             self.macaulay2.clone().unwrap_or_else(dash),
             match (self.template, &self.error) {
-                (Some((r, c)), _) => match self.reduction {
-                    Some((n, m)) => format!("{r}x{c} + {n}x{m} reduction"),
-                    None => format!("{r}x{c}"),
-                },
+                (Some((r, c)), _) => {
+                    let mut text = format!("{r}x{c}");
+                    if let Some((n, m)) = self.reduction {
+                        text.push_str(&format!(" + {n}x{m} reduction"));
+                    }
+                    if self.folded > 0 {
+                        text.push_str(&format!(" ({} constant rows folded)", self.folded));
+                    }
+                    text
+                }
                 (None, Some(_)) => "none".to_string(),
                 (None, None) => dash(),
             },
             self.published.clone().unwrap_or_else(dash),
             self.area_ratio(self.published_sizes.std.map(|(r, c)| r * c))
                 .map_or_else(dash, |x| format!("{x:.2}")),
-            self.area_ratio(self.published_sizes.std_whole_area())
+            self.whole_area_ratio(self.published_sizes.std_whole_area())
                 .map_or_else(dash, |x| format!("{x:.2}")),
             self.area_ratio(self.published_sizes.best_area())
                 .map_or_else(dash, |x| format!("{x:.2}")),
@@ -368,7 +392,7 @@ pub fn to_markdown(rows: &[ReportRow]) -> String {
         "template",
         "published",
         "area / std",
-        "area / std whole",
+        "whole / std whole",
         "area / best",
         "action",
         "audit: median / p99 log10 residual / failures",

@@ -24,7 +24,7 @@ fn sparse_plan_matches_the_dense_lu() {
     assert!(e.sparse_updates < e.dense_updates);
     let lu = e.as_plan(t);
     let (rows, cols) = t.eliminated_size();
-    let (pivots, first) = (t.pivot_columns(), t.n_excess - t.n_dependent);
+    let (pivots, first) = (t.pivot_columns(), t.first_reduced_row());
     let mut rng = ChaCha8Rng::seed_from_u64(11);
     let mut compared = 0;
     for _ in 0..40 {

@@ -715,3 +715,39 @@ fn compare_refuses_a_pair_every_method_refuses() {
     let o = rspose(&["compare", p.to_str().unwrap()]);
     assert_one_line_refusal(&o, &format!("{}: degenerate input", p.display()));
 }
+
+#[test]
+fn compare_counts_the_flagged_estimates_of_random_matches() {
+    let d = scratch("compare-random");
+    // The second image's points rotated by a third of the list: every match is wrong.
+    let p = edited_pair(&d, |v| {
+        let m = v["matches"].as_array().unwrap().clone();
+        let n = m.len();
+        let shuffled: Vec<serde_json::Value> = (0..n)
+            .map(|i| serde_json::json!([m[i][0], m[(i + n / 3) % n][1]]))
+            .collect();
+        v["matches"] = serde_json::json!(shuffled);
+        v["ground_truth"]["inliers"] = serde_json::json!(vec![false; n]);
+    });
+    let o = rspose(&["compare", p.to_str().unwrap(), "--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let rows = v["methods"].as_array().unwrap();
+    let mut estimated = 0;
+    for r in rows {
+        let done = r["pairs"].as_u64().unwrap() - r["failures"].as_u64().unwrap();
+        estimated += done;
+        assert_eq!(r["flagged"].as_u64().unwrap(), done, "{r}");
+        assert!(
+            !r["flags"].as_object().unwrap().is_empty() || done == 0,
+            "{r}"
+        );
+    }
+    assert!(estimated > 0, "{v}");
+    let table = rspose(&["compare", p.to_str().unwrap()]);
+    assert!(
+        String::from_utf8_lossy(&table.stdout).contains("| flagged |"),
+        "{}",
+        String::from_utf8_lossy(&table.stdout)
+    );
+}

@@ -160,7 +160,8 @@ impl EliminationTemplate {
     pub fn visible_vars(&self) -> usize {
         self.nvars - self.n_hidden.min(self.nvars)
     }
-    /// Template size as (rows, columns).
+    /// Template size as (rows, columns), whole: every column, the dependent excess ones
+    /// included, and before the fold of constant rows (see [`Self::eliminated_size`]).
     pub fn size(&self) -> (usize, usize) {
         (self.rows.len(), self.columns.len())
     }

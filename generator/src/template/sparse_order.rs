@@ -51,7 +51,7 @@ impl SparseElimination {
             rows,
             cols,
             pivot_cols: t.pivot_columns(),
-            first_row: t.n_excess - t.n_dependent,
+            first_row: t.first_reduced_row(),
             pattern_start: &self.pattern_start,
             pattern: &self.pattern,
             target_start: &self.target_start,

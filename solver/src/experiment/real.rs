@@ -11,6 +11,7 @@ use crate::model::geometry::rotation_error_deg;
 use crate::stats::median;
 use nalgebra::Matrix3;
 use serde::Serialize;
+use std::collections::BTreeMap;
 use std::time::Instant;
 
 /// One method's figures over the pairs.
@@ -30,6 +31,12 @@ pub struct RealRow {
     pub inlier_ratio_median: f64,
     /// Median time per estimate, seconds.
     pub seconds_median: f64,
+    /// Pairs whose estimate raised a quality flag ([`crate::methods::Quality::flags`]): an
+    /// answer the estimator cannot vouch for (random matches, collinear points, no
+    /// baseline, ...).
+    pub flagged: usize,
+    /// How many estimates raised each flag, by flag name (sorted).
+    pub flags: BTreeMap<String, usize>,
     /// Per pair: rotation difference in degrees (NaN where the method failed).
     pub per_pair_deg: Vec<f64>,
 }
@@ -57,6 +64,8 @@ pub fn run_real(
             let mut per_pair = Vec::with_capacity(pairs.len());
             let mut ratios = Vec::new();
             let mut seconds = Vec::new();
+            let mut flagged = 0;
+            let mut flags = BTreeMap::new();
             for pair in pairs {
                 let result = (|| {
                     let reference = reference_rotation(pair)?;
@@ -65,6 +74,11 @@ pub fn run_real(
                     let est = estimate_pair(pair, &options, rows, None).ok()?;
                     seconds.push(start.elapsed().as_secs_f64());
                     ratios.push(est.num_inliers() as f64 / pair.matches.len().max(1) as f64);
+                    let raised = est.quality.flags();
+                    flagged += usize::from(!raised.is_empty());
+                    for f in raised {
+                        *flags.entry(f.to_string()).or_insert(0) += 1;
+                    }
                     Some(rotation_error_deg(&reference, &est.rotation))
                 })();
                 per_pair.push(result.unwrap_or(f64::NAN));
@@ -79,27 +93,37 @@ pub fn run_real(
                 rot_max,
                 inlier_ratio_median: median(&ratios),
                 seconds_median: median(&seconds),
+                flagged,
+                flags,
                 per_pair_deg: per_pair,
             }
         })
         .collect()
 }
 
-/// A Markdown table of the rows (rotation in degrees, inliers in percent, time in ms).
+/// A Markdown table of the rows (rotation in degrees, inliers in percent, time in ms;
+/// "flagged" counts the estimates with a quality flag, naming the flags raised).
 pub fn to_markdown(rows: &[RealRow]) -> String {
     let mut s = String::from(
-        "| method | median / max rotation difference (deg) | median inliers | median time | failures |\n|---|---|---|---|---|\n",
+        "| method | median / max rotation difference (deg) | median inliers | median time | failures | flagged |\n|---|---|---|---|---|---|\n",
     );
     for r in rows {
+        let flagged = if r.flags.is_empty() {
+            "0".to_string()
+        } else {
+            let names: Vec<String> = r.flags.iter().map(|(f, n)| format!("{f} {n}")).collect();
+            format!("{} ({})", r.flagged, names.join(", "))
+        };
         s.push_str(&format!(
-            "| `{}` | {:.3} / {:.3} | {:.1} % | {:.1} ms | {} of {} |\n",
+            "| `{}` | {:.3} / {:.3} | {:.1} % | {:.1} ms | {} of {} | {} |\n",
             r.method,
             r.rot_median,
             r.rot_max,
             100.0 * r.inlier_ratio_median,
             1e3 * r.seconds_median,
             r.failures,
-            r.pairs
+            r.pairs,
+            flagged
         ));
     }
     s

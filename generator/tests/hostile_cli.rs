@@ -99,3 +99,22 @@ fn inspect_expands_within_the_budget() {
     assert!(start.elapsed().as_secs_f64() < 20.0);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn audit_stops_at_its_time_budget() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let problem = root.join("templates/gs5pt.mp");
+    let p = problem.to_str().unwrap();
+    let start = std::time::Instant::now();
+    let run = mingen(&["audit", p, "--instances", "10000000", "--max-seconds", "1"]);
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("audit stopped after"), "{stderr}");
+    assert!(start.elapsed().as_secs_f64() < 30.0);
+    // The instances' figures are counted against the memory budget before any is run.
+    let run = mingen(&["audit", p, "--instances", "10000000", "--max-memory", "16"]);
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("--max-memory"), "{stderr}");
+}

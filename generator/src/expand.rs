@@ -7,7 +7,12 @@
 //! entries are polynomials: no strings, no parsing, each shared subexpression computed once.
 
 use crate::algebra::{Exponent, Fp, Monomial, Poly, Ring, P1, Q};
-use crate::budget::{Deadline, Exhausted};
+use crate::budget::{Budget, Deadline, Exhausted, DEFAULT_MAX_MEMORY_MB, DEFAULT_MAX_SECONDS};
+
+/// The budget of the evaluations [`Problem::parse`] makes: the command line's defaults.
+fn default_parse_budget() -> Budget {
+    Budget::new(DEFAULT_MAX_SECONDS, DEFAULT_MAX_MEMORY_MB)
+}
 use crate::lang::check::{Checked, Node, NodeId, Op, Shape};
 use crate::lang::{self, LangError};
 use crate::problem::ProblemLayout;
@@ -670,25 +675,44 @@ pub(crate) fn read_problem_text(path: &Path) -> std::io::Result<String> {
 }
 
 impl Problem {
-    /// Parses and checks a problem's source; errors carry `file_name`.
+    /// Parses and checks a problem's source; errors carry `file_name`. Equations with
+    /// reciprocals of unknowns are evaluated twice to find their shifts, within the
+    /// command line's default budget ([`Problem::parse_within`] takes another).
     pub fn parse(source: &str, file_name: &str) -> Result<Problem, LangError> {
+        Problem::parse_within(source, file_name, default_parse_budget())
+    }
+
+    /// [`Problem::parse`] with the evaluations of Laurent equations within `budget`.
+    pub fn parse_within(
+        source: &str,
+        file_name: &str,
+        budget: Budget,
+    ) -> Result<Problem, LangError> {
         let checked = lang::compile(source).map_err(|e| e.in_file(file_name))?;
-        Ok(Problem::from_checked(checked))
+        Problem::from_checked(checked, budget).map_err(|e| e.in_file(file_name))
     }
 
     /// Reads, parses and checks a problem file: a regular file of at most
     /// [`MAX_PROBLEM_FILE_BYTES`] (a FIFO, device or directory is an `Io` error).
     pub fn from_file(path: impl AsRef<Path>) -> Result<Problem, ProblemError> {
+        Problem::from_file_within(path, default_parse_budget())
+    }
+
+    /// [`Problem::from_file`] with the evaluations of Laurent equations within `budget`.
+    pub fn from_file_within(
+        path: impl AsRef<Path>,
+        budget: Budget,
+    ) -> Result<Problem, ProblemError> {
         let path = path.as_ref();
         let shown = path.display().to_string();
         let source = read_problem_text(path).map_err(|source| ProblemError::Io {
             path: shown.clone(),
             source,
         })?;
-        Ok(Problem::parse(&source, &shown)?)
+        Ok(Problem::parse_within(&source, &shown, budget)?)
     }
 
-    fn from_checked(checked: Checked) -> Problem {
+    fn from_checked(checked: Checked, budget: Budget) -> Result<Problem, LangError> {
         // `nonzero EXPR` is the equation `u * EXPR - 1` of a hidden unknown u, one per
         // statement, after all others (see `lang::check`).
         let hidden = checked.layout.hidden_count();
@@ -697,7 +721,7 @@ impl Problem {
             .iter()
             .filter_map(|eq| saturated_expression(&checked.nodes, eq.node))
             .collect();
-        Problem::with_needed(checked, nonzero, Vec::new()).with_laurent()
+        Problem::with_needed(checked, nonzero, Vec::new()).with_laurent(budget)
     }
 
     fn with_needed(checked: Checked, nonzero: Vec<NodeId>, divisions: Vec<Vec<u32>>) -> Problem {
@@ -734,8 +758,9 @@ impl Problem {
     }
 
     /// Finds the reciprocals of unknowns in the needed tape and each equation's shift
-    /// ([`Laurent`]); nothing when there are none.
-    fn with_laurent(mut self) -> Problem {
+    /// ([`Laurent`]); nothing when there are none. The shifts come from two evaluations
+    /// within `budget`, and an expansion past it is an error of the file.
+    fn with_laurent(mut self, budget: Budget) -> Result<Problem, LangError> {
         let mut inverted: Vec<usize> = self
             .checked
             .nodes
@@ -749,26 +774,36 @@ impl Problem {
         inverted.sort_unstable();
         inverted.dedup();
         if inverted.is_empty() {
-            return self;
+            return Ok(self);
         }
         self.laurent.inverted = inverted;
         let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(0x1au64);
-        let instances: Vec<Vec<Poly<Fp<P1>>>> = (0..2)
-            .filter_map(|_| {
-                let data = crate::instance::random_data_fp::<P1>(&self.layout, &mut rng);
-                let (n, vals) = self.tape_values(&data).ok()?;
-                Some(
+        let deadline = budget.start();
+        let mut instances: Vec<Vec<Poly<Fp<P1>>>> = Vec::new();
+        for _ in 0..2 {
+            let data = crate::instance::random_data_fp::<P1>(&self.layout, &mut rng);
+            match self.tape_values_within(&data, Some(&deadline)) {
+                Ok((n, vals)) => instances.push(
                     self.checked
                         .equations
                         .iter()
                         .map(|eq| entry_poly(&vals, eq.node, eq.row, eq.col, n))
                         .collect(),
-                )
-            })
-            .collect();
+                ),
+                Err(e @ EvalError::Budget(_)) => {
+                    let line = self.checked.equations.first().map_or(1, |eq| eq.line);
+                    return Err(LangError::new(
+                        lang::Pos { line, column: 1 },
+                        format!("the equations with reciprocals of unknowns: {e}"),
+                    ));
+                }
+                // Planning reports the constant on the instances it evaluates.
+                Err(_) => {}
+            }
+        }
         let nu = self.layout.unknown_count();
         self.laurent.shifts_from(nu, &instances);
-        self
+        Ok(self)
     }
 
     /// The number of `nonzero` statements.

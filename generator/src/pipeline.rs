@@ -174,7 +174,7 @@ pub fn resolve_options(problem: &Problem, options: &TemplateOptions) -> Template
 
 /// Parses and plans one problem file (the algebra of `inspect` and `generate`).
 pub fn plan_file(path: &Path, options: &TemplateOptions) -> Result<SolverPlan, PipelineError> {
-    let problem = Problem::from_file(path)?;
+    let problem = Problem::from_file_within(path, options.budget)?;
     plan(problem, &path.display().to_string(), options)
 }
 
@@ -185,7 +185,7 @@ pub fn plan_source(
     file: &str,
     options: &TemplateOptions,
 ) -> Result<SolverPlan, PipelineError> {
-    let problem = Problem::parse(text, file).map_err(ProblemError::from)?;
+    let problem = Problem::parse_within(text, file, options.budget).map_err(ProblemError::from)?;
     plan(problem, file, options)
 }
 

@@ -60,6 +60,12 @@ fn extreme_cases() -> Vec<(&'static str, String)> {
             ),
         ),
         (
+            "a Laurent equation u1^-1 (sum of 12 unknowns)^96 (its shifts are found while parsing)",
+            format!(
+                "problem s\nunknown u[12]\ndata a: scalar\nu[0]^-1 * {sum12}^32*{sum12}^32*{sum12}^32 = a\n"
+            ),
+        ),
+        (
             "12 quadratics in 12 unknowns",
             format!("problem q\nunknown u[12]\ndata a[12]: vec13\n{quadratics}"),
         ),

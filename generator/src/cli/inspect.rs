@@ -70,7 +70,7 @@ pub(super) fn inspect(
     as_json: bool,
     options: &TemplateOptions,
 ) -> Result<(), CliError> {
-    let parsed = Problem::from_file(file)?;
+    let parsed = Problem::from_file_within(file, options.budget)?;
     let plan = plan_file(file, options)?;
     // The planned problem: the file's, with what planning added (automatic elimination).
     let p = &plan.problem;

@@ -177,7 +177,19 @@ struct Guard<'a> {
     term_bytes: u64,
     /// Estimated bytes of the values computed so far.
     held: std::cell::Cell<u64>,
+    /// Nodes computed so far.
+    nodes: std::cell::Cell<u64>,
 }
+
+/// A small expansion is not worth reading the clock for (as the Gröbner bases read it
+/// only every few steps, a problem this small is always expanded): the clock is read every
+/// this many nodes, after a value of more than [`LARGE_VALUE_TERMS`] terms, and before a
+/// product of at least [`SMALL_PRODUCT`] term products.
+const CLOCK_EVERY_NODES: u64 = 64;
+/// See [`CLOCK_EVERY_NODES`].
+const LARGE_VALUE_TERMS: usize = 10_000;
+/// See [`CLOCK_EVERY_NODES`].
+const SMALL_PRODUCT: f64 = 1e6;
 
 impl<'a> Guard<'a> {
     fn new<C>(deadline: &'a Deadline, nvars: usize) -> Guard<'a> {
@@ -185,6 +197,7 @@ impl<'a> Guard<'a> {
             deadline,
             term_bytes: 96 + 2 * nvars as u64 + std::mem::size_of::<C>() as u64,
             held: std::cell::Cell::new(0),
+            nodes: std::cell::Cell::new(0),
         }
     }
 
@@ -217,7 +230,7 @@ impl<'a> Guard<'a> {
             .check_memory(bytes.min(u64::MAX as f64) as u64)
             .map_err(EvalError::Budget)?;
         let left = self.deadline.budget().max_seconds - self.deadline.elapsed();
-        if work / TERM_PRODUCTS_PER_SECOND > left {
+        if work >= SMALL_PRODUCT && work / TERM_PRODUCTS_PER_SECOND > left {
             return Err(EvalError::Budget(Exhausted::Time(
                 self.deadline.budget().max_seconds,
             )));
@@ -232,7 +245,15 @@ impl<'a> Guard<'a> {
             .get()
             .saturating_add((terms as u64).saturating_mul(self.term_bytes));
         self.held.set(held);
-        self.deadline.check(held).map_err(EvalError::Budget)
+        self.deadline
+            .check_memory(held)
+            .map_err(EvalError::Budget)?;
+        let nodes = self.nodes.get() + 1;
+        self.nodes.set(nodes);
+        if nodes % CLOCK_EVERY_NODES == 0 || terms > LARGE_VALUE_TERMS {
+            self.deadline.check_time().map_err(EvalError::Budget)?;
+        }
+        Ok(())
     }
 
     /// The checks of a run of the tape over polynomials in `n` variables.

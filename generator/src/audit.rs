@@ -30,7 +30,13 @@ pub struct AuditOptions {
     pub instances: usize,
     /// Seed of the `ChaCha8Rng` handed to the instance generator (default 1).
     pub seed: u64,
+    /// Wall-clock limit of the instances (none by default): once it has passed, no
+    /// further instance is started and the report says so ([`AuditReport::stopped`]).
+    pub time_limit: Option<std::time::Duration>,
 }
+
+/// Estimated bytes an audit keeps per instance (two residual logs, the planted error).
+pub const AUDIT_BYTES_PER_INSTANCE: u64 = 24;
 
 /// The largest number of random instances an audit runs (its per-instance figures are
 /// kept in memory).
@@ -41,6 +47,7 @@ impl Default for AuditOptions {
         AuditOptions {
             instances: 1000,
             seed: 1,
+            time_limit: None,
         }
     }
 }
@@ -84,6 +91,9 @@ pub struct AuditInstance {
 pub struct AuditReport {
     /// Number of instances run.
     pub instances: usize,
+    /// Whether [`AuditOptions::time_limit`] stopped the audit before all the instances
+    /// asked for were run.
+    pub stopped: bool,
     /// Median over instances (those with a real solution, and the unsolved ones) of the
     /// log10 of the worst normalised residual of the real solutions.
     pub median_log10_residual: f64,
@@ -331,7 +341,16 @@ pub fn audit(
     let (mut failures, mut solve_errors, mut missed, mut no_real) = (0, 0, 0, 0);
     let (mut real_total, mut solved) = (0usize, 0usize);
     let mut planted_logs = Vec::new();
+    let started = std::time::Instant::now();
+    let mut run = 0;
     for _ in 0..instances {
+        if opts
+            .time_limit
+            .is_some_and(|limit| started.elapsed() > limit)
+        {
+            break;
+        }
+        run += 1;
         let inst = make_instance(&mut rng);
         if inst.newton_steps > 0 {
             other_steps = 0;
@@ -386,7 +405,8 @@ pub fn audit(
         p99_log10_error: quantile(&planted_logs, 0.99),
     });
     AuditReport {
-        instances,
+        instances: run,
+        stopped: run < instances,
         median_log10_residual: median(&logs),
         p99_log10_residual: quantile(&logs, 0.99),
         failures,
@@ -401,7 +421,7 @@ pub fn audit(
             0.0
         },
         planted,
-        other_polishing: (instances > 0).then(|| PolishingStats {
+        other_polishing: (run > 0).then(|| PolishingStats {
             newton_steps: other_steps,
             median_log10_residual: median(&other_logs),
             p99_log10_residual: quantile(&other_logs, 0.99),
@@ -600,6 +620,7 @@ pub fn audit_plan_planted(
     let options = AuditOptions {
         instances: instances.len(),
         seed: 0,
+        time_limit: None,
     };
     audit(
         &plan.generated.built.template,

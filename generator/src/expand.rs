@@ -7,6 +7,12 @@
 //! entries are polynomials: no strings, no parsing, each shared subexpression computed once.
 
 use crate::algebra::{Exponent, Fp, Monomial, Poly, Ring, P1, Q};
+use crate::budget::{Budget, Deadline, Exhausted, DEFAULT_MAX_MEMORY_MB, DEFAULT_MAX_SECONDS};
+
+/// The budget of the evaluations [`Problem::parse`] makes: the command line's defaults.
+fn default_parse_budget() -> Budget {
+    Budget::new(DEFAULT_MAX_SECONDS, DEFAULT_MAX_MEMORY_MB)
+}
 use crate::lang::check::{Checked, Node, NodeId, Op, Shape};
 use crate::lang::{self, LangError};
 use crate::problem::ProblemLayout;
@@ -150,6 +156,119 @@ pub enum EvalError {
     /// A literal has no image in the ring (a denominator divisible by p in Z_p).
     #[error("the constant {0} has no image in this ring")]
     Constant(Q),
+    /// The expansion would pass the time or memory budget.
+    #[error("expanding the equations: {0}")]
+    Budget(Exhausted),
+}
+
+/// Term products a polynomial multiplication is assumed to do per second when a budget
+/// decides whether to start it: optimistic, so that only a product sure to overrun the
+/// remaining time is refused before it starts (the clock is read after every step).
+const TERM_PRODUCTS_PER_SECOND: f64 = 5e7;
+
+/// Bounds one evaluation of the tape by a budget: the clock is read after every node, the
+/// memory of the values computed so far is estimated from their terms, and a product of
+/// polynomials is refused before it starts when its result (at most the product of the
+/// term counts, and at most the number of monomials up to its degree) would not fit in the
+/// memory budget, or its term products in the time left.
+struct Guard<'a> {
+    deadline: &'a Deadline,
+    /// Estimated bytes of one stored term (monomial, coefficient, map overhead).
+    term_bytes: u64,
+    /// Estimated bytes of the values computed so far.
+    held: std::cell::Cell<u64>,
+    /// Nodes computed so far.
+    nodes: std::cell::Cell<u64>,
+}
+
+/// A small expansion is not worth reading the clock for (as the Gröbner bases read it
+/// only every few steps, a problem this small is always expanded): the clock is read every
+/// this many nodes, after a value of more than [`LARGE_VALUE_TERMS`] terms, and before a
+/// product of at least [`SMALL_PRODUCT`] term products.
+const CLOCK_EVERY_NODES: u64 = 64;
+/// See [`CLOCK_EVERY_NODES`].
+const LARGE_VALUE_TERMS: usize = 10_000;
+/// See [`CLOCK_EVERY_NODES`].
+const SMALL_PRODUCT: f64 = 1e6;
+
+impl<'a> Guard<'a> {
+    fn new<C>(deadline: &'a Deadline, nvars: usize) -> Guard<'a> {
+        Guard {
+            deadline,
+            term_bytes: 96 + 2 * nvars as u64 + std::mem::size_of::<C>() as u64,
+            held: std::cell::Cell::new(0),
+            nodes: std::cell::Cell::new(0),
+        }
+    }
+
+    /// Whether the product of two matrices of polynomials in `n` variables may start.
+    fn before_mul<C: Ring>(
+        &self,
+        a: &Mat<Poly<C>>,
+        b: &Mat<Poly<C>>,
+        n: usize,
+    ) -> Result<(), EvalError> {
+        let len = |p: &Poly<C>| p.len() as f64;
+        let deg = |m: &Mat<Poly<C>>| m.e.iter().filter_map(Poly::degree).max().unwrap_or(0);
+        // Term products: sum over the inner index l of (terms in column l of a) times
+        // (terms in row l of b); a 1x1 side scales every entry of the other.
+        let work = if a.shape.is_scalar() || b.shape.is_scalar() {
+            a.e.iter().map(len).sum::<f64>() * b.e.iter().map(len).sum::<f64>()
+        } else {
+            (0..a.shape.cols)
+                .map(|l| {
+                    let col: f64 = (0..a.shape.rows).map(|i| len(a.at(i, l))).sum();
+                    let row: f64 = (0..b.shape.cols).map(|j| len(b.at(l, j))).sum();
+                    col * row
+                })
+                .sum()
+        };
+        let entries = (a.e.len().max(b.e.len())) as f64;
+        let dense = entries * monomials_up_to(n, deg(a) + deg(b));
+        let bytes = work.min(dense) * self.term_bytes as f64 + self.held.get() as f64;
+        self.deadline
+            .check_memory(bytes.min(u64::MAX as f64) as u64)
+            .map_err(EvalError::Budget)?;
+        let left = self.deadline.budget().max_seconds - self.deadline.elapsed();
+        if work >= SMALL_PRODUCT && work / TERM_PRODUCTS_PER_SECOND > left {
+            return Err(EvalError::Budget(Exhausted::Time(
+                self.deadline.budget().max_seconds,
+            )));
+        }
+        Ok(())
+    }
+
+    /// Accounts a computed value of `terms` terms and reads the clock.
+    fn after(&self, terms: usize) -> Result<(), EvalError> {
+        let held = self
+            .held
+            .get()
+            .saturating_add((terms as u64).saturating_mul(self.term_bytes));
+        self.held.set(held);
+        self.deadline
+            .check_memory(held)
+            .map_err(EvalError::Budget)?;
+        let nodes = self.nodes.get() + 1;
+        self.nodes.set(nodes);
+        if nodes % CLOCK_EVERY_NODES == 0 || terms > LARGE_VALUE_TERMS {
+            self.deadline.check_time().map_err(EvalError::Budget)?;
+        }
+        Ok(())
+    }
+
+    /// The checks of a run of the tape over polynomials in `n` variables.
+    fn hooks<C: Ring>(&'a self, n: usize) -> TapeHooks<'a, Poly<C>> {
+        TapeHooks {
+            before_mul: Box::new(move |a, b| self.before_mul(a, b, n)),
+            after: Box::new(move |m| self.after(m.e.iter().map(Poly::len).sum())),
+        }
+    }
+}
+
+/// The number of monomials of degree at most `d` in `n` variables, `C(n + d, n)`, as a
+/// float (it only bounds a size).
+fn monomials_up_to(n: usize, d: u32) -> f64 {
+    (1..=n).fold(1.0, |acc, k| acc * (d as f64 + k as f64) / k as f64)
 }
 
 /// A small dense matrix (any shape RxC) over a ring, row-major.
@@ -360,6 +479,7 @@ fn run_mixed<C: Ring>(
     n: usize,
     inverted: &[usize],
     data: &[C],
+    guard: Option<&Guard<'_>>,
 ) -> Result<Vec<Option<Mixed<C>>>, EvalError> {
     // The reciprocal of unknown `inverted[j]` is variable `n - inverted.len() + j`.
     let first_recip = n - inverted.len();
@@ -423,7 +543,12 @@ fn run_mixed<C: Ring>(
                 (Mixed::K(x), Mixed::K(y)) => Mixed::K(x.mul(y)),
                 (Mixed::P(x), Mixed::K(y)) => Mixed::P(mat_mul(x, y, |p, c| p.scale(c))),
                 (Mixed::K(x), Mixed::P(y)) => Mixed::P(mat_mul(x, y, |c, p| p.scale(c))),
-                (Mixed::P(x), Mixed::P(y)) => Mixed::P(x.mul(y)),
+                (Mixed::P(x), Mixed::P(y)) => {
+                    if let Some(g) = guard {
+                        g.before_mul(x, y, n)?;
+                    }
+                    Mixed::P(x.mul(y))
+                }
             },
             Op::Neg(a) => get(a).map(|m| m.map(C::neg), |m| m.map(Ring::neg)),
             Op::Transpose(a) => get(a).map(Mat::transpose, Mat::transpose),
@@ -435,6 +560,9 @@ fn run_mixed<C: Ring>(
                 |m| Mat::scalar(m.at(*i, *j).clone()),
             ),
         };
+        if let (Some(g), Mixed::P(m)) = (guard, &v) {
+            g.after(m.e.iter().map(Poly::len).sum())?;
+        }
         vals.push(Some(v));
     }
     Ok(vals)
@@ -456,12 +584,25 @@ fn sub_skip<T: Ring>(a: &T, b: &T) -> T {
     }
 }
 
-/// Runs the tape over `T`, with leaves (constants, unknowns, data slots) from `leaf`.
+/// A budget's checks on a run of the tape: before each product, after each node.
+struct TapeHooks<'a, T> {
+    before_mul: Box<BeforeMul<'a, T>>,
+    after: Box<AfterNode<'a, T>>,
+}
+
+/// The check before a product of two tape values.
+type BeforeMul<'a, T> = dyn Fn(&Mat<T>, &Mat<T>) -> Result<(), EvalError> + 'a;
+/// The check after a tape value is computed.
+type AfterNode<'a, T> = dyn Fn(&Mat<T>) -> Result<(), EvalError> + 'a;
+
+/// Runs the tape over `T`, with leaves (constants, unknowns, data slots) from `leaf`, and
+/// the checks of `hooks` if any.
 fn run_tape<T: Ring>(
     nodes: &[Node],
     needed: &[bool],
     identity: (&T, &T),
     mut leaf: impl FnMut(&Op) -> Result<T, EvalError>,
+    hooks: Option<TapeHooks<'_, T>>,
 ) -> Result<Vec<Option<Mat<T>>>, EvalError> {
     let mut vals: Vec<Option<Mat<T>>> = Vec::with_capacity(nodes.len());
     for (id, node) in nodes.iter().enumerate() {
@@ -497,13 +638,21 @@ fn run_tape<T: Ring>(
             Op::Add(a, b) => get(a).zip(get(b), |x, y| x.add(y)),
             Op::Sub(a, b) => get(a).zip(get(b), sub_skip),
             Op::Neg(a) => get(a).map(T::neg),
-            Op::Mul(a, b) => get(a).mul(get(b)),
+            Op::Mul(a, b) => {
+                if let Some(h) = &hooks {
+                    (h.before_mul)(get(a), get(b))?;
+                }
+                get(a).mul(get(b))
+            }
             Op::Transpose(a) => get(a).transpose(),
             Op::Skew(a) => get(a).skew(),
             Op::Det(a) => Mat::scalar(get(a).det()),
             Op::Trace(a) => Mat::scalar(get(a).trace()),
             Op::Entry(a, i, j) => Mat::scalar(get(a).at(*i, *j).clone()),
         };
+        if let Some(h) = &hooks {
+            (h.after)(&v)?;
+        }
         vals.push(Some(v));
     }
     Ok(vals)
@@ -547,25 +696,44 @@ pub(crate) fn read_problem_text(path: &Path) -> std::io::Result<String> {
 }
 
 impl Problem {
-    /// Parses and checks a problem's source; errors carry `file_name`.
+    /// Parses and checks a problem's source; errors carry `file_name`. Equations with
+    /// reciprocals of unknowns are evaluated twice to find their shifts, within the
+    /// command line's default budget ([`Problem::parse_within`] takes another).
     pub fn parse(source: &str, file_name: &str) -> Result<Problem, LangError> {
+        Problem::parse_within(source, file_name, default_parse_budget())
+    }
+
+    /// [`Problem::parse`] with the evaluations of Laurent equations within `budget`.
+    pub fn parse_within(
+        source: &str,
+        file_name: &str,
+        budget: Budget,
+    ) -> Result<Problem, LangError> {
         let checked = lang::compile(source).map_err(|e| e.in_file(file_name))?;
-        Ok(Problem::from_checked(checked))
+        Problem::from_checked(checked, budget).map_err(|e| e.in_file(file_name))
     }
 
     /// Reads, parses and checks a problem file: a regular file of at most
     /// [`MAX_PROBLEM_FILE_BYTES`] (a FIFO, device or directory is an `Io` error).
     pub fn from_file(path: impl AsRef<Path>) -> Result<Problem, ProblemError> {
+        Problem::from_file_within(path, default_parse_budget())
+    }
+
+    /// [`Problem::from_file`] with the evaluations of Laurent equations within `budget`.
+    pub fn from_file_within(
+        path: impl AsRef<Path>,
+        budget: Budget,
+    ) -> Result<Problem, ProblemError> {
         let path = path.as_ref();
         let shown = path.display().to_string();
         let source = read_problem_text(path).map_err(|source| ProblemError::Io {
             path: shown.clone(),
             source,
         })?;
-        Ok(Problem::parse(&source, &shown)?)
+        Ok(Problem::parse_within(&source, &shown, budget)?)
     }
 
-    fn from_checked(checked: Checked) -> Problem {
+    fn from_checked(checked: Checked, budget: Budget) -> Result<Problem, LangError> {
         // `nonzero EXPR` is the equation `u * EXPR - 1` of a hidden unknown u, one per
         // statement, after all others (see `lang::check`).
         let hidden = checked.layout.hidden_count();
@@ -574,7 +742,7 @@ impl Problem {
             .iter()
             .filter_map(|eq| saturated_expression(&checked.nodes, eq.node))
             .collect();
-        Problem::with_needed(checked, nonzero, Vec::new()).with_laurent()
+        Problem::with_needed(checked, nonzero, Vec::new()).with_laurent(budget)
     }
 
     fn with_needed(checked: Checked, nonzero: Vec<NodeId>, divisions: Vec<Vec<u32>>) -> Problem {
@@ -611,8 +779,9 @@ impl Problem {
     }
 
     /// Finds the reciprocals of unknowns in the needed tape and each equation's shift
-    /// ([`Laurent`]); nothing when there are none.
-    fn with_laurent(mut self) -> Problem {
+    /// ([`Laurent`]); nothing when there are none. The shifts come from two evaluations
+    /// within `budget`, and an expansion past it is an error of the file.
+    fn with_laurent(mut self, budget: Budget) -> Result<Problem, LangError> {
         let mut inverted: Vec<usize> = self
             .checked
             .nodes
@@ -626,26 +795,36 @@ impl Problem {
         inverted.sort_unstable();
         inverted.dedup();
         if inverted.is_empty() {
-            return self;
+            return Ok(self);
         }
         self.laurent.inverted = inverted;
         let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(0x1au64);
-        let instances: Vec<Vec<Poly<Fp<P1>>>> = (0..2)
-            .filter_map(|_| {
-                let data = crate::instance::random_data_fp::<P1>(&self.layout, &mut rng);
-                let (n, vals) = self.tape_values(&data).ok()?;
-                Some(
+        let deadline = budget.start();
+        let mut instances: Vec<Vec<Poly<Fp<P1>>>> = Vec::new();
+        for _ in 0..2 {
+            let data = crate::instance::random_data_fp::<P1>(&self.layout, &mut rng);
+            match self.tape_values_within(&data, Some(&deadline)) {
+                Ok((n, vals)) => instances.push(
                     self.checked
                         .equations
                         .iter()
                         .map(|eq| entry_poly(&vals, eq.node, eq.row, eq.col, n))
                         .collect(),
-                )
-            })
-            .collect();
+                ),
+                Err(e @ EvalError::Budget(_)) => {
+                    let line = self.checked.equations.first().map_or(1, |eq| eq.line);
+                    return Err(LangError::new(
+                        lang::Pos { line, column: 1 },
+                        format!("the equations with reciprocals of unknowns: {e}"),
+                    ));
+                }
+                // Planning reports the constant on the instances it evaluates.
+                Err(_) => {}
+            }
+        }
         let nu = self.layout.unknown_count();
         self.laurent.shifts_from(nu, &instances);
-        self
+        Ok(self)
     }
 
     /// The number of `nonzero` statements.
@@ -778,6 +957,15 @@ impl Problem {
     /// The values of the needed tape nodes at `data`, with the unknowns as the variables of
     /// polynomials in `layout.unknown_count()` variables (returned first).
     fn tape_values<C: Ring>(&self, data: &[C]) -> Result<(usize, TapeValues<C>), EvalError> {
+        self.tape_values_within(data, None)
+    }
+
+    /// [`Problem::tape_values`] within `deadline`, if any (see [`Guard`]).
+    fn tape_values_within<C: Ring>(
+        &self,
+        data: &[C],
+        deadline: Option<&Deadline>,
+    ) -> Result<(usize, TapeValues<C>), EvalError> {
         let expected = self.layout.data_slot_count();
         if data.len() != expected {
             return Err(EvalError::DataLength {
@@ -787,9 +975,17 @@ impl Problem {
         }
         let inverted = &self.laurent.inverted;
         let n = self.layout.unknown_count() + inverted.len();
+        let guard = deadline.map(|d| Guard::new::<C>(d, n));
         Ok((
             n,
-            run_mixed(&self.checked.nodes, &self.needed, n, inverted, data)?,
+            run_mixed(
+                &self.checked.nodes,
+                &self.needed,
+                n,
+                inverted,
+                data,
+                guard.as_ref(),
+            )?,
         ))
     }
 
@@ -828,7 +1024,32 @@ impl Problem {
     /// (`layout.unknown_count()` variables), the data slots replaced by `data` (one value
     /// per slot in layout order; a point's third entry is the constant 1).
     pub fn try_evaluate<C: Ring>(&self, data: &[C]) -> Result<Vec<Poly<C>>, EvalError> {
-        let (n, vals) = self.tape_values(data)?;
+        self.try_evaluate_within(data, None)
+    }
+
+    /// [`EvalError::Constant`] for the first literal the equations need that has no image
+    /// in `C` (a denominator divisible by its characteristic): evaluation over `C` would
+    /// fail on it.
+    pub fn check_constants<C: Ring>(&self) -> Result<(), EvalError> {
+        for (node, &needed) in self.checked.nodes.iter().zip(&self.needed) {
+            if let (Op::Const(q), true) = (&node.op, needed) {
+                if C::from_rational(q).is_none() {
+                    return Err(EvalError::Constant(q.clone()));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// [`Problem::try_evaluate`] within `deadline`, if any: [`EvalError::Budget`] once the
+    /// time runs out or the polynomials' estimated memory would pass the budget (checked
+    /// before each product of polynomials, so a product too large is never started).
+    pub fn try_evaluate_within<C: Ring>(
+        &self,
+        data: &[C],
+        deadline: Option<&Deadline>,
+    ) -> Result<Vec<Poly<C>>, EvalError> {
+        let (n, vals) = self.tape_values_within(data, deadline)?;
         Ok(self.equations_from(&vals, n))
     }
 
@@ -847,6 +1068,18 @@ impl Problem {
     /// computed with flat polynomials in unknowns and data together (much faster) and then
     /// split.
     pub fn expand(&self) -> Vec<Poly<Poly<Q>>> {
+        // Without a deadline nothing can run out, and rational constants always have an
+        // image.
+        self.expand_within(None).unwrap_or_default()
+    }
+
+    /// [`Problem::expand`] within `deadline`, if any ([`EvalError::Budget`] as for
+    /// [`Problem::try_evaluate_within`]; with the data symbols as variables an expansion
+    /// can be far larger than any instance's).
+    pub fn expand_within(
+        &self,
+        deadline: Option<&Deadline>,
+    ) -> Result<Vec<Poly<Poly<Q>>>, EvalError> {
         let nu = self.layout.unknown_count();
         let nd = self.layout.data_slot_count();
         let inverted = &self.laurent.inverted;
@@ -854,7 +1087,7 @@ impl Problem {
         let n = nu + nr + nd;
         let zero = Poly::zero(n);
         let one = Poly::constant(n, Q::from_integer(1.into()));
-        let vals = run_tape(&self.checked.nodes, &self.needed, (&zero, &one), |op| {
+        let leaf = |op: &Op| {
             Ok(match op {
                 Op::Const(q) => Poly::constant(n, q.clone()),
                 Op::Unknown(i) => Poly::var(n, *i),
@@ -864,9 +1097,17 @@ impl Problem {
                 Op::Data(s) => Poly::var(n, nu + nr + *s),
                 _ => unreachable!("only leaves are passed to the leaf function"),
             })
-        })
-        .expect("rational evaluation cannot fail");
-        self.checked
+        };
+        let guard = deadline.map(|d| Guard::new::<Q>(d, n));
+        let vals = run_tape(
+            &self.checked.nodes,
+            &self.needed,
+            (&zero, &one),
+            leaf,
+            guard.as_ref().map(|g| g.hooks(n)),
+        )?;
+        Ok(self
+            .checked
             .equations
             .iter()
             .enumerate()
@@ -877,7 +1118,7 @@ impl Problem {
                     .unwrap_or_else(|| Poly::zero(n));
                 split(&self.laurent.fold(flat, nu, k), nu, nd)
             })
-            .collect()
+            .collect())
     }
 
     /// Direct numeric evaluation of every scalar equation `lhs - rhs` at `data` and
@@ -993,6 +1234,7 @@ impl Problem {
                     _ => unreachable!("only leaves are passed to the leaf function"),
                 })
             },
+            None,
         )?;
         Ok(self
             .checked

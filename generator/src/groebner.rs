@@ -36,6 +36,12 @@ pub const MAX_EXPONENT: u32 = 127;
 /// must still fit the 8-bit fields of the key).
 pub const MAX_TOTAL_DEGREE: u32 = 250;
 
+/// The most standard monomials (solutions) the quotient basis is enumerated to: the
+/// enumeration's memory is linear in it, and every later stage at least quadratic (the
+/// action matrix alone is `count x count`), so planning refuses far earlier by its memory
+/// estimate; this bound only keeps the enumeration itself finite and small.
+pub const MAX_SOLUTIONS: usize = 1 << 20;
+
 /// Failures of Gröbner basis computations.
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
 pub enum GroebnerError {
@@ -86,6 +92,12 @@ pub enum GroebnerError {
         /// The number of variables.
         nvars: usize,
     },
+    /// The quotient ring has more standard monomials than [`MAX_SOLUTIONS`] (the problem
+    /// has at least that many solutions).
+    #[error(
+        "more than {MAX_SOLUTIONS} solutions (standard monomials): far beyond any minimal solver"
+    )]
+    TooManySolutions,
     /// A polynomial has a different number of variables than announced.
     #[error("polynomial {index} has {got} variables, expected {expected}")]
     VariableCount {
@@ -149,6 +161,19 @@ impl Mon {
     #[inline]
     pub(crate) fn degree(&self) -> u32 {
         (self.key >> 120) as u32
+    }
+    /// The total degree summed from the exponents of the first `n` variables: exact where
+    /// the key's 8-bit degree field would have wrapped (an lcm or product past
+    /// [`MAX_TOTAL_DEGREE`]).
+    #[inline]
+    pub(crate) fn degree_of(&self, n: usize) -> u32 {
+        (0..n).map(|i| self.exp(i)).sum()
+    }
+    /// Whether the exponents (of the first `n` variables) and the total degree stay within
+    /// the packing's bounds.
+    #[inline]
+    pub(crate) fn fits(&self, n: usize) -> bool {
+        (0..n).all(|i| self.exp(i) <= MAX_EXPONENT) && self.degree_of(n) <= MAX_TOTAL_DEGREE
     }
     #[inline]
     pub(crate) fn mul(&self, o: &Mon) -> Mon {
@@ -460,6 +485,13 @@ pub fn groebner_with<const P: u32>(
         if h[0].0.degree() == 0 {
             return Err(GroebnerError::Inconsistent);
         }
+        // A remainder's terms stay below its leading monomial in degree, but one exponent
+        // may still pass the 7 bits the divisibility test allows.
+        if h.iter().any(|t| !t.0.fits(nvars)) {
+            return Err(GroebnerError::DegreeTooLarge(
+                opts.max_degree.min(MAX_TOTAL_DEGREE),
+            ));
+        }
         let hi = g.len();
         let hlm = h[0].0;
         let hdeg = hlm.degree();
@@ -541,7 +573,7 @@ pub fn groebner_with<const P: u32>(
             })
             .expect("non-empty");
         let pr = pairs.swap_remove(best);
-        if pr.sugar > opts.max_degree || pr.lcm.degree() > MAX_TOTAL_DEGREE {
+        if pr.sugar > opts.max_degree || !pr.lcm.fits(nvars) {
             return Err(GroebnerError::DegreeTooLarge(
                 opts.max_degree.min(MAX_TOTAL_DEGREE),
             ));
@@ -571,9 +603,7 @@ pub fn groebner_with<const P: u32>(
         if s.is_empty() {
             continue;
         }
-        if s.iter()
-            .any(|t| (0..nvars).any(|v| t.0.exp(v) > MAX_EXPONENT))
-        {
+        if s.iter().any(|t| !t.0.fits(nvars)) {
             return Err(GroebnerError::DegreeTooLarge(
                 opts.max_degree.min(MAX_TOTAL_DEGREE),
             ));
@@ -659,16 +689,24 @@ impl<const P: u32> GroebnerBasis<P> {
     /// The normal form (remainder on division by the basis) of `p`; it is supported on
     /// standard monomials and is zero exactly when `p` is in the ideal.
     ///
-    /// Panics if `p` has a different variable count or exceeds the packed degree bounds.
-    pub fn normal_form(&self, p: &Poly<Fp<P>>) -> Poly<Fp<P>> {
-        let s = to_spoly::<P>(p, &self.weights).expect("polynomial within the degree bounds");
+    /// [`GroebnerError::DegreeTooLarge`] if a term of `p` exceeds the packed degree bounds,
+    /// [`GroebnerError::VariableCount`] if `p` has another variable count.
+    pub fn normal_form(&self, p: &Poly<Fp<P>>) -> Result<Poly<Fp<P>>, GroebnerError> {
+        if p.nvars() != self.nvars && !p.is_zero() {
+            return Err(GroebnerError::VariableCount {
+                index: 0,
+                got: p.nvars(),
+                expected: self.nvars,
+            });
+        }
+        let s = to_spoly::<P>(p, &self.weights)?;
         let idx: Vec<usize> = (0..self.polys.len()).collect();
         let r = normal_form_raw::<P>(s, &self.polys, &idx);
-        from_spoly::<P>(&r, self.nvars)
+        Ok(from_spoly::<P>(&r, self.nvars))
     }
-    /// Whether `p` lies in the ideal.
-    pub fn contains(&self, p: &Poly<Fp<P>>) -> bool {
-        self.normal_form(p).is_zero()
+    /// Whether `p` lies in the ideal (as [`Self::normal_form`], whose errors it passes on).
+    pub fn contains(&self, p: &Poly<Fp<P>>) -> Result<bool, GroebnerError> {
+        Ok(self.normal_form(p)?.is_zero())
     }
     /// Checks that the ideal is zero-dimensional (every variable has a pure power among the
     /// leading monomials), naming the variables `x0, x1, ...` in the error.
@@ -734,8 +772,8 @@ mod tests {
         let gb = groebner(n, &[f1.clone(), f2.clone()]).unwrap();
         assert_eq!(gb.len(), 2);
         gb.check_zero_dimensional().unwrap();
-        assert!(gb.contains(&f1) && gb.contains(&f2));
-        assert!(!gb.contains(&x));
+        assert!(gb.contains(&f1).unwrap() && gb.contains(&f2).unwrap());
+        assert!(!gb.contains(&x).unwrap());
         // Leading monomials: x and y^2.
         assert_eq!(
             gb.leading_monomials(),
@@ -793,8 +831,8 @@ mod tests {
         let gb = groebner(n, &fs).unwrap();
         gb.check_zero_dimensional().unwrap();
         for f in &fs {
-            assert!(gb.contains(f));
-            assert!(gb.contains(&f.mul(&x[2]).add(&f.mul(&x[0]))));
+            assert!(gb.contains(f).unwrap());
+            assert!(gb.contains(&f.mul(&x[2]).add(&f.mul(&x[0]))).unwrap());
         }
         // Reducedness: no term of any element is divisible by another leading monomial.
         let lms = gb.leading_monomials();
@@ -840,10 +878,10 @@ mod tests {
         assert_eq!(standard(&plain).len(), 3);
         assert_ne!(standard(&plain), standard(&weighted));
         for f in [&f1, &f2] {
-            assert!(weighted.contains(f) && plain.contains(f));
+            assert!(weighted.contains(f).unwrap() && plain.contains(f).unwrap());
         }
         // The normal form is taken in the weighted order: y reduces to x^2.
-        assert_eq!(weighted.normal_form(&y), x.mul(&x));
+        assert_eq!(weighted.normal_form(&y).unwrap(), x.mul(&x));
         // All-one weights are grevlex; a zero weight or a wrong length is refused.
         let ones = GroebnerOptions {
             weights: vec![1, 1],

@@ -40,9 +40,9 @@ pub use audit::{
     audit_plan, audit_plan_on, audit_plan_planted, AuditOptions, AuditReport, PlantedStats,
     PolishingStats, MAX_INSTANCES,
 };
-pub use budget::Budget;
+pub use budget::{Budget, Exhausted};
 pub use emit::{CodeForm, EmitError};
-pub use expand::{Problem, ProblemError, MAX_PROBLEM_FILE_BYTES};
+pub use expand::{EvalError, Problem, ProblemError, MAX_PROBLEM_FILE_BYTES};
 pub use lang::LangError;
 pub use pipeline::{
     emit_plan_from, emit_plan_in, plan, plan_file, plan_source, PipelineError, SolverPlan,

@@ -17,10 +17,12 @@
 //! files is `crate::build`'s (and the `mingen` binary's).
 
 use crate::algebra::{Monomial, Poly, Ring};
+use crate::budget::{Deadline, Exhausted};
 use crate::eliminate::EliminateError;
 use crate::emit::{
     emit_solver, CodeForm, EliminationSpec, EmitError, PolishSpec, SolverSpec, Tracer,
 };
+use crate::expand::EvalError;
 use crate::instance::random_data_fp;
 use crate::quotient::{analyse_within, InstanceRng, InstanceSource};
 use crate::rewrite;
@@ -62,6 +64,15 @@ pub enum PipelineError {
         /// What is wrong.
         message: String,
     },
+    /// The equations could not be expanded over Z_p within the budget, or a literal has
+    /// no image there.
+    #[error("{file}: {source}")]
+    Expansion {
+        /// The problem file.
+        file: String,
+        /// What went wrong.
+        source: EvalError,
+    },
     /// Gröbner basis, count or template construction failed (inconsistent or
     /// positive-dimensional systems end here).
     #[error("{file}: {source}")]
@@ -89,7 +100,20 @@ impl PipelineError {
             PipelineError::Problem(_)
             | PipelineError::Eliminate { .. }
             | PipelineError::Option { .. }
+            | PipelineError::Expansion { .. }
             | PipelineError::Emit { .. } => None,
+        }
+    }
+
+    /// The budget that stopped planning, if a budget did.
+    pub fn exhausted(&self) -> Option<Exhausted> {
+        match self {
+            PipelineError::Template { source, .. } => source.exhausted(),
+            PipelineError::Expansion {
+                source: EvalError::Budget(e),
+                ..
+            } => Some(*e),
+            _ => None,
         }
     }
 }
@@ -150,7 +174,7 @@ pub fn resolve_options(problem: &Problem, options: &TemplateOptions) -> Template
 
 /// Parses and plans one problem file (the algebra of `inspect` and `generate`).
 pub fn plan_file(path: &Path, options: &TemplateOptions) -> Result<SolverPlan, PipelineError> {
-    let problem = Problem::from_file(path)?;
+    let problem = Problem::from_file_within(path, options.budget)?;
     plan(problem, &path.display().to_string(), options)
 }
 
@@ -161,7 +185,7 @@ pub fn plan_source(
     file: &str,
     options: &TemplateOptions,
 ) -> Result<SolverPlan, PipelineError> {
-    let problem = Problem::parse(text, file).map_err(ProblemError::from)?;
+    let problem = Problem::parse_within(text, file, options.budget).map_err(ProblemError::from)?;
     plan(problem, file, options)
 }
 
@@ -173,6 +197,9 @@ pub fn plan(
     options: &TemplateOptions,
 ) -> Result<SolverPlan, PipelineError> {
     let start = Instant::now();
+    // One budget for the whole plan: the rewrites' counts, the template search and the
+    // validation all draw on it.
+    let deadline = options.budget.start();
     // Solution polishing is not part of the search: the command line's value replaces the
     // file's in the layout the emitter and the audit read.
     if let Some(n) = options.overrides.newton {
@@ -188,6 +215,22 @@ pub fn plan(
                     "--action {a}: not an unknown of the system (the unknowns: {}; or 'random')",
                     names.join(", ")
                 ),
+            });
+        }
+    }
+    // Every stage evaluates the equations on instances mod p; the first evaluation is
+    // bounded by the budget, so that an expansion that blows up is refused here, and the
+    // later ones, on other instances of the same equations, have its size.
+    {
+        let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(options.seed ^ 0xe5a9);
+        let data = random_data_fp::<{ crate::algebra::P1 }>(&problem.layout, &mut rng);
+        let evaluated = problem
+            .check_constants::<crate::algebra::Fp<{ crate::algebra::P2 }>>()
+            .and_then(|()| problem.try_evaluate_within(&data, Some(&deadline)));
+        if let Err(source) = evaluated {
+            return Err(PipelineError::Expansion {
+                file: file.to_string(),
+                source,
             });
         }
     }
@@ -226,19 +269,18 @@ pub fn plan(
         }
     }
     let problem = rewrite::eliminate_linear_unknowns(
-        rewrite::substitute_affine_equations(problem, options),
+        rewrite::substitute_affine_equations(problem, options, &deadline),
         options,
+        &deadline,
     );
     let problem = rewrite::drop_dependent_equations(
-        rewrite::divide_out_nonzero(problem, options),
+        rewrite::divide_out_nonzero(problem, options, &deadline),
         options.seed,
     );
-    let mut generated =
-        find_template(&ProblemSource::new(&problem), options).map_err(|source| {
-            PipelineError::Template {
-                file: file.to_string(),
-                source,
-            }
+    let mut generated = find_template_within(&ProblemSource::new(&problem), options, deadline)
+        .map_err(|source| PipelineError::Template {
+            file: file.to_string(),
+            source,
         })?;
     let supports = equation_supports(&problem, options.seed ^ SUPPORT_SEED);
     let template_supports = match &generated.built.template.reduction {
@@ -377,10 +419,31 @@ pub fn find_template<S: InstanceSource>(
     src: &S,
     opts: &TemplateOptions,
 ) -> Result<Generated, TemplateError> {
-    let deadline = opts.budget.start();
+    find_template_within(src, opts, opts.budget.start())
+}
+
+/// [`find_template`] within a budget already running.
+fn find_template_within<S: InstanceSource>(
+    src: &S,
+    opts: &TemplateOptions,
+    deadline: Deadline,
+) -> Result<Generated, TemplateError> {
     let t0 = Instant::now();
     let analysis = analyse_within(src, opts.seed, Some(deadline))?;
     let t1 = Instant::now();
+    // Every template search builds `count x count` action matrices (and copies of them),
+    // and a template has at least `count` columns: a count whose matrices alone would pass
+    // the memory budget is refused before any is built.
+    let count = analysis.count as u64;
+    if let Err(exhausted) = deadline.check_memory(count.saturating_mul(count).saturating_mul(8)) {
+        return Err(TemplateError::Counted {
+            count: analysis.count,
+            source: Box::new(TemplateError::Budget {
+                step: format!("the action matrices of {count} solutions"),
+                exhausted,
+            }),
+        });
+    }
     let opts = &TemplateOptions {
         var_names: src.var_names(),
         hidden_vars: src.hidden_vars(),

@@ -16,7 +16,10 @@
 
 use crate::algebra::{Fp, Monomial, MonomialOrder, Poly, P1, P2};
 use crate::budget::Deadline;
-use crate::groebner::{groebner_with, GroebnerBasis, GroebnerError, GroebnerOptions, Mon};
+use crate::groebner::{
+    groebner_with, GroebnerBasis, GroebnerError, GroebnerOptions, Mon, MAX_SOLUTIONS,
+    MAX_TOTAL_DEGREE,
+};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use thiserror::Error;
@@ -71,19 +74,36 @@ pub fn standard_monomials_named<const P: u32>(
         return Err(GroebnerError::Inconsistent);
     }
     // Breadth-first over the order ideal: multiply standard monomials by each variable.
+    let vars: Vec<Mon> = (0..n)
+        .map(|v| {
+            let mut e = vec![0u32; n];
+            e[v] = 1;
+            Mon::from_exps(&e)
+        })
+        .collect();
     let mut out: Vec<Mon> = vec![Mon::from_exps(&vec![0; n])];
     let mut frontier = out.clone();
     while !frontier.is_empty() {
         let mut next: Vec<Mon> = Vec::new();
+        let mut seen = std::collections::HashSet::new();
         for m in &frontier {
-            for v in 0..n {
-                let mut e = vec![0u32; n];
-                e[v] = 1;
-                let c = m.mul(&Mon::from_exps(&e));
-                if !lms.iter().any(|l| l.divides(&c)) && !next.contains(&c) {
+            for x in &vars {
+                // A monomial past the packing's bounds would wrap into its neighbours' fields
+                // and escape the divisibility test.
+                if !m.fits(n) {
+                    return Err(GroebnerError::DegreeTooLarge(MAX_TOTAL_DEGREE));
+                }
+                let c = m.mul(x);
+                if !c.fits(n) {
+                    return Err(GroebnerError::DegreeTooLarge(MAX_TOTAL_DEGREE));
+                }
+                if !lms.iter().any(|l| l.divides(&c)) && seen.insert(c) {
                     next.push(c);
                 }
             }
+        }
+        if out.len() + next.len() > MAX_SOLUTIONS {
+            return Err(GroebnerError::TooManySolutions);
         }
         out.extend_from_slice(&next);
         frontier = next;

@@ -209,7 +209,7 @@ pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOpti
         seconds: 0.0,
         error: None,
     };
-    let problem = match Problem::from_file(file) {
+    let problem = match Problem::from_file_within(file, options.budget) {
         Ok(p) => p,
         Err(e) => {
             row.error = Some(e.to_string());

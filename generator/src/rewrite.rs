@@ -11,6 +11,7 @@
 //! 4. [`drop_dependent_equations`]: equations that are combinations of others dropped.
 
 use crate::algebra::{MonomialOrder, Poly};
+use crate::budget::Deadline;
 use crate::eliminate::{affine_equations, linear_pivots, purely_linear_unknowns};
 use crate::instance::random_data_fp;
 use crate::quotient::{analyse_within, InstanceRng};
@@ -24,7 +25,11 @@ use crate::Problem;
 /// inhomogeneous (so each solution keeps its own values of them, recovered from the null
 /// vector; a homogeneous one would identify solutions that differ in their scale) and the
 /// solution count stays the same. Unchanged otherwise.
-pub(crate) fn eliminate_linear_unknowns(problem: Problem, options: &TemplateOptions) -> Problem {
+pub(crate) fn eliminate_linear_unknowns(
+    problem: Problem,
+    options: &TemplateOptions,
+    deadline: &Deadline,
+) -> Problem {
     const P: u32 = crate::algebra::P1;
     let layout = &problem.layout;
     if !auto_eliminate_allowed(&problem, options) {
@@ -43,7 +48,7 @@ pub(crate) fn eliminate_linear_unknowns(problem: Problem, options: &TemplateOpti
         Ok((_, Some(e))) if e.inhomogeneous => {}
         _ => return problem,
     }
-    same_count(eliminated, problem, options)
+    same_count(eliminated, problem, options, deadline)
 }
 
 /// `problem` with the unknowns its affine equations determine substituted into its other
@@ -52,7 +57,11 @@ pub(crate) fn eliminate_linear_unknowns(problem: Problem, options: &TemplateOpti
 /// affine and the solution count stays the same: the linear constraints leave the
 /// nonlinear ones in fewer unknowns, as the null-space parametrisation of the 5-point
 /// problem's essential matrix does. Unchanged otherwise.
-pub(crate) fn substitute_affine_equations(problem: Problem, options: &TemplateOptions) -> Problem {
+pub(crate) fn substitute_affine_equations(
+    problem: Problem,
+    options: &TemplateOptions,
+    deadline: &Deadline,
+) -> Problem {
     const P: u32 = crate::algebra::P1;
     let layout = &problem.layout;
     if !auto_eliminate_allowed(&problem, options) || problem.layout.hidden_count() > 0 {
@@ -73,15 +82,19 @@ pub(crate) fn substitute_affine_equations(problem: Problem, options: &TemplateOp
     if system(&substituted, &data).is_err() {
         return problem;
     }
-    same_count(substituted, problem, options)
+    same_count(substituted, problem, options, deadline)
 }
 
 /// `candidate` if its solution count is that of `original` (both found within the
-/// budget), else `original`.
-fn same_count(candidate: Problem, original: Problem, options: &TemplateOptions) -> Problem {
-    let deadline = options.budget.start();
+/// plan's budget), else `original`.
+fn same_count(
+    candidate: Problem,
+    original: Problem,
+    options: &TemplateOptions,
+    deadline: &Deadline,
+) -> Problem {
     let count = |p: &Problem| {
-        analyse_within(&ProblemSource::new(p), options.seed, Some(deadline))
+        analyse_within(&ProblemSource::new(p), options.seed, Some(*deadline))
             .ok()
             .map(|a| a.count)
     };
@@ -127,7 +140,11 @@ pub(crate) fn drop_dependent_equations(problem: Problem, seed: u64) -> Problem {
 /// without saturation has as many solutions as with it, saturation is dropped too (its
 /// solutions include the saturated system's, so equal counts mean no others), which
 /// removes the hidden unknowns from the template. Unchanged when nothing divides.
-pub(crate) fn divide_out_nonzero(problem: Problem, options: &TemplateOptions) -> Problem {
+pub(crate) fn divide_out_nonzero(
+    problem: Problem,
+    options: &TemplateOptions,
+    deadline: &Deadline,
+) -> Problem {
     if problem.nonzero_count() == 0 {
         return problem;
     }
@@ -138,7 +155,7 @@ pub(crate) fn divide_out_nonzero(problem: Problem, options: &TemplateOptions) ->
     let saturated = problem.with_divisions(divisions);
     let plain = problem.without_saturation();
     let unsaturated = plain.with_divisions(nonzero_divisions(&plain, options.seed));
-    same_count(unsaturated, saturated, options)
+    same_count(unsaturated, saturated, options, deadline)
 }
 
 /// How many times each `nonzero` expression divides each equation of `problem`'s system

@@ -46,6 +46,7 @@ fn reduced_equations_give_a_smaller_template_that_solves_as_well() {
     let options = AuditOptions {
         instances: 300,
         seed: 5,
+        ..AuditOptions::default()
     };
     for (what, plan) in [("reduced", &reduced), ("given", &given)] {
         let a = audit_plan(plan, &options);

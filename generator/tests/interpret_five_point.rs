@@ -221,6 +221,7 @@ fn five_point_audit() {
     let small = AuditOptions {
         instances: 20,
         seed: 9,
+        ..AuditOptions::default()
     };
     assert_eq!(
         audit(&template, 10, &small, instance),
@@ -309,6 +310,7 @@ fn audit_with_eliminated_unknowns() {
     let opts = AuditOptions {
         instances: 5,
         seed: 3,
+        ..AuditOptions::default()
     };
     let report = audit(&template, 3, &opts, |_| AuditInstance {
         equations: vec![e0.clone(), e1.clone()],

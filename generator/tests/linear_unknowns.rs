@@ -23,6 +23,7 @@ fn audit_median(p: &SolverPlan) -> f64 {
         &mingen::__internal::audit::AuditOptions {
             instances: 200,
             seed: 7,
+            ..Default::default()
         },
     );
     assert_eq!(a.failures, 0, "{a}");

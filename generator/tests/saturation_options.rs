@@ -17,7 +17,11 @@ fn planned(src: &str, opts: &TemplateOptions) -> Result<mingen::SolverPlan, Stri
 fn assert_audit_below(p: &mingen::SolverPlan, instances: usize, seed: u64, median: f64) {
     let a = mingen::__internal::audit::audit_plan(
         p,
-        &mingen::__internal::audit::AuditOptions { instances, seed },
+        &mingen::__internal::audit::AuditOptions {
+            instances,
+            seed,
+            ..Default::default()
+        },
     );
     assert!(a.median_log10_residual < median, "{a}");
 }
@@ -177,6 +181,7 @@ fn newton_polishes_solutions_in_the_audit_and_the_emitted_solver() {
             &mingen::__internal::audit::AuditOptions {
                 instances: 200,
                 seed: 3,
+                ..Default::default()
             },
         )
     };

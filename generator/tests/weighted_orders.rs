@@ -38,6 +38,7 @@ fn weighted_orders_reach_the_published_standard_template_of_p4p_fr() {
         &AuditOptions {
             instances: 300,
             seed: 11,
+            ..AuditOptions::default()
         },
     );
     assert!(

@@ -10,7 +10,14 @@ use mingen::{audit_plan, AuditOptions};
 fn audit(name: &str, instances: usize) -> mingen::AuditReport {
     let plan = plan_file(&problem_file(name), &TemplateOptions::default())
         .unwrap_or_else(|e| panic!("planning {name}: {e}"));
-    let report = audit_plan(&plan, &AuditOptions { instances, seed: 1 });
+    let report = audit_plan(
+        &plan,
+        &AuditOptions {
+            instances,
+            seed: 1,
+            ..AuditOptions::default()
+        },
+    );
     println!("{name}:\n{report}");
     assert_eq!(report.instances, instances);
     assert_eq!(report.solutions_expected, plan.generated.count);
@@ -25,6 +32,7 @@ fn audit(name: &str, instances: usize) -> mingen::AuditReport {
         &AuditOptions {
             instances: 20,
             seed: 1,
+            ..AuditOptions::default()
         },
     );
     let first = audit_plan(
@@ -32,6 +40,7 @@ fn audit(name: &str, instances: usize) -> mingen::AuditReport {
         &AuditOptions {
             instances: 20,
             seed: 1,
+            ..AuditOptions::default()
         },
     );
     assert_eq!(again, first);

@@ -38,7 +38,7 @@ name=$(basename "$problem" .mp)
 work="$root/target/emitted-solver/$name"
 mkdir -p "$work/src"
 cargo build --release -q -p mingen --manifest-path "$root/Cargo.toml"
-"$root/target/release/mingen" generate "$problem" --out "$work/src/solver.rs" "$@"
+"${CARGO_TARGET_DIR:-$root/target}/release/mingen" generate "$problem" --out "$work/src/solver.rs" "$@"
 cp "$root/tools/emitted_solver/main.rs" "$work/src/main.rs"
 cat > "$work/Cargo.toml" <<TOML
 [package]

@@ -1,8 +1,9 @@
 //! `mingen audit`: a template's numerical stability on random or given instances.
 
 use super::{emit, CliError};
+use mingen::__internal::audit::AUDIT_BYTES_PER_INSTANCE;
 use mingen::__internal::instances_file::{read_instances, read_solutions, InstancesError};
-use mingen::{audit_plan, audit_plan_planted, plan_file, AuditOptions, TemplateOptions};
+use mingen::{audit_plan, audit_plan_planted, plan_file, AuditOptions, Budget, TemplateOptions};
 use std::path::Path;
 
 /// `audit --instances-from` and `--solutions-from`.
@@ -33,6 +34,20 @@ pub(super) fn audit(
     if instances == 0 {
         return Err(CliError {
             message: "--instances must be at least 1".into(),
+            code: 2,
+        });
+    }
+    // The per-instance figures are kept: their memory is known before any is run.
+    let budget = options.budget;
+    let needed = (instances as u64).saturating_mul(AUDIT_BYTES_PER_INSTANCE);
+    if needed > budget.max_memory_bytes {
+        return Err(CliError {
+            message: format!(
+                "{}: --instances {instances} needs about {} MiB, over the memory budget of {} MiB (raise it with --max-memory)",
+                file.display(),
+                needed >> 20,
+                budget.max_memory_bytes >> 20
+            ),
             code: 2,
         });
     }
@@ -68,13 +83,28 @@ pub(super) fn audit(
             )
         }
         None => {
-            let options = AuditOptions { instances, seed };
+            let options = AuditOptions {
+                instances,
+                seed,
+                time_limit: time_limit(budget),
+            };
             (
                 audit_plan(&plan, &options),
                 format!("uniform random instances, seed {seed}"),
             )
         }
     };
+    if report.stopped {
+        return Err(CliError {
+            message: format!(
+                "{}: audit stopped after {} of {instances} instances: the time budget of {} s ran out (raise it with --max-seconds, or ask for fewer --instances)",
+                file.display(),
+                report.instances,
+                budget.max_seconds
+            ),
+            code: 2,
+        });
+    }
     if as_json {
         let text = serde_json::to_string_pretty(&report.to_json()).unwrap_or_default();
         return emit(&format!("{text}\n"));
@@ -99,4 +129,9 @@ pub(super) fn audit(
         plan.problem.name(),
         plan.generated.count
     ))
+}
+
+/// The audit's own wall-clock limit: the same `--max-seconds` as the plan before it.
+pub(super) fn time_limit(budget: Budget) -> Option<std::time::Duration> {
+    std::time::Duration::try_from_secs_f64(budget.max_seconds).ok()
 }

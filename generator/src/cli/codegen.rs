@@ -135,7 +135,12 @@ pub fn generate_with(
     if with_mod_rs {
         let mut names = Vec::new();
         for f in problem_files(root)? {
-            names.push(Problem::from_file(&f)?.layout.name.clone());
+            names.push(
+                Problem::from_file_within(&f, options.budget)?
+                    .layout
+                    .name
+                    .clone(),
+            );
         }
         names.sort_by_key(|n| module_name(n));
         outputs.push((

@@ -1,16 +1,15 @@
 //! `mingen inspect`: a problem and its plan, as text or one JSON object.
 
 use super::{emit, CliError};
-use mingen::__internal::algebra::MonomialOrder;
+use mingen::__internal::algebra::{MonomialOrder, Poly, Q};
 use mingen::{plan_file, Problem, SolverPlan, TemplateOptions};
 use serde_json::{json, Map, Value};
 use std::path::PathBuf;
 
 /// The language-level facts about a problem, as a JSON object that later stages (Gröbner
 /// basis, template) extend with their own keys.
-fn problem_summary(p: &Problem) -> Map<String, Value> {
+fn problem_summary(p: &Problem, equations: &[Poly<Poly<Q>>]) -> Map<String, Value> {
     let names = p.unknown_names();
-    let equations = p.expand();
     let mut m = Map::new();
     m.insert("name".into(), json!(p.name()));
     m.insert("unknowns".into(), json!(names));
@@ -71,11 +70,18 @@ pub(super) fn inspect(
     as_json: bool,
     options: &TemplateOptions,
 ) -> Result<(), CliError> {
-    let parsed = Problem::from_file(file)?;
+    let parsed = Problem::from_file_within(file, options.budget)?;
     let plan = plan_file(file, options)?;
     // The planned problem: the file's, with what planning added (automatic elimination).
     let p = &plan.problem;
-    let mut summary = problem_summary(p);
+    // The symbolic expansion has the data as variables too, so it can be far larger than
+    // the instances planning expanded: it has a budget of its own.
+    let deadline = options.budget.start();
+    let equations = p.expand_within(Some(&deadline)).map_err(|e| CliError {
+        message: format!("{}: {e}", file.display()),
+        code: 2,
+    })?;
+    let mut summary = problem_summary(p, &equations);
     summary.insert(
         "eliminated_automatically".into(),
         json!(parsed.layout.eliminate.is_empty() && !p.layout.eliminate.is_empty()),
@@ -113,7 +119,6 @@ pub(super) fn inspect(
         p.layout.data_slot_names().join(" ")
     );
     let lines = p.equation_lines();
-    let equations = p.expand();
     outln!(out, "equations: {}", equations.len());
     for (i, (e, line)) in equations.iter().zip(&lines).enumerate() {
         let support: Vec<String> = e

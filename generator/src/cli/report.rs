@@ -11,7 +11,11 @@ pub(super) fn report(
     as_json: bool,
     template: &TemplateOptions,
 ) -> Result<(), CliError> {
-    let options = AuditOptions { instances, seed };
+    let options = AuditOptions {
+        instances,
+        seed,
+        time_limit: super::audit::time_limit(template.budget),
+    };
     let rows = mingen::report_with(paths, &options, template).map_err(|e| CliError {
         message: e.to_string(),
         code: 2,

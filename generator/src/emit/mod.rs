@@ -32,7 +32,7 @@ pub mod traced;
 
 pub use coefficients::Program;
 pub use files::{generated_header, generated_header_for_path, is_fresh, write_output};
-pub use solver::{emit_solver, SMALL_TEMPLATE_ROWS, TABLE_FORM_MIN_SIZE};
+pub use solver::{emit_solver, MAX_INLINE_STATEMENTS, SMALL_TEMPLATE_ROWS, TABLE_FORM_MIN_SIZE};
 pub use traced::{Traced, Tracer};
 
 use crate::algebra::Poly;
@@ -115,7 +115,8 @@ pub enum CodeForm {
     #[default]
     Auto,
     /// Straight-line code inside `solve`: shared coefficients as locals, one assignment per
-    /// template entry. Fastest for small and medium templates.
+    /// template entry. Fastest for small and medium templates; refused (an
+    /// [`EmitError::Unsupported`]) above [`MAX_INLINE_STATEMENTS`] coefficient statements.
     Inline,
     /// Coefficients written to one array by functions of bounded size, the template filled
     /// through a constant table (`mingen_runtime::fill_template`): compile time linear in

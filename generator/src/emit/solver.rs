@@ -27,6 +27,11 @@ pub const SMALL_TEMPLATE_ROWS: usize = 40;
 /// enough to overflow rustc's default stack in a debug build.
 pub const TABLE_FORM_MIN_SIZE: usize = 2048;
 
+/// The most coefficient statements (`let`s in one function) the inline form may have:
+/// beyond them rustc's debug build overflows its stack (see [`TABLE_FORM_MIN_SIZE`], which
+/// keeps [`CodeForm::Auto`] below this).
+pub const MAX_INLINE_STATEMENTS: usize = TABLE_FORM_MIN_SIZE;
+
 /// Everything `solve` needs, validated and indexed.
 struct Plan<'a> {
     spec: &'a SolverSpec,
@@ -670,6 +675,17 @@ fn fill_tokens(plan: &Plan, coefficients: &mut Coefficients) -> Result<Fill, Emi
     };
     let table_form = match spec.code_form {
         CodeForm::Auto => coefficients.n_fill + program.stmts.len() > TABLE_FORM_MIN_SIZE,
+        // Each `let` opens a scope nested in the previous one, and rustc's debug build
+        // recurses through them: past a few thousand in one function it overflows its
+        // stack. Code that cannot compile is refused rather than emitted.
+        CodeForm::Inline if program.stmts.len() > MAX_INLINE_STATEMENTS => {
+            return Err(EmitError::Unsupported(format!(
+                "the inline form would have {} coefficient statements in one function, more \
+                 than rustc compiles in a debug build (at most {MAX_INLINE_STATEMENTS}); use \
+                 the table form (--code-form table, or auto)",
+                program.stmts.len()
+            )))
+        }
         CodeForm::Inline => false,
         CodeForm::Table => true,
     };

@@ -447,7 +447,9 @@ fn flat_values_impl(
         impl #flat for #ty {
             const LEN: usize = #n;
             fn from_flat(values: &[f64]) -> Option<Self> {
-                let values: &[f64; #n] = values.try_into().ok()?;
+                // Fully qualified: `TryFrom` is not in the 2018 edition's prelude, and the
+                // module may be included in a crate of any edition.
+                let values = <&[f64; #n] as ::core::convert::TryFrom<&[f64]>>::try_from(values).ok()?;
                 Some(#ty::#from(values))
             }
             fn write_flat(&self, out: &mut [f64]) -> bool {

@@ -26,6 +26,11 @@ pub const BUILTINS: [&str; 5] = ["I", "skew", "det", "trace", "diff"];
 const MAX_ARRAY_LEN: usize = 100_000;
 /// Most data slots of one declaration (array length times the kind's slots).
 const MAX_DECL_SLOTS: usize = 1_000_000;
+/// The most data slots a problem may declare in all: every slot is a field of the emitted
+/// `Data` struct, a symbol of the expansion and of every coefficient the emitter traces,
+/// so their number multiplies the memory of every later stage; minimal problems have at
+/// most a few hundred.
+pub const MAX_DATA_SLOTS: usize = 10_000;
 /// Most Gauss-Newton steps `option newton` may ask for (polishing converges in one or two
 /// from an eigenvector's solution; more only costs time).
 pub const MAX_NEWTON_STEPS: u32 = 8;
@@ -468,6 +473,16 @@ impl Checker {
             ));
         }
         let first_slot = self.layout.data_slot_count();
+        if first_slot.saturating_add(slots) > MAX_DATA_SLOTS {
+            return Err(self.err(
+                d.name.pos,
+                format!(
+                    "data '{}' brings the problem to {} data slots (at most {MAX_DATA_SLOTS} in all)",
+                    d.name.name,
+                    first_slot.saturating_add(slots)
+                ),
+            ));
+        }
         self.symbols
             .insert(d.name.name.clone(), Sym::Data(self.layout.data.len()));
         self.layout.data.push(DataSymbol {

@@ -2,6 +2,14 @@
 
 use super::LangError;
 
+/// The most digits a number literal may have (its exponent aside): far beyond any measured
+/// or exact constant, while a literal of a million digits costs seconds to convert and
+/// more in every product it enters.
+pub const MAX_NUMBER_DIGITS: usize = 1000;
+
+/// The most characters of a name: messages repeat names, and stay one short line.
+pub const MAX_NAME_CHARS: usize = 256;
+
 /// A position in the source: 1-based line and column (columns count characters).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Pos {
@@ -194,6 +202,28 @@ pub fn lex(src: &str) -> Result<Vec<Token>, LangError> {
             return Err(LangError::new(
                 pos,
                 format!("unexpected character {c:?}: not part of the problem language"),
+            ));
+        }
+        if c.is_ascii_digit() {
+            let digits = chars[start..i]
+                .iter()
+                .take_while(|c| **c != 'e' && **c != 'E')
+                .filter(|c| c.is_ascii_digit())
+                .count();
+            if digits > MAX_NUMBER_DIGITS {
+                // Not repeated in the message: it may be a megabyte long.
+                return Err(LangError::new(
+                    pos,
+                    format!("a number of {digits} digits (at most {MAX_NUMBER_DIGITS})"),
+                ));
+            }
+        } else if i - start > MAX_NAME_CHARS {
+            return Err(LangError::new(
+                pos,
+                format!(
+                    "a name of {} characters (at most {MAX_NAME_CHARS})",
+                    i - start
+                ),
             ));
         }
         let text: String = chars[start..i].iter().collect();

@@ -76,11 +76,25 @@ pub enum TemplateError {
     #[error("equation reduction: {0}")]
     Reduction(#[from] ReductionError),
     /// No action variable was given or none works.
-    #[error("no usable action variable: {0}")]
-    NoAction(String),
+    #[error("no usable action variable: {reasons}")]
+    NoAction {
+        /// Why each action failed, one clause per distinct reason.
+        reasons: String,
+        /// The budget that stopped the first action stopped by one, if any did.
+        exhausted: Option<Exhausted>,
+    },
     /// The template cannot be solved by elimination and eigenvectors.
     #[error(transparent)]
     Shape(#[from] ShapeError),
+    /// The budget ran out in a step that has no degree to report (the characteristic
+    /// polynomial of an action matrix, the memory of the action matrices).
+    #[error("{step}: {exhausted}")]
+    Budget {
+        /// The step that was stopped.
+        step: String,
+        /// Which limit ran out.
+        exhausted: Exhausted,
+    },
     /// The solutions were counted, but no solver could be made: the count is kept so
     /// that every report can still state it.
     #[error("{count} solutions, but no template: {source}")]
@@ -97,6 +111,22 @@ impl TemplateError {
     pub fn solution_count(&self) -> Option<usize> {
         match self {
             TemplateError::Counted { count, .. } => Some(*count),
+            _ => None,
+        }
+    }
+
+    /// The budget that stopped the search, if a budget did.
+    pub fn exhausted(&self) -> Option<Exhausted> {
+        match self {
+            TemplateError::Budget { exhausted, .. } => Some(*exhausted),
+            TemplateError::NotReducible { exhausted, .. }
+            | TemplateError::NoAction { exhausted, .. } => *exhausted,
+            TemplateError::Groebner(GroebnerError::Budget { exhausted, .. })
+            | TemplateError::Analysis(AnalysisError::Groebner {
+                source: GroebnerError::Budget { exhausted, .. },
+                ..
+            }) => Some(*exhausted),
+            TemplateError::Counted { source, .. } => source.exhausted(),
             _ => None,
         }
     }

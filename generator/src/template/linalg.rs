@@ -198,11 +198,27 @@ pub(crate) fn left_kernel_support<const P: u32>(
 
 /// Characteristic polynomial det(t I - M) of a square matrix, coefficients from the constant
 /// term up (monic, length n + 1), via reduction to upper Hessenberg form.
+#[cfg(test)]
 pub(crate) fn charpoly<const P: u32>(m: &[Vec<u32>]) -> Vec<u32> {
+    // Without a deadline nothing can run out.
+    charpoly_within::<P>(m, None).unwrap_or_default()
+}
+
+/// [`charpoly`] checking `deadline` between columns: its cost is cubic in the size, which
+/// for a basis of thousands of monomials is seconds, so the clock is read well inside it.
+pub(crate) fn charpoly_within<const P: u32>(
+    m: &[Vec<u32>],
+    deadline: Option<&Deadline>,
+) -> Result<Vec<u32>, Exhausted> {
+    let check = |k: usize| match deadline {
+        Some(d) if k % 16 == 0 => d.check_time(),
+        _ => Ok(()),
+    };
     let n = m.len();
     let mut h: Vec<Vec<u32>> = m.to_vec();
     // Similarity reduction to Hessenberg form.
     for j in 0..n.saturating_sub(2) {
+        check(j)?;
         let Some(i) = (j + 1..n).find(|&i| h[i][j] != 0) else {
             continue;
         };
@@ -233,6 +249,7 @@ pub(crate) fn charpoly<const P: u32>(m: &[Vec<u32>]) -> Vec<u32> {
     //   - sum_{i<k} h_ik * prod_{l=i+1..k} h_{l,l-1} * p_{i-1}.
     let mut polys: Vec<Vec<u32>> = vec![vec![1]];
     for k in 0..n {
+        check(k)?;
         let prev = &polys[k];
         let mut p = vec![0u32; k + 2];
         for (d, &c) in prev.iter().enumerate() {
@@ -255,7 +272,7 @@ pub(crate) fn charpoly<const P: u32>(m: &[Vec<u32>]) -> Vec<u32> {
         }
         polys.push(p);
     }
-    polys.pop().expect("n+1 polynomials")
+    Ok(polys.pop().unwrap_or_default())
 }
 
 fn trim(p: &mut Vec<u32>) {

@@ -114,7 +114,12 @@ pub(crate) fn best_template_within(
             all.extend(search_actions(eqs, basis, gb, opts, deadline, &random()));
         }
         let mut work = 0u64;
-        let distinct_of = |a: &Action| is_squarefree::<P1>(&nf_action_charpoly::<P1>(gb, basis, a));
+        // An action whose check runs out of budget counts as not distinct: the search
+        // after it stops on the same budget.
+        let distinct_of = |a: &Action| {
+            nf_action_charpoly::<P1>(gb, basis, a, Some(deadline))
+                .is_ok_and(|c| is_squarefree::<P1>(&c))
+        };
         let starts = try_alternative_bases(
             eqs,
             &bases,
@@ -245,7 +250,10 @@ fn search_actions<const P: u32>(
     // basis only, as long as some action has distinct eigenvalues.
     let distinct: Vec<bool> = monomials
         .iter()
-        .map(|a| is_squarefree::<P>(&nf_action_charpoly::<P>(gb, basis, a)))
+        .map(|a| {
+            nf_action_charpoly::<P>(gb, basis, a, Some(deadline))
+                .is_ok_and(|c| is_squarefree::<P>(&c))
+        })
         .collect();
     let skip_selection = opts.require_distinct_eigenvalues && distinct.iter().any(|&d| d);
     let starts: Vec<u32> = monomials
@@ -810,11 +818,14 @@ fn no_action(all: &PerAction, opts: &TemplateOptions) -> TemplateError {
             None => reasons.push((reason, vec![name])),
         }
     }
-    TemplateError::NoAction(
-        reasons
+    TemplateError::NoAction {
+        reasons: reasons
             .iter()
             .map(|(r, names)| format!("action {}: {r}", names.join(", ")))
             .collect::<Vec<_>>()
             .join("; "),
-    )
+        exhausted: all
+            .iter()
+            .find_map(|(_, r)| r.as_ref().err().and_then(TemplateError::exhausted)),
+    }
 }

@@ -10,10 +10,10 @@
 //!   of every unknown outside the basis is its normal form, after [`check_readoff`] (the
 //!   basis must contain 1, every unknown must be in it or a reducible column).
 
-use super::linalg::{addmod, charpoly, gauss_jordan, mulmod, submod};
+use super::linalg::{addmod, charpoly_within, gauss_jordan, mulmod, submod};
 use super::{Action, EliminationTemplate, TemplateError};
 use crate::algebra::{Fp, Monomial, Poly, Ring, P1, P2};
-use crate::budget::Deadline;
+use crate::budget::{Deadline, Exhausted};
 use crate::groebner::{groebner_with, GroebnerBasis, GroebnerOptions};
 use crate::quotient::{standard_monomials, InstanceSource};
 use rand::SeedableRng;
@@ -155,36 +155,61 @@ fn template_matrices<const P: u32>(
 
 /// The action matrix of multiplication by `action` on the quotient ring, in the basis
 /// `basis` (standard monomials of `gb`): row j holds the coefficients of
-/// `NF(action * basis[j])`.
+/// `NF(action * basis[j])`. Checks `deadline` between rows (each is a normal form).
 pub fn gb_action_matrix<const P: u32>(
     gb: &GroebnerBasis<P>,
     basis: &[Monomial],
     action: &Action,
-) -> Vec<Vec<u32>> {
+    deadline: Option<&Deadline>,
+) -> Result<Vec<Vec<u32>>, TemplateError> {
     let form = action.poly::<P>();
-    let n = gb.nvars();
     let idx: BTreeMap<&Monomial, usize> = basis.iter().enumerate().map(|(i, m)| (m, i)).collect();
-    basis
-        .iter()
-        .map(|b| {
-            let nf = gb.normal_form(&form.mul(&Poly::term(b.clone(), Fp::<P>::one())));
-            let mut row = vec![0u32; basis.len()];
-            for (m, c) in nf.terms() {
-                debug_assert_eq!(m.nvars(), n);
-                row[idx[m]] = c.0;
-            }
-            row
-        })
-        .collect()
+    // The matrix is `count x count`: its size is known before it is filled.
+    if let Some(d) = deadline {
+        let n = basis.len() as u64;
+        d.check_memory(n.saturating_mul(n).saturating_mul(2 * 4))
+            .map_err(budget_error)?;
+    }
+    let mut rows = Vec::with_capacity(basis.len());
+    for (j, b) in basis.iter().enumerate() {
+        if let (Some(d), 0) = (deadline, j % 16) {
+            d.check_time().map_err(budget_error)?;
+        }
+        let nf = gb.normal_form(&form.mul(&Poly::term(b.clone(), Fp::<P>::one())))?;
+        rows.push(coordinates(&nf, &idx));
+    }
+    Ok(rows)
 }
 
-/// Characteristic polynomial of [`gb_action_matrix`].
+/// The coordinates of a normal form on the standard monomials indexed by `idx` (a term
+/// outside them, which a normal form does not have, is left out).
+fn coordinates<const P: u32>(p: &Poly<Fp<P>>, idx: &BTreeMap<&Monomial, usize>) -> Vec<u32> {
+    let mut row = vec![0u32; idx.len()];
+    for (m, c) in p.terms() {
+        if let Some(&i) = idx.get(m) {
+            row[i] = c.0;
+        }
+    }
+    row
+}
+
+/// A budget that ran out during a check of the action matrices.
+fn budget_error(exhausted: Exhausted) -> TemplateError {
+    TemplateError::Budget {
+        step: "the characteristic polynomial of an action matrix".into(),
+        exhausted,
+    }
+}
+
+/// Characteristic polynomial of [`gb_action_matrix`], within `deadline`.
 pub(crate) fn nf_action_charpoly<const P: u32>(
     gb: &GroebnerBasis<P>,
     basis: &[Monomial],
     action: &Action,
-) -> Vec<u32> {
-    charpoly::<P>(&gb_action_matrix(gb, basis, action))
+    deadline: Option<&Deadline>,
+) -> Result<Vec<u32>, TemplateError> {
+    let m = gb_action_matrix(gb, basis, action, deadline)?;
+    charpoly_within::<P>(&m, deadline).map_err(budget_error)
 }
 
 fn check_one<const P: u32, S: InstanceSource>(
@@ -206,8 +231,9 @@ fn check_one<const P: u32, S: InstanceSource>(
     };
     let gb = groebner_with(t.nvars, &eqs, &gopts)?;
     let b = standard_monomials(&gb)?;
-    let gm = gb_action_matrix(&gb, &b, &t.action);
-    if charpoly::<P>(&tm) != charpoly::<P>(&gm) {
+    let gm = gb_action_matrix(&gb, &b, &t.action, deadline)?;
+    let charpoly_of = |m: &[Vec<u32>]| charpoly_within::<P>(m, deadline).map_err(budget_error);
+    if charpoly_of(&tm)? != charpoly_of(&gm)? {
         return Err(TemplateError::CharpolyMismatch { instance });
     }
     // The linear read-outs, from the template's basis to the Gröbner basis's: NF(x_i) must
@@ -215,16 +241,11 @@ fn check_one<const P: u32, S: InstanceSource>(
     if !readouts.is_empty() {
         let gb_idx: BTreeMap<&Monomial, usize> =
             b.iter().enumerate().map(|(i, m)| (m, i)).collect();
-        let in_gb_basis = |p: &Poly<Fp<P>>| {
-            let mut v = vec![0u32; b.len()];
-            for (m, c) in p.terms() {
-                v[gb_idx[m]] = c.0;
-            }
-            v
+        let nf = |m: &Monomial| {
+            gb.normal_form(&Poly::term(m.clone(), Fp::<P>::one()))
+                .map(|p| coordinates(&p, &gb_idx))
         };
-        let nf =
-            |m: &Monomial| in_gb_basis(&gb.normal_form(&Poly::term(m.clone(), Fp::<P>::one())));
-        let change: Vec<Vec<u32>> = t.basis.iter().map(nf).collect();
+        let change: Vec<Vec<u32>> = t.basis.iter().map(nf).collect::<Result<_, _>>()?;
         for (x, r) in t.linear_readouts().iter().zip(&readouts) {
             let mut via_template = vec![0u32; b.len()];
             for (rk, row) in r.iter().zip(&change) {
@@ -232,7 +253,7 @@ fn check_one<const P: u32, S: InstanceSource>(
                     *acc = addmod::<P>(*acc, mulmod::<P>(*rk, c));
                 }
             }
-            if via_template != nf(x) {
+            if via_template != nf(x)? {
                 return Err(TemplateError::ReadoutMismatch {
                     instance,
                     unknown: x.display_with(&names),

@@ -30,7 +30,8 @@ pub struct Data {
 impl mingen_runtime::FlatValues for Data {
     const LEN: usize = 45;
     fn from_flat(values: &[f64]) -> Option<Self> {
-        let values: &[f64; 45] = values.try_into().ok()?;
+        let values = <&[f64; 45] as ::core::convert::TryFrom<&[f64]>>::try_from(values)
+            .ok()?;
         Some(Data::from_slots(values))
     }
     fn write_flat(&self, out: &mut [f64]) -> bool {
@@ -158,7 +159,8 @@ impl Solution {
 impl mingen_runtime::FlatValues for Solution {
     const LEN: usize = 6;
     fn from_flat(values: &[f64]) -> Option<Self> {
-        let values: &[f64; 6] = values.try_into().ok()?;
+        let values = <&[f64; 6] as ::core::convert::TryFrom<&[f64]>>::try_from(values)
+            .ok()?;
         Some(Solution::from_unknowns(values))
     }
     fn write_flat(&self, out: &mut [f64]) -> bool {

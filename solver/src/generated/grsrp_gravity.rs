@@ -32,7 +32,8 @@ pub struct Data {
 impl mingen_runtime::FlatValues for Data {
     const LEN: usize = 42;
     fn from_flat(values: &[f64]) -> Option<Self> {
-        let values: &[f64; 42] = values.try_into().ok()?;
+        let values = <&[f64; 42] as ::core::convert::TryFrom<&[f64]>>::try_from(values)
+            .ok()?;
         Some(Data::from_slots(values))
     }
     fn write_flat(&self, out: &mut [f64]) -> bool {
@@ -153,7 +154,8 @@ impl Solution {
 impl mingen_runtime::FlatValues for Solution {
     const LEN: usize = 5;
     fn from_flat(values: &[f64]) -> Option<Self> {
-        let values: &[f64; 5] = values.try_into().ok()?;
+        let values = <&[f64; 5] as ::core::convert::TryFrom<&[f64]>>::try_from(values)
+            .ok()?;
         Some(Solution::from_unknowns(values))
     }
     fn write_flat(&self, out: &mut [f64]) -> bool {

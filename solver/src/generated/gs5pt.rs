@@ -23,7 +23,8 @@ pub struct Data {
 impl mingen_runtime::FlatValues for Data {
     const LEN: usize = 36;
     fn from_flat(values: &[f64]) -> Option<Self> {
-        let values: &[f64; 36] = values.try_into().ok()?;
+        let values = <&[f64; 36] as ::core::convert::TryFrom<&[f64]>>::try_from(values)
+            .ok()?;
         Some(Data::from_slots(values))
     }
     fn write_flat(&self, out: &mut [f64]) -> bool {
@@ -142,7 +143,8 @@ impl Solution {
 impl mingen_runtime::FlatValues for Solution {
     const LEN: usize = 3;
     fn from_flat(values: &[f64]) -> Option<Self> {
-        let values: &[f64; 3] = values.try_into().ok()?;
+        let values = <&[f64; 3] as ::core::convert::TryFrom<&[f64]>>::try_from(values)
+            .ok()?;
         Some(Solution::from_unknowns(values))
     }
     fn write_flat(&self, out: &mut [f64]) -> bool {

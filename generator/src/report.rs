@@ -105,9 +105,10 @@ pub fn problem_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, ReportError> {
 /// leading `RxC` (a size whose kind is not stated, e.g. a PoseLib solver's).
 ///
 /// Where a problem names `schur_pols`, Martyushev et al. count their template after
-/// eliminating the multiples of those equations first (their solvers' `M(k+1:end,k+1:end)
-/// - M(k+1:end,1:k)/M(1:k,1:k)*M(1:k,k+1:end)`, "Schur complement reduction"): `std` is
-/// then `k` rows and `k` columns smaller than the template it is computed from. mingen
+/// eliminating the multiples of those equations first (their solvers'
+/// `M(k+1:end,k+1:end) - M(k+1:end,1:k)/M(1:k,1:k)*M(1:k,k+1:end)`, "Schur complement
+/// reduction"): `std` is then `k` rows and `k` columns smaller than the template it is
+/// computed from. mingen
 /// counts its templates the same way (after folding its own constant rows,
 /// `template/fold.rs`), so `std` is the size to compare with, and `std-whole` compares
 /// with mingen's template whole.

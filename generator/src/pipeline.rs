@@ -277,12 +277,18 @@ pub fn plan(
         rewrite::divide_out_nonzero(problem, options, &deadline),
         options.seed,
     );
-    let mut generated = find_template_within(&ProblemSource::new(&problem), options, deadline)
-        .map_err(|source| PipelineError::Template {
-            file: file.to_string(),
-            source,
-        })?;
+    // The equations' generic monomials serve the template search (its fold of constant
+    // rows) and the sparse elimination order alike.
     let supports = equation_supports(&problem, options.seed ^ SUPPORT_SEED);
+    let mut generated = find_template_within(
+        &ProblemSource::with_supports(&problem, &supports),
+        options,
+        deadline,
+    )
+    .map_err(|source| PipelineError::Template {
+        file: file.to_string(),
+        source,
+    })?;
     let template_supports = match &generated.built.template.reduction {
         Some(r) => r.reduced_supports(),
         None => supports.clone(),

@@ -16,12 +16,27 @@ use std::collections::HashSet;
 /// A problem viewed as a family of polynomial systems (after elimination, if any).
 pub struct ProblemSource<'a> {
     problem: &'a Problem,
+    /// The equations' monomials for generic data ([`equation_supports`]), when the caller
+    /// has them already.
+    supports: Option<&'a [Vec<Monomial>]>,
 }
 
 impl<'a> ProblemSource<'a> {
     /// The family of `problem`'s instances.
     pub fn new(problem: &'a Problem) -> Self {
-        ProblemSource { problem }
+        ProblemSource {
+            problem,
+            supports: None,
+        }
+    }
+
+    /// The family of `problem`'s instances, whose equations have the monomials `supports`
+    /// for generic data (as [`equation_supports`] finds them).
+    pub fn with_supports(problem: &'a Problem, supports: &'a [Vec<Monomial>]) -> Self {
+        ProblemSource {
+            problem,
+            supports: Some(supports),
+        }
     }
 }
 
@@ -49,7 +64,12 @@ impl InstanceSource for ProblemSource<'_> {
             .unwrap_or_default()
     }
     fn equation_constants(&self) -> Vec<EquationConstants> {
-        equation_constants(self.problem, &equation_supports(self.problem, SUPPORT_SEED))
+        match self.supports {
+            Some(s) => equation_constants(self.problem, s),
+            None => {
+                equation_constants(self.problem, &equation_supports(self.problem, SUPPORT_SEED))
+            }
+        }
     }
 }
 

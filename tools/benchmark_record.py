@@ -75,7 +75,7 @@ def markdown(rows):
             f"`{r['problem']}`", unknowns or "—",
             "—" if r["solutions"] is None else str(r["solutions"]),
             (size_text(r) or "none")
-            + (f" ({r['folded_rows']} constant rows folded)" if r.get("folded_rows") else ""),
+            + (f" ({r['folded_rows']} rows folded)" if r.get("folded_rows") else ""),
             r["published"] or "—", ratio(r["area_over_std"]),
             ratio(r["whole_area_over_std_whole"]), ratio(r["area_over_best"]),
             audit(a, a), audit(a, a and a.get("other_polishing")),

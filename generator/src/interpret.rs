@@ -165,21 +165,33 @@ pub fn fill_template(
             }
         }
     }
-    match &template.fold {
-        Some(f) => {
-            let (er, ec) = template.eliminated_size();
-            let mut folded = vec![0.0; er * ec];
-            let mut t = vec![0.0; f.rows];
-            let plan = f.as_plan(template);
-            if !mingen_runtime::fold_constant_rows(&m, &plan, &mut t, &mut folded) {
-                return Err(InterpretError::Malformed(
-                    "the constant-row fold does not match the template".into(),
-                ));
-            }
-            Ok(folded)
+    let Some(f) = &template.fold else {
+        return Ok(m);
+    };
+    let malformed = || InterpretError::Malformed("the fold does not match the template".into());
+    let (er, ec) = template.eliminated_size();
+    let kt = f.pivot_inv.len();
+    if f.rows > 0 {
+        let mut folded = vec![0.0; (er + kt) * (ec + kt)];
+        let mut t = vec![0.0; f.rows];
+        let plan = f.as_plan(template);
+        if !mingen_runtime::fold_constant_rows(&m, &plan, &mut t, &mut folded) {
+            return Err(malformed());
         }
-        None => Ok(m),
+        m = folded;
     }
+    if kt > 0 {
+        let mut folded = vec![0.0; er * ec];
+        if !mingen_runtime::fold_triangular_rows(
+            &mut m,
+            &f.as_triangular_plan(template),
+            &mut folded,
+        ) {
+            return Err(malformed());
+        }
+        m = folded;
+    }
+    Ok(m)
 }
 
 /// The action matrix (|B| x |B|) of the template on these equations, per the convention:

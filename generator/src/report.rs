@@ -48,9 +48,9 @@ pub struct ReportRow {
     /// The independent count from the `# Macaulay2:` header line.
     pub macaulay2: Option<String>,
     /// Template size as eliminated by the solver (rows, columns), after the fold of its
-    /// constant rows if it has one.
+    /// constant-pivot rows if it has one.
     pub template: Option<(usize, usize)>,
-    /// The number of constant rows (and columns) folded before the elimination
+    /// The number of rows (and columns) folded before the elimination
     /// (`template` plus this many of each is the template whole).
     pub folded: usize,
     /// Size (equations, monomials) of the equations' coefficient matrix the solver
@@ -109,7 +109,7 @@ pub fn problem_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, ReportError> {
 /// `M(k+1:end,k+1:end) - M(k+1:end,1:k)/M(1:k,1:k)*M(1:k,k+1:end)`, "Schur complement
 /// reduction"): `std` is then `k` rows and `k` columns smaller than the template it is
 /// computed from. mingen
-/// counts its templates the same way (after folding its own constant rows,
+/// counts its templates the same way (after folding its own rows with constant pivots,
 /// `template/fold.rs`), so `std` is the size to compare with, and `std-whole` compares
 /// with mingen's template whole.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -306,7 +306,7 @@ impl ReportRow {
     }
 
     /// [`ReportRow::area_ratio`] with the template counted whole, before the fold of its
-    /// constant rows: the like-for-like ratio to a published size counted whole.
+    /// rows: the like-for-like ratio to a published size counted whole.
     pub fn whole_area_ratio(&self, area: Option<usize>) -> Option<f64> {
         let (r, c) = self.template?;
         let (r, c) = (r + self.folded, c + self.folded);
@@ -336,7 +336,7 @@ impl ReportRow {
                         text.push_str(&format!(" + {n}x{m} reduction"));
                     }
                     if self.folded > 0 {
-                        text.push_str(&format!(" ({} constant rows folded)", self.folded));
+                        text.push_str(&format!(" ({} rows folded)", self.folded));
                     }
                     text
                 }

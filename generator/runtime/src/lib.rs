@@ -36,6 +36,8 @@
 //! - [`fold_constant_rows`]: the Schur complement of a template's constant rows (multiples
 //!   of equations with numeric coefficients), eliminated by the generator in exact
 //!   arithmetic.
+//! - [`fold_triangular_rows`]: the Schur complement of rows whose pivots are constants in
+//!   a triangle (entries below it may depend on the data), by forward substitution.
 //! - [`fill_template`], [`zeroed_coefficients`]: the table form of large solvers (the
 //!   template filled from a coefficient array through a constant table).
 //! - [`Stages`]: observer of an emitted solver's stages (`solve_staged`), for timings.
@@ -73,6 +75,7 @@ mod sparse_elim;
 mod stages;
 mod sturm;
 mod sturm_sequence;
+mod triangular_fold;
 
 pub use coefficient_table::{fill_template, zeroed_coefficients};
 pub use constant_fold::{fold_constant_rows, ConstantFold};
@@ -90,3 +93,4 @@ pub use solver::{FlatValues, MinimalSolver};
 pub use sparse_elim::{lu_solve_template_sparse, lu_solve_template_sparse_fixed, SparseLuPlan};
 pub use stages::Stages;
 pub use sturm::real_eigenpairs_sturm;
+pub use triangular_fold::{fold_triangular_rows, TriangularFold};

@@ -214,8 +214,10 @@ fn print_plan(out: &mut String, plan: &SolverPlan) {
         let (fr, fc) = t.filled_size();
         outln!(
             out,
-            "  (the Schur complement of the {fr} x {fc} template's {} constant rows, which the generator eliminates)",
-            t.folded_rows()
+            "  (the Schur complement of the {fr} x {fc} template's {} folded rows: {} in a constant block, {} with constant pivots in a triangle)",
+            t.folded_rows(),
+            t.fold.as_ref().map_or(0, |f| f.rows),
+            t.fold.as_ref().map_or(0, |f| f.pivot_inv.len()),
         );
     }
     if t.n_dependent > 0 {

@@ -38,6 +38,18 @@ pub(crate) fn fold_constant_rows() -> TokenStream {
     quote!(mingen_runtime::fold_constant_rows)
 }
 
+/// `fold_triangular_rows(m: &mut [f64], plan: &TriangularFold, out: &mut [f64]) -> bool`:
+/// the Schur complement of a template's rows with constant pivots in a triangle.
+pub(crate) fn fold_triangular_rows() -> TokenStream {
+    quote!(mingen_runtime::fold_triangular_rows)
+}
+
+/// The pivots of a triangular fold: `TriangularFold<'a>` with the public fields
+/// `rows, folded, cols: usize`, `pivot_inv: &[f64]`.
+pub(crate) fn triangular_fold() -> TokenStream {
+    quote!(mingen_runtime::TriangularFold)
+}
+
 /// The constant of a fold: `ConstantFold<'a>` with the public fields
 /// `rows, folded, cols: usize`, `inv_start, m12_start: &[u32]`, `inv_cols, m12_cols: &[u16]`,
 /// `inv_vals: &[f64]`.

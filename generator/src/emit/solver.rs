@@ -283,16 +283,28 @@ pub fn emit_solver(spec: &SolverSpec) -> Result<String, EmitError> {
             stats.ops, stats.stmts
         ),
     ];
-    if t.folded_rows() > 0 {
+    if let Some(f) = t.fold.as_ref().filter(|_| t.folded_rows() > 0) {
         let (fr, fc) = t.filled_size();
+        let (k, kt) = (f.rows, f.pivot_inv.len());
+        let what = match (k, kt) {
+            (_, 0) => format!(
+                "{k} constant rows (multiples of equations with numeric coefficients), \
+                 eliminated exactly by the generator"
+            ),
+            (0, _) => format!(
+                "{kt} rows with constant pivots in a triangle (multiples of equations with \
+                 numeric coefficients)"
+            ),
+            _ => format!(
+                "{} folded rows (multiples of equations with numeric coefficients: {k} in a \
+                 constant block the generator inverted exactly, {kt} with constant pivots in \
+                 a triangle)",
+                k + kt
+            ),
+        };
         module_doc.insert(
             4,
-            format!(
-                "It is the Schur complement of the {fr} x {fc} template's {} constant rows \
-                 (multiples of equations with numeric coefficients), eliminated exactly by \
-                 the generator.",
-                t.folded_rows()
-            ),
+            format!("It is the Schur complement of the {fr} x {fc} template's {what}."),
         );
     }
     if let Some((n, m)) = t.reduction_size() {
@@ -766,32 +778,30 @@ fn fill_tokens(plan: &Plan, coefficients: &mut Coefficients) -> Result<Fill, Emi
     })
 }
 
-/// The constant inverse of a template's fold (a static item) and the code that forms the
-/// Schur complement of the filled template `mf` into the template `m` (allocated by
-/// `alloc`).
+/// The constants of a template's fold (static items) and the code that forms the Schur
+/// complement of the filled template `mf` into the template `m` (allocated by `alloc`):
+/// the constant block's complement first, then the pivot rows'.
 fn fold_tokens(
     t: &EliminationTemplate,
     f: &ConstantFold,
     alloc: &TokenStream,
 ) -> (TokenStream, TokenStream) {
     let (rows, cols) = t.eliminated_size();
-    let (rows_l, cols_l, k_l) = (lit(rows), lit(cols), lit(f.rows));
-    let ty = rt::constant_fold();
-    let fold = rt::fold_constant_rows();
-    let starts = f.inv_start.iter().map(|&x| Literal::u32_unsuffixed(x));
-    let inv_cols = f.inv_cols.iter().map(|&x| Literal::u16_unsuffixed(x));
-    let m12_starts = f.m12_start.iter().map(|&x| Literal::u32_unsuffixed(x));
-    let m12_cols = f.m12_cols.iter().map(|&x| Literal::u16_unsuffixed(x));
-    let inv_vals = f.inv_vals.iter().map(|&x| {
-        let v = f64_literal(x.abs());
-        if x < 0.0 {
-            quote!(-#v)
-        } else {
-            quote!(#v)
-        }
-    });
-    (
-        quote! {
+    let kt = f.pivot_inv.len();
+    // The constant block's complement: the pivot rows and the eliminated matrix.
+    let (rows1, cols1) = (rows + kt, cols + kt);
+    let mut items = TokenStream::new();
+    let mut code = TokenStream::new();
+    let source = if f.rows > 0 {
+        let (rows_l, cols_l, k_l) = (lit(rows1), lit(cols1), lit(f.rows));
+        let ty = rt::constant_fold();
+        let fold = rt::fold_constant_rows();
+        let starts = f.inv_start.iter().map(|&x| Literal::u32_unsuffixed(x));
+        let inv_cols = f.inv_cols.iter().map(|&x| Literal::u16_unsuffixed(x));
+        let m12_starts = f.m12_start.iter().map(|&x| Literal::u32_unsuffixed(x));
+        let m12_cols = f.m12_cols.iter().map(|&x| Literal::u16_unsuffixed(x));
+        let inv_vals = f.inv_vals.iter().map(|&x| signed_f64(x));
+        items.extend(quote! {
             /// The inverse of the template's constant block (see
             /// `mingen_runtime::ConstantFold`), computed exactly by the generator.
             #[rustfmt::skip]
@@ -805,15 +815,63 @@ fn fold_tokens(
                 m12_start: &[#(#m12_starts),*],
                 m12_cols: &[#(#m12_cols),*],
             };
-        },
-        quote! {
-            #alloc
+        });
+        let target = if kt == 0 {
+            code.extend(alloc.clone());
+            format_ident!("m")
+        } else {
+            let len = lit(rows1 * cols1);
+            code.extend(if rows1 <= SMALL_TEMPLATE_ROWS {
+                quote!(let mut mc = [0.0f64; #len];)
+            } else {
+                quote!(let mut mc = vec![0.0f64; #len];)
+            });
+            format_ident!("mc")
+        };
+        code.extend(quote! {
             let mut fold_scratch = [0.0f64; #k_l];
-            if !#fold(&mf, &CONSTANT_FOLD, &mut fold_scratch, &mut m) {
+            if !#fold(&mf, &CONSTANT_FOLD, &mut fold_scratch, &mut #target) {
                 return out;
             }
-        },
-    )
+        });
+        target
+    } else {
+        format_ident!("mf")
+    };
+    if kt > 0 {
+        let (rows_l, cols_l, k_l) = (lit(rows), lit(cols), lit(kt));
+        let ty = rt::triangular_fold();
+        let fold = rt::fold_triangular_rows();
+        let pivots = f.pivot_inv.iter().map(|&x| signed_f64(x));
+        items.extend(quote! {
+            /// The inverse pivots of the template's rows folded in a triangle (see
+            /// `mingen_runtime::TriangularFold`).
+            #[rustfmt::skip]
+            pub static TRIANGULAR_FOLD: #ty<'static> = #ty {
+                rows: #rows_l,
+                folded: #k_l,
+                cols: #cols_l,
+                pivot_inv: &[#(#pivots),*],
+            };
+        });
+        code.extend(alloc.clone());
+        code.extend(quote! {
+            if !#fold(&mut #source, &TRIANGULAR_FOLD, &mut m) {
+                return out;
+            }
+        });
+    }
+    (items, code)
+}
+
+/// A float literal with its sign.
+fn signed_f64(x: f64) -> TokenStream {
+    let v = f64_literal(x.abs());
+    if x < 0.0 {
+        quote!(-#v)
+    } else {
+        quote!(#v)
+    }
 }
 
 /// The elimination of the filled template: dense or sparse LU.

@@ -1,36 +1,47 @@
-//! The Schur complement of the template rows whose pivot block is constant, taken with an
-//! inverse the generator computes exactly.
+//! The Schur complement of the template rows whose pivots are constants: a block the
+//! generator inverts exactly, then rows pivoting in a triangle.
 //!
 //! A multiple of an equation with numeric coefficients on some monomials (`u² + v² + w² +
 //! s² - 1` with data `s`, the entries of `R Rᵀ - I`) has the same entries there on every
-//! instance. Let `k` such rows and `k` independent excess columns form a constant,
-//! invertible block `M11`: ordered first, the filled template is `[M11 M12; M21 M22]`, and
-//! eliminating it reduces the rows of `M22 - M21 M11⁻¹ M12` exactly as the whole
-//! template's elimination would (block elimination: the pivots of the first `k` columns
-//! come from the folded rows). The generator computes `M11⁻¹` in rational arithmetic; the
-//! solver fills the template, forms the complement (`mingen_runtime::fold_constant_rows`)
-//! and eliminates a matrix `k` rows and columns smaller. This is the reduction
+//! instance. Let `k` rows and `k` independent excess columns form an invertible block
+//! `M11` whose determinant is such a number: ordered first, the filled template is
+//! `[M11 M12; M21 M22]`, and eliminating it reduces the rows of `M22 - M21 M11⁻¹ M12`
+//! exactly as the whole template's elimination would (block elimination: the pivots of the
+//! first `k` columns come from the folded rows), on every instance. This is the reduction
 //! Martyushev, Vrablikova and Pajdla's solvers apply to the multiples of their
-//! `schur_pols` before the elimination.
+//! `schur_pols` before the elimination, and sizes are counted after it, like theirs.
 //!
-//! Rows are taken greedily in template order: a row joins when its entries in the chosen
-//! columns are constants and it has a constant entry in a new independent excess column
-//! where the rows already chosen are constant too, such that the block stays invertible;
-//! of several such columns the one with the largest pivot (the new Schur scalar) wins, the
-//! earliest on ties, so that the inverse stays small. The bordered inverse is updated
-//! exactly at each step.
+//! `M11` has two parts, `[[C, 0], [X, L]]`:
+//! - `C`, a block whose entries are all numbers, inverted by the generator in rational
+//!   arithmetic (`mingen_runtime::fold_constant_rows` forms its complement). Rows are taken
+//!   greedily: a row joins when its entries in the chosen columns are constants and it has
+//!   a constant entry in a new independent excess column where the rows already chosen
+//!   are constant too, such that the block stays invertible; of several such columns the
+//!   one with the largest pivot (the new Schur scalar) wins, the earliest on ties, so that
+//!   the inverse stays small. The bordered inverse is updated exactly at each step.
+//! - `L`, lower triangular with constant diagonal, and `X` anything (data included): each
+//!   pivot row has a constant entry in a column that no row folded before it touches
+//!   (`mingen_runtime::fold_triangular_rows` eliminates by forward substitution). For
+//!   multiples `m f` of equations with a constant coefficient on a monomial `x`, taken by
+//!   increasing `m x` in a monomial order and pivoting on `m x`, this is the triangle of
+//!   leading terms; rows are taken greedily under several column orders (the template's,
+//!   graded and lexicographic ones with each variable first), the most rows winning.
+//!
+//! `C` followed by pivot rows (none, or some), and pivot rows alone are tried; the most
+//! rows folded win.
 
 use super::EliminationTemplate;
 use crate::algebra::{Monomial, Ring, Q};
 use num_traits::Signed;
 use std::collections::{BTreeMap, HashMap};
 
-/// The constant inverse `M11⁻¹` of a template's folded block in the layout of
-/// `mingen_runtime::ConstantFold` (see there): row `p` for the folded column `p`, its
-/// column indices the folded rows'.
+/// A template's fold: the constant block's inverse `C⁻¹` in the layout of
+/// `mingen_runtime::ConstantFold` (see there; row `p` for the folded column `p`, its
+/// column indices the folded rows'), then the pivot rows' inverse pivots
+/// (`mingen_runtime::TriangularFold`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ConstantFold {
-    /// The number of rows (and columns) folded, `k`.
+    /// The number of rows (and columns) of the constant block, `k`.
     pub rows: usize,
     /// Offsets into `inv_cols` and `inv_vals`, one per row of `M11⁻¹` plus the end.
     pub inv_start: Vec<u32>,
@@ -44,6 +55,10 @@ pub struct ConstantFold {
     pub m12_cols: Vec<u16>,
     /// Multiply-adds of forming the complement (a bound from the template's structure).
     pub updates: usize,
+    /// The inverse pivots of the rows folded after the constant block, in order: row
+    /// `rows + i` has the constant pivot `1 / pivot_inv[i]` in column `rows + i`, and no
+    /// folded row before it has an entry there (see [`mingen_runtime::TriangularFold`]).
+    pub pivot_inv: Vec<f64>,
 }
 
 impl Eq for ConstantFold {}
@@ -51,16 +66,31 @@ impl Eq for ConstantFold {}
 impl ConstantFold {
     /// The plan the runtime executes, for template `t` (the template it was computed for).
     pub fn as_plan<'a>(&'a self, t: &EliminationTemplate) -> mingen_runtime::ConstantFold<'a> {
-        let (rows, cols) = t.eliminated_size();
+        let (rows, cols) = t.filled_size();
         mingen_runtime::ConstantFold {
-            rows,
+            rows: rows - self.rows,
             folded: self.rows,
-            cols,
+            cols: cols - self.rows,
             inv_start: &self.inv_start,
             inv_cols: &self.inv_cols,
             inv_vals: &self.inv_vals,
             m12_start: &self.m12_start,
             m12_cols: &self.m12_cols,
+        }
+    }
+
+    /// The plan of the pivot rows' fold, after the constant block's (see
+    /// [`mingen_runtime::TriangularFold`]).
+    pub fn as_triangular_plan<'a>(
+        &'a self,
+        t: &EliminationTemplate,
+    ) -> mingen_runtime::TriangularFold<'a> {
+        let (rows, cols) = t.eliminated_size();
+        mingen_runtime::TriangularFold {
+            rows,
+            folded: self.pivot_inv.len(),
+            cols,
+            pivot_inv: &self.pivot_inv,
         }
     }
 }
@@ -69,8 +99,12 @@ impl ConstantFold {
 /// it depends on the data.
 pub type EquationConstants = Vec<(Monomial, Option<Q>)>;
 
-/// The largest fold: beyond it the exact inverse's cost grows past what the fold saves.
+/// The largest constant block: beyond it the exact inverse's cost grows past what the fold
+/// saves.
 const MAX_FOLDED: usize = 512;
+
+/// The most pivot rows folded after the constant block (the plan's 16-bit indices).
+const MAX_PIVOT_ROWS: usize = 4096;
 
 /// The constant block chosen greedily, rows taken in `order` (see the module
 /// documentation): the rows with their entries by template column, the columns, and the
@@ -191,10 +225,129 @@ type Block = (
     Vec<Vec<Q>>,
 );
 
+/// A row after the constant block whose pivot is a constant in a column no earlier folded
+/// row touches: the folded block stays lower triangular below the constant one.
+#[derive(Clone, Debug)]
+struct PivotRow {
+    row: usize,
+    col: usize,
+    pivot: Q,
+}
+
+/// Each template row's entries by template column (`None`: the row has a term outside the
+/// template's columns, which does not happen for a built template).
+fn row_entries(
+    t: &EliminationTemplate,
+    equations: &[EquationConstants],
+) -> Vec<Option<BTreeMap<usize, Option<Q>>>> {
+    let column_of: HashMap<&Monomial, usize> =
+        t.columns.iter().enumerate().map(|(i, m)| (m, i)).collect();
+    t.rows
+        .iter()
+        .map(|row| {
+            equations
+                .get(row.equation)?
+                .iter()
+                .map(|(m, q)| Some((*column_of.get(&row.multiplier.mul(m))?, q.clone())))
+                .collect()
+        })
+        .collect()
+}
+
+/// Column rankings (lower ranks first) the pivot rows are chosen under: the template's
+/// column order, its reverse, and per variable a graded order and a lexicographic one with
+/// that variable first. Each is a monomial order's view of the columns, under which rows
+/// processed by increasing leading column and pivoting on it form a triangle.
+fn column_rankings(t: &EliminationTemplate) -> Vec<Vec<usize>> {
+    let n = t.columns.len();
+    let rank_of = |order: Vec<usize>| {
+        let mut rank = vec![0; n];
+        order.iter().enumerate().for_each(|(r, &c)| rank[c] = r);
+        rank
+    };
+    let mut rankings = vec![rank_of((0..n).collect()), rank_of((0..n).rev().collect())];
+    for v in 0..t.nvars {
+        let exp = |c: usize| t.columns[c].0[v];
+        let mut graded: Vec<usize> = (0..n).collect();
+        graded.sort_by_key(|&c| {
+            (
+                std::cmp::Reverse(t.columns[c].degree()),
+                std::cmp::Reverse(exp(c)),
+                c,
+            )
+        });
+        rankings.push(rank_of(graded));
+        let mut lex: Vec<usize> = (0..n).collect();
+        lex.sort_by_key(|&c| {
+            (
+                std::cmp::Reverse(exp(c)),
+                std::cmp::Reverse(t.columns[c].degree()),
+                c,
+            )
+        });
+        rankings.push(rank_of(lex));
+    }
+    rankings
+}
+
+/// The pivot rows chosen greedily after `block` under `rank`: rows by decreasing rank of
+/// their leading column (the earliest-ranked one they touch), each taking the
+/// earliest-ranked independent excess column where its entry is a non-zero constant and
+/// no row folded so far (the block's included) has an entry.
+fn choose_pivot_rows(
+    t: &EliminationTemplate,
+    entries: &[Option<BTreeMap<usize, Option<Q>>>],
+    block: &Block,
+    rank: &[usize],
+    limit: usize,
+) -> Vec<PivotRow> {
+    let independent_excess = t.n_excess - t.n_dependent;
+    let mut touched = vec![false; t.columns.len()];
+    let mut used = vec![false; t.rows.len()];
+    for (r, e) in &block.0 {
+        used[*r] = true;
+        e.keys().for_each(|&c| touched[c] = true);
+    }
+    block.1.iter().for_each(|&c| touched[c] = true);
+    let mut order: Vec<(usize, usize)> = entries
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| !used[*i])
+        .filter_map(|(i, e)| Some((e.as_ref()?.keys().map(|&c| rank[c]).min()?, i)))
+        .collect();
+    order.sort_by_key(|&(lead, i)| (std::cmp::Reverse(lead), i));
+    let mut pivots = Vec::new();
+    for (_, i) in order {
+        if pivots.len() >= limit {
+            break;
+        }
+        let Some(e) = &entries[i] else { continue };
+        let best = e
+            .iter()
+            .filter(|(&c, q)| {
+                c < independent_excess
+                    && !touched[c]
+                    && q.as_ref().is_some_and(|q| !Ring::is_zero(q))
+            })
+            .min_by_key(|(&c, _)| rank[c]);
+        let Some((&col, Some(pivot))) = best else {
+            continue;
+        };
+        pivots.push(PivotRow {
+            row: i,
+            col,
+            pivot: pivot.clone(),
+        });
+        e.keys().for_each(|&c| touched[c] = true);
+    }
+    pivots
+}
+
 /// Folds what `t` allows (see the module documentation): `equations[e]` are the terms of
 /// template equation `e`. The template's rows and independent excess columns are reordered
-/// (folded rows and their columns first) and `t.fold` set; `t` is left as it is when
-/// nothing folds, or when its rows are multiples of equations row-reduced on the data.
+/// (folded rows and their columns first: the constant block, then the pivot rows) and
+/// `t.fold` set; `t` is left as it is when nothing folds, or when its rows are multiples
+/// of equations row-reduced on the data.
 pub fn fold_constant_rows(t: &mut EliminationTemplate, equations: &[EquationConstants]) {
     t.fold = None;
     if t.reduction.is_some() || equations.is_empty() {
@@ -221,15 +374,39 @@ pub fn fold_constant_rows(t: &mut EliminationTemplate, equations: &[EquationCons
         by_degree(true),
         by_degree(false),
     ];
-    let Some((rows, cols, inv)) = orders
+    let Some(block) = orders
         .iter()
         .map(|o| choose_block(t, equations, o))
         .reduce(|best, b| if b.0.len() > best.0.len() { b } else { best })
     else {
         return;
     };
+    // Pivot rows after the block, or instead of it when the block's rows would block
+    // more pivots than they fold; the most rows folded win, the block first on ties.
+    let entries = row_entries(t, equations);
+    let rankings = column_rankings(t);
+    let limit = MAX_PIVOT_ROWS;
+    let empty: Block = (Vec::new(), Vec::new(), Vec::new());
+    let mut best: Option<(Block, Vec<PivotRow>)> = None;
+    for b in [block, empty] {
+        let pivots = rankings
+            .iter()
+            .map(|r| choose_pivot_rows(t, &entries, &b, r, limit))
+            .reduce(|best, p| if p.len() > best.len() { p } else { best })
+            .unwrap_or_default();
+        let total = b.0.len() + pivots.len();
+        if best
+            .as_ref()
+            .map_or(true, |(bb, bp)| total > bb.0.len() + bp.len())
+        {
+            best = Some((b, pivots));
+        }
+    }
+    let Some(((rows, cols, inv), pivots)) = best else {
+        return;
+    };
     let k = rows.len();
-    if k == 0 {
+    if k + pivots.len() == 0 {
         return;
     }
     let mut fold = ConstantFold {
@@ -240,6 +417,7 @@ pub fn fold_constant_rows(t: &mut EliminationTemplate, equations: &[EquationCons
         m12_start: vec![0],
         m12_cols: Vec::new(),
         updates: 0,
+        pivot_inv: Vec::new(),
     };
     for r in &inv {
         for (f, x) in r.iter().enumerate() {
@@ -255,23 +433,39 @@ pub fn fold_constant_rows(t: &mut EliminationTemplate, equations: &[EquationCons
         }
         fold.inv_start.push(fold.inv_cols.len() as u32);
     }
-    // Folded rows first (in the order chosen), then the others; the folded columns first.
-    let folded_rows: Vec<usize> = rows.iter().map(|r| r.0).collect();
+    for p in &pivots {
+        let v = <f64 as Ring>::from_rational(&(<Q as Ring>::one() / &p.pivot)).unwrap_or(f64::NAN);
+        if !v.is_finite() || v == 0.0 {
+            return;
+        }
+        fold.pivot_inv.push(v);
+    }
+    // Folded rows first (the block's, then the pivot rows, in the order chosen), then the
+    // others; the folded columns first in the same order.
+    let folded_rows: Vec<usize> = rows
+        .iter()
+        .map(|r| r.0)
+        .chain(pivots.iter().map(|p| p.row))
+        .collect();
+    let folded_cols: Vec<usize> = cols
+        .iter()
+        .copied()
+        .chain(pivots.iter().map(|p| p.col))
+        .collect();
     let row_order = with_first(&folded_rows, t.rows.len());
-    let col_order = with_first(&cols, t.columns.len());
+    let col_order = with_first(&folded_cols, t.columns.len());
     t.rows = row_order.iter().map(|&r| t.rows[r].clone()).collect();
     t.columns = col_order.iter().map(|&c| t.columns[c].clone()).collect();
     t.sparse = None;
-    t.fold = Some(ConstantFold {
-        rows: k,
-        ..fold.clone()
-    });
-    if t.eliminated_size().1 > usize::from(u16::MAX) {
+    t.fold = Some(fold.clone());
+    if t.eliminated_size().1 + pivots.len() > usize::from(u16::MAX) {
         t.fold = None;
         return;
     }
     // The filled columns of each row, and the multiply-adds: per other row,
     // `M21[i, :] M11⁻¹` over its non-zeros, then `t M12` over the folded rows' patterns.
+    // `M12`'s columns are those of the constant block's complement (the pivot rows'
+    // columns first).
     let column_of: HashMap<&Monomial, usize> =
         t.columns.iter().enumerate().map(|(i, m)| (m, i)).collect();
     let pattern = |i: usize| -> Vec<usize> {

@@ -80,9 +80,10 @@ impl EliminationTemplate {
         self.n_excess - self.n_dependent - self.folded_rows()
     }
 
-    /// How many constant rows [`EliminationTemplate::fold`] eliminates (0 without one).
+    /// How many rows [`EliminationTemplate::fold`] eliminates, its constant block's and
+    /// its pivot rows (0 without one).
     pub fn folded_rows(&self) -> usize {
-        self.fold.as_ref().map_or(0, |f| f.rows)
+        self.fold.as_ref().map_or(0, |f| f.rows + f.pivot_inv.len())
     }
 
     /// `(rows, cols)` of the matrix the solver fills, before a fold: the template without

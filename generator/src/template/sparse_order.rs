@@ -110,13 +110,17 @@ impl Bits {
 }
 
 /// The structural non-zeros of `t` (eliminated matrix: dependent excess columns left out)
-/// when equation `e` has the monomials `supports[e]`.
+/// when equation `e` has the monomials `supports[e]`: a fold's constant block reaches
+/// through `M11⁻¹` into `M12`, and each pivot row of a triangular fold spreads its pattern
+/// to the rows it updates.
 fn structure(t: &EliminationTemplate, supports: &[Vec<Monomial>]) -> Option<Bits> {
     let (rows, cols) = t.eliminated_size();
-    let k = t.folded_rows();
+    let k = t.fold.as_ref().map_or(0, |f| f.rows);
+    let kt = t.fold.as_ref().map_or(0, |f| f.pivot_inv.len());
     let column: HashMap<&Monomial, usize> =
         t.columns.iter().enumerate().map(|(i, m)| (m, i)).collect();
-    let mut bits = Bits::new(rows, cols);
+    // The constant block's complement: the pivot rows and columns first.
+    let mut bits = Bits::new(rows + kt, cols + kt);
     for (i, row) in t.rows.iter().enumerate().skip(k) {
         for mono in supports.get(row.equation)? {
             let c = *column.get(&row.multiplier.mul(mono))?;
@@ -137,7 +141,24 @@ fn structure(t: &EliminationTemplate, supports: &[Vec<Monomial>]) -> Option<Bits
             }
         }
     }
-    Some(bits)
+    if kt == 0 {
+        return Some(bits);
+    }
+    for p in 0..kt {
+        let pivot: Vec<usize> = bits.ones(p, p + 1, cols + kt).collect();
+        for r in p + 1..rows + kt {
+            if bits.get(r, p) {
+                pivot.iter().for_each(|&c| bits.set(r, c, true));
+            }
+        }
+    }
+    let mut out = Bits::new(rows, cols);
+    for r in 0..rows {
+        for c in bits.ones(r + kt, kt, cols + kt) {
+            out.set(r, c - kt, true);
+        }
+    }
+    Some(out)
 }
 
 /// Multiply-adds of eliminating `t` as its solver does: along its sparse plan if it has
@@ -349,14 +370,18 @@ pub fn order_for_sparse_elimination(t: &mut EliminationTemplate, supports: &[Vec
     columns.extend_from_slice(&t.columns[t.n_excess + t.n_reducible..]);
     let mut rows_new: Vec<TemplateRow> = t.rows[..k].to_vec();
     rows_new.extend(row_order.iter().map(|&r| t.rows[r + k].clone()));
-    // The fold's `M12` patterns name complement columns, which move too.
+    // The fold's `M12` patterns name the constant block's complement columns: the pivot
+    // rows' columns, which stay, then the eliminated matrix's, which move.
     if let Some(f) = &mut t.fold {
+        let kt = f.pivot_inv.len();
         let mut new_of_old = vec![0u16; cols];
         for (new_c, &c) in col_order.iter().enumerate() {
             new_of_old[c] = new_c as u16;
         }
         for c in f.m12_cols.iter_mut() {
-            *c = new_of_old[usize::from(*c)];
+            if usize::from(*c) >= kt {
+                *c = new_of_old[usize::from(*c) - kt] + kt as u16;
+            }
         }
     }
     t.rows = rows_new;

@@ -172,12 +172,28 @@ pub(crate) fn best_template_within(
     // The best of each equation set is refined, then the smaller kept (ties: the
     // equations as given): refinement can reorder them.
     let mut finalists = Vec::new();
-    if let Some(b) = choose(&all, opts) {
-        // The equations as given may have constant blocks to fold (`fold.rs`); the
-        // comparison is of the matrices the solvers eliminate.
-        let mut b = refine(eqs, b, visible, opts, deadline);
+    // The equations as given may have rows to fold (`fold.rs`): the actions' templates
+    // are compared as the solvers eliminate them, folded (templates of one size whole can
+    // fold differently: the triangle of `u² + v² + w² + c`'s multiples needs their pivots
+    // outside the action's reducible columns).
+    let folded = |mut b: BuiltTemplate| {
         fold_constant_rows(&mut b.template, constants);
-        finalists.push(b);
+        b
+    };
+    let chosen = all
+        .iter()
+        .filter_map(|(_, r)| r.as_ref().ok())
+        .map(|b| (b.clone(), folded(b.clone())))
+        .enumerate()
+        .min_by_key(|(k, (_, f))| (preference(f, opts), *k))
+        .map(|(_, pair)| pair);
+    if let Some((plain, folded_plain)) = chosen {
+        let refined = folded(refine(eqs, plain, visible, opts, deadline));
+        finalists.push(if area(&refined) <= area(&folded_plain) {
+            refined
+        } else {
+            folded_plain
+        });
     }
     if let (Some((red, reduced)), Some(b)) = (&reduction, choose(&reduced_all, opts)) {
         let mut r = refine(reduced, b, visible, opts, deadline);

@@ -22,7 +22,7 @@ fn shipped_problems_counts_and_sizes() {
         ("grsrp10", 10, 10, 20),
         ("grsrp", 20, 70, 90),
         ("grsrp_gravity", 12, 51, 63),
-        ("grsrp_gravity6", 6, 5, 11),
+        ("grsrp_gravity6", 6, 3, 9),
     ] {
         let p = plan_file(&template(name), &opts).unwrap_or_else(|e| panic!("{name}: {e}"));
         // The size eliminated, after the fold of constant rows (`template/fold.rs`).

@@ -2,8 +2,8 @@
 // Minimal solver for the problem `grsrp_gravity6` (`templates/grsrp_gravity6.mp`).
 //
 // Unknowns: `c`, `s`, `t[3]`. Data: `x1[3]: point`, `x2[3]: point`, `v1[3]: scalar`, `v2[3]: scalar`, `w1: vec3`, `w2: vec3`, `G1: rotation`, `G2: rotation`.
-// Elimination template 5 x 11 (1 excess, 4 reducible, 6 basis columns), action `c`, at most 6 solutions.
-// It is the Schur complement of the 9 x 15 template's 4 constant rows (multiples of equations with numeric coefficients), eliminated exactly by the generator.
+// Elimination template 3 x 9 (1 excess, 2 reducible, 6 basis columns), action `s`, at most 6 solutions.
+// It is the Schur complement of the 9 x 15 template's 6 constant rows (multiples of equations with numeric coefficients), eliminated exactly by the generator.
 // Quotient basis: s^3, c*s, s^2, c, s, 1.
 // Coefficients: 515 arithmetic operations in 145 shared intermediates.
 // Eliminated unknowns `t1`, `t2`, `t3` are recovered as the unit null vector of a 3 x 3 matrix (one of the two signs).
@@ -174,23 +174,23 @@ pub const MAX_SOLUTIONS: usize = 6;
 /// The real solutions of one instance.
 pub type Solutions = mingen_runtime::SolutionSet<Solution, MAX_SOLUTIONS>;
 /// The elimination template's `[rows, cols, pivot columns, first reduced row]`.
-pub const TEMPLATE_SHAPE: [usize; 4] = [5, 11, 5, 1];
+pub const TEMPLATE_SHAPE: [usize; 4] = [3, 9, 3, 1];
 /// The inverse of the template's constant block (see
 /// `mingen_runtime::ConstantFold`), computed exactly by the generator.
 #[rustfmt::skip]
 pub static CONSTANT_FOLD: mingen_runtime::ConstantFold<'static> = mingen_runtime::ConstantFold {
-    rows: 5,
-    folded: 4,
-    cols: 11,
-    inv_start: &[0, 2, 3, 4, 5],
-    inv_cols: &[0, 2, 1, 2, 3],
-    inv_vals: &[1.0, -1.0, 1.0, 1.0, 1.0],
-    m12_start: &[0, 1, 3, 5, 7],
-    m12_cols: &[4, 1, 6, 0, 7, 3, 8],
+    rows: 3,
+    folded: 6,
+    cols: 9,
+    inv_start: &[0, 3, 4, 5, 6, 7, 8],
+    inv_cols: &[0, 2, 5, 1, 2, 3, 4, 5],
+    inv_vals: &[1.0, -1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0],
+    m12_start: &[0, 0, 2, 4, 6, 8, 10],
+    m12_cols: &[0, 4, 1, 5, 2, 6, 3, 7, 5, 8],
 };
 /// Solves `grsrp_gravity6`: all real solutions of the problem's equations for the given data.
 ///
-/// Fills a 5 x 11 elimination template, reduces it (LU with partial pivoting, back substitution of the 4 reducible rows only), builds the 6 x 6 action matrix of `c` on the basis [s^3, c*s, s^2, c, s, 1] and reads each unknown `x` off the real eigenvectors `v` as the least-squares ratio of the entries `v[x b]` and `v[b]` over the basis monomials `b` with `x b` in the basis (`v[x] / v[1]` if that is the only one).
+/// Fills a 3 x 9 elimination template, reduces it (LU with partial pivoting, back substitution of the 2 reducible rows only), builds the 6 x 6 action matrix of `s` on the basis [s^3, c*s, s^2, c, s, 1] and reads each unknown `x` off the real eigenvectors `v` as the least-squares ratio of the entries `v[x b]` and `v[b]` over the basis monomials `b` with `x b` in the basis (`v[x] / v[1]` if that is the only one).
 ///
 /// Never panics: non-finite or degenerate data gives no solutions.
 #[must_use]
@@ -411,54 +411,54 @@ pub fn solve_staged<S: mingen_runtime::Stages>(
     let mut mf = [0.0f64; 135];
     mf[0] = 1.0;
     mf[2] = 1.0;
-    mf[8] = -1.0;
+    mf[5] = -1.0;
     mf[16] = 1.0;
-    mf[20] = 1.0;
+    mf[21] = 1.0;
     mf[25] = -1.0;
     mf[32] = 1.0;
-    mf[34] = 1.0;
+    mf[37] = 1.0;
     mf[41] = -1.0;
     mf[48] = 1.0;
-    mf[52] = 1.0;
+    mf[53] = 1.0;
     mf[57] = -1.0;
-    mf[60] = c144;
-    mf[61] = c143;
-    mf[62] = c141;
-    mf[63] = c142;
-    mf[65] = c138;
-    mf[66] = c140;
-    mf[67] = c137;
-    mf[68] = c139;
-    mf[70] = c136;
-    mf[72] = c135;
-    mf[76] = c144;
-    mf[77] = c143;
-    mf[79] = c138;
-    mf[80] = c141;
-    mf[81] = c142;
-    mf[82] = c140;
-    mf[84] = c137;
-    mf[85] = c139;
-    mf[86] = c136;
-    mf[88] = c135;
-    mf[93] = c144;
-    mf[96] = c143;
-    mf[97] = c141;
-    mf[98] = c142;
-    mf[99] = c138;
-    mf[100] = c140;
-    mf[101] = c137;
-    mf[102] = c139;
-    mf[103] = c136;
-    mf[104] = c135;
-    mf[111] = 1.0;
-    mf[114] = 1.0;
-    mf[118] = -1.0;
-    mf[128] = 1.0;
-    mf[131] = 1.0;
-    mf[134] = -1.0;
-    let mut m = [0.0f64; 55];
-    let mut fold_scratch = [0.0f64; 4];
+    mf[64] = 1.0;
+    mf[69] = 1.0;
+    mf[73] = -1.0;
+    mf[80] = 1.0;
+    mf[86] = 1.0;
+    mf[89] = -1.0;
+    mf[90] = c144;
+    mf[91] = c143;
+    mf[92] = c141;
+    mf[93] = c142;
+    mf[94] = c140;
+    mf[95] = c139;
+    mf[96] = c138;
+    mf[98] = c137;
+    mf[100] = c136;
+    mf[102] = c135;
+    mf[106] = c144;
+    mf[107] = c143;
+    mf[109] = c142;
+    mf[111] = c141;
+    mf[112] = c138;
+    mf[113] = c140;
+    mf[114] = c137;
+    mf[115] = c139;
+    mf[116] = c136;
+    mf[118] = c135;
+    mf[123] = c144;
+    mf[124] = c143;
+    mf[125] = c142;
+    mf[128] = c141;
+    mf[129] = c138;
+    mf[130] = c140;
+    mf[131] = c137;
+    mf[132] = c139;
+    mf[133] = c136;
+    mf[134] = c135;
+    let mut m = [0.0f64; 27];
+    let mut fold_scratch = [0.0f64; 6];
     if !mingen_runtime::fold_constant_rows(
         &mf,
         &CONSTANT_FOLD,
@@ -470,16 +470,18 @@ pub fn solve_staged<S: mingen_runtime::Stages>(
     if !stages.filled(&m) {
         return out;
     }
-    if !mingen_runtime::lu_solve_template_fixed::<5, 11, 5, 1>(&mut m) {
+    if !mingen_runtime::lu_solve_template_fixed::<3, 9, 3, 1>(&mut m) {
         return out;
     }
     if !stages.eliminated(&m) {
         return out;
     }
     let mut a = mingen_runtime::nalgebra::SMatrix::<f64, 6, 6>::zeros();
-    a[(4, 1)] = 1.0;
-    a[(5, 3)] = 1.0;
-    for (j, s) in [(0, 16), (1, 27), (2, 38), (3, 49)] {
+    a[(2, 0)] = 1.0;
+    a[(3, 1)] = 1.0;
+    a[(4, 2)] = 1.0;
+    a[(5, 4)] = 1.0;
+    for (j, s) in [(0, 12), (1, 21)] {
         for (k, x) in m[s..s + 6].iter().enumerate() {
             a[(j, k)] = -x;
         }
@@ -533,8 +535,8 @@ pub fn solve_staged<S: mingen_runtime::Stages>(
 /// Minimal solver for the problem `grsrp_gravity6` (`templates/grsrp_gravity6.mp`).
 ///
 /// Unknowns: `c`, `s`, `t[3]`. Data: `x1[3]: point`, `x2[3]: point`, `v1[3]: scalar`, `v2[3]: scalar`, `w1: vec3`, `w2: vec3`, `G1: rotation`, `G2: rotation`.
-/// Elimination template 5 x 11 (1 excess, 4 reducible, 6 basis columns), action `c`, at most 6 solutions.
-/// It is the Schur complement of the 9 x 15 template's 4 constant rows (multiples of equations with numeric coefficients), eliminated exactly by the generator.
+/// Elimination template 3 x 9 (1 excess, 2 reducible, 6 basis columns), action `s`, at most 6 solutions.
+/// It is the Schur complement of the 9 x 15 template's 6 constant rows (multiples of equations with numeric coefficients), eliminated exactly by the generator.
 /// Quotient basis: s^3, c*s, s^2, c, s, 1.
 /// Coefficients: 515 arithmetic operations in 145 shared intermediates.
 /// Eliminated unknowns `t1`, `t2`, `t3` are recovered as the unit null vector of a 3 x 3 matrix (one of the two signs).

@@ -84,6 +84,10 @@ pub struct AuditInstance {
     /// e.g. the geometry a simulator planted: the audit then reports how accurately the
     /// closest returned solution recovers it ([`PlantedStats`]).
     pub planted: Option<Vec<f64>>,
+    /// The unknowns declared `positive` (indices into the original unknowns): solutions
+    /// where one is not positive are not returned (residuals are still measured on every
+    /// real solution; [`AuditReport::mean_kept_solutions`] counts the others).
+    pub positive: Vec<usize>,
 }
 
 /// Result of an audit (serialised by [`AuditReport::to_json`]).
@@ -116,6 +120,9 @@ pub struct AuditReport {
     pub no_real_solutions: usize,
     /// Mean number of real solutions per solved instance.
     pub mean_real_solutions: f64,
+    /// With unknowns declared `positive`: the mean number of real solutions where they
+    /// are positive, the ones an emitted solver returns (`None` without a declaration).
+    pub mean_kept_solutions: Option<f64>,
     /// Recovery of the planted solutions, if the instances came with them.
     pub planted: Option<PlantedStats>,
     /// The same figures with the other polishing: before polishing if the solver polishes
@@ -235,8 +242,10 @@ struct Outcome {
     log10_residual: Option<f64>,
     /// The same with the other polishing ([`AuditReport::other_polishing`]).
     log10_other: Option<f64>,
-    /// Real solutions returned.
+    /// Real solutions found.
     real: usize,
+    /// Of those, the ones whose `positive` unknowns are positive (returned).
+    kept: usize,
     /// Real eigenpairs that gave no solution (rejected read-out or no eliminated unknowns).
     missed: usize,
     /// The planted solution's recovery error, if the instance has one.
@@ -293,7 +302,13 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
         real += 1;
         let r = residual(&full);
         worst = Some(worst.map_or(r, |w| w.max(r)));
-        returned.push(full);
+        if inst
+            .positive
+            .iter()
+            .all(|&i| full.get(i).is_some_and(|&v| v > 0.0))
+        {
+            returned.push(full);
+        }
     }
     // Only a homogeneous null vector is defined up to scale (compared up to sign).
     let projective = inst
@@ -305,6 +320,7 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
         log10_residual: worst.map(clamped_log10),
         log10_other: worst_other.map(clamped_log10),
         real,
+        kept: returned.len(),
         missed: solved.eigenpairs - real,
         planted_error: inst
             .planted
@@ -339,7 +355,8 @@ pub fn audit(
     let mut other_failures = 0;
     let mut other_steps = COMPARISON_NEWTON_STEPS;
     let (mut failures, mut solve_errors, mut missed, mut no_real) = (0, 0, 0, 0);
-    let (mut real_total, mut solved) = (0usize, 0usize);
+    let (mut real_total, mut kept_total, mut solved) = (0usize, 0usize, 0usize);
+    let mut filtered = false;
     let mut planted_logs = Vec::new();
     let started = std::time::Instant::now();
     let mut run = 0;
@@ -356,6 +373,7 @@ pub fn audit(
             other_steps = 0;
         }
         let has_planted = inst.planted.is_some();
+        filtered |= !inst.positive.is_empty();
         match run_instance(template, &inst) {
             None => {
                 solve_errors += 1;
@@ -373,6 +391,7 @@ pub fn audit(
                 }
                 solved += 1;
                 real_total += o.real;
+                kept_total += o.kept;
                 let miss = o.missed > 0;
                 if miss {
                     missed += 1;
@@ -420,6 +439,13 @@ pub fn audit(
         } else {
             0.0
         },
+        mean_kept_solutions: filtered.then(|| {
+            if solved > 0 {
+                kept_total as f64 / solved as f64
+            } else {
+                0.0
+            }
+        }),
         planted,
         other_polishing: (run > 0).then(|| PolishingStats {
             newton_steps: other_steps,
@@ -470,7 +496,7 @@ impl AuditReport {
     /// `p99_log10_residual`, `failures`, `histogram` (a list of
     /// `{"lower_edge": e, "count": n}` for the bins `[e, e + 1)` of log10 residual), plus
     /// `solutions_expected`, `solve_errors`, `missed_solutions`, `no_real_solutions`,
-    /// `mean_real_solutions`, `planted` (`null`, or `{"instances", "recovered",
+    /// `mean_real_solutions`, `mean_kept_solutions` (`null` without `positive`), `planted` (`null`, or `{"instances", "recovered",
     /// "median_log10_error", "p99_log10_error"}`, see [`PlantedStats`]) and
     /// `other_polishing` (`null`, or `{"newton_steps", "median_log10_residual",
     /// "p99_log10_residual", "failures"}`, see [`PolishingStats`]).
@@ -490,6 +516,7 @@ impl AuditReport {
             "missed_solutions": self.missed_solutions,
             "no_real_solutions": self.no_real_solutions,
             "mean_real_solutions": self.mean_real_solutions,
+            "mean_kept_solutions": self.mean_kept_solutions,
             "planted": self.planted.as_ref().map(|p| serde_json::json!({
                 "instances": p.instances,
                 "recovered": p.recovered,
@@ -524,6 +551,12 @@ impl fmt::Display for AuditReport {
         writeln!(f, "instances:              {}", self.instances)?;
         writeln!(f, "solutions expected:     {}", self.solutions_expected)?;
         writeln!(f, "mean real solutions:    {:.2}", self.mean_real_solutions)?;
+        if let Some(k) = self.mean_kept_solutions {
+            writeln!(
+                f,
+                "  of them positive:     {k:.2} (declared `positive`; returned)"
+            )?;
+        }
         writeln!(f, "without real solution:  {}", self.no_real_solutions)?;
         writeln!(
             f,
@@ -647,6 +680,7 @@ fn plan_instance(plan: &SolverPlan, data: &[f64]) -> AuditInstance {
         }),
         newton_steps: plan.problem.layout.options.newton_steps() as usize,
         planted: None,
+        positive: plan.problem.layout.positive.clone(),
     }
 }
 

@@ -242,6 +242,10 @@ pub struct ProblemLayout {
     pub data: Vec<DataSymbol>,
     /// Flat indices of the unknown scalars named by `eliminate` (empty if none).
     pub eliminate: Vec<usize>,
+    /// Flat indices of the unknown scalars named by `positive`: solutions where one of
+    /// them is not positive are dropped by the emitted solvers (and counted apart by the
+    /// audit). Empty if none.
+    pub positive: Vec<usize>,
     /// Options of the template search given in the file.
     pub options: ProblemOptions,
 }

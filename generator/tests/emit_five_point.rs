@@ -96,6 +96,7 @@ fn five_point_layout() -> ProblemLayout {
             })
             .collect(),
         eliminate: vec![],
+        positive: vec![],
         options: Default::default(),
     }
 }
@@ -435,6 +436,7 @@ fn elimination_emission_parses() {
             },
         ],
         eliminate: vec![1, 2, 3],
+        positive: vec![],
         options: Default::default(),
     };
     let s2 = Monomial(vec![2]);

@@ -156,6 +156,7 @@ fn instance(rng: &mut ChaCha8Rng) -> AuditInstance {
         eliminated: None,
         newton_steps: 0,
         planted: Some(truth.to_vec()),
+        positive: vec![],
     }
 }
 
@@ -322,6 +323,7 @@ fn audit_with_eliminated_unknowns() {
         }),
         newton_steps: 0,
         planted: None,
+        positive: vec![],
     });
     assert!(report.planted.is_none());
     assert_eq!(report.failures, 0, "{report}");

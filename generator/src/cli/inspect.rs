@@ -62,6 +62,15 @@ fn problem_summary(p: &Problem, equations: &[Poly<Poly<Q>>]) -> Map<String, Valu
             .filter_map(|&i| names.get(i).cloned())
             .collect::<Vec<_>>()),
     );
+    m.insert(
+        "positive".into(),
+        json!(p
+            .layout
+            .positive
+            .iter()
+            .filter_map(|&i| names.get(i).cloned())
+            .collect::<Vec<_>>()),
+    );
     m
 }
 
@@ -107,6 +116,19 @@ pub(super) fn inspect(
             " (automatic: they appear only linearly, with data coefficients; `option auto_eliminate = no` keeps them)"
         };
         outln!(out, "eliminate: {}{how}", el.join(" "));
+    }
+    if !p.layout.positive.is_empty() {
+        let positive: Vec<&str> = p
+            .layout
+            .positive
+            .iter()
+            .filter_map(|&i| names.get(i).map(String::as_str))
+            .collect();
+        outln!(
+            out,
+            "positive: {} (solutions where one is not positive are dropped)",
+            positive.join(" ")
+        );
     }
     outln!(out, "data ({} slots):", p.layout.data_slot_count());
     for d in &p.layout.data {

@@ -463,6 +463,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let elim_block = eliminated_unknowns_tokens(plan, &coefficients, fill.style);
     let (polish_consts, polish_block) = polish_tokens(plan, &coefficients, fill.style);
     let field_inits = solution_fields(plan)?;
+    let filter = positive_filter(plan);
     let elimination = Elimination::new(t);
     let eig = eigen_function(nb);
     let docs: Vec<TokenStream> = solve_docs(plan, elimination.words)
@@ -543,6 +544,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
                 let [#(#unknown_idents),*] = u;
                 #elim_block
                 #polish_block
+                #filter
                 if !out.push(Solution { #(#field_inits)* }) {
                     break;
                 }
@@ -1113,6 +1115,31 @@ fn polish_tokens(
     }
 }
 
+/// The value of unknown scalar `i` (flat index) in the solution loop: polished, or read
+/// out (or recovered, for an eliminated unknown).
+fn solution_value(plan: &Plan, i: usize) -> TokenStream {
+    if plan.spec.polish.is_some() {
+        let i = lit(i);
+        quote!(x[#i])
+    } else {
+        source_value(plan, i)
+    }
+}
+
+/// The checks that drop a solution whose unknowns declared `positive` are not positive
+/// (`NaN` included), in the solution loop before the push.
+fn positive_filter(plan: &Plan) -> TokenStream {
+    let checks = plan.spec.layout.positive.iter().map(|&i| {
+        let v = solution_value(plan, i);
+        quote! {
+            if !(#v > 0.0) {
+                continue;
+            }
+        }
+    });
+    quote!(#(#checks)*)
+}
+
 /// The fields of the `Solution` pushed for one solution: the read-out (or polished) values
 /// of the declared unknowns.
 fn solution_fields(plan: &Plan) -> Result<Vec<TokenStream>, EmitError> {
@@ -1123,15 +1150,7 @@ fn solution_fields(plan: &Plan) -> Result<Vec<TokenStream>, EmitError> {
         .declared_unknowns()
         .zip(solution_field_idents(layout)?)
     {
-        let polished = spec.polish.is_some();
-        let val = |i: usize| {
-            if polished {
-                let i = lit(i);
-                quote!(x[#i])
-            } else {
-                source_value(plan, i)
-            }
-        };
+        let val = |i: usize| solution_value(plan, i);
         match u.len {
             None => {
                 let v = val(u.first_var);
@@ -1191,6 +1210,21 @@ fn solve_docs(plan: &Plan, lu_words: &str) -> Vec<String> {
              original equations (`option newton`), each kept only if it lowers their \
              squared residual.",
             p.steps
+        ));
+        docs.push(String::new());
+    }
+    if !spec.layout.positive.is_empty() {
+        let names = spec.layout.unknown_names();
+        let positive: Vec<String> = spec
+            .layout
+            .positive
+            .iter()
+            .filter_map(|&i| names.get(i))
+            .map(|n| format!("`{n}`"))
+            .collect();
+        docs.push(format!(
+            "Solutions where {} is not positive are dropped (declared `positive`).",
+            positive.join(", ")
         ));
         docs.push(String::new());
     }

@@ -41,6 +41,8 @@ pub enum Stmt {
     Data(Vec<Decl>),
     /// `eliminate t`
     Eliminate(Vec<Name>),
+    /// `positive f, d`: solutions where a named unknown is not positive are dropped.
+    Positive(Vec<Name>),
     /// `nonzero EXPR`: only solutions where the scalar `EXPR` does not vanish count.
     Nonzero {
         /// Position of the keyword.

@@ -97,6 +97,7 @@ pub fn check(stmts: &[(Pos, Stmt)]) -> Result<Checked, LangError> {
             unknowns: Vec::new(),
             data: Vec::new(),
             eliminate: Vec::new(),
+            positive: Vec::new(),
             options: Default::default(),
         },
         symbols: HashMap::new(),
@@ -202,7 +203,26 @@ impl Checker {
                     return Err(only_top("eliminate"));
                 }
                 for n in names {
-                    self.eliminate(n)?;
+                    let vars = self.unknown_vars(n, "eliminate")?;
+                    if vars.iter().any(|v| self.layout.eliminate.contains(v)) {
+                        return Err(self.err(n.pos, format!("'{}' is already eliminated", n.name)));
+                    }
+                    self.layout.eliminate.extend(vars);
+                }
+                Ok(())
+            }
+            Stmt::Positive(names) => {
+                if !top {
+                    return Err(only_top("positive"));
+                }
+                for n in names {
+                    let vars = self.unknown_vars(n, "positive")?;
+                    if vars.iter().any(|v| self.layout.positive.contains(v)) {
+                        return Err(
+                            self.err(n.pos, format!("'{}' is already declared positive", n.name))
+                        );
+                    }
+                    self.layout.positive.extend(vars);
                 }
                 Ok(())
             }
@@ -494,14 +514,15 @@ impl Checker {
         Ok(())
     }
 
-    fn eliminate(&mut self, n: &Name) -> Result<(), LangError> {
+    /// The variables of the unknown `n` names after `keyword` (`eliminate`, `positive`).
+    fn unknown_vars(&self, n: &Name, keyword: &str) -> Result<Vec<usize>, LangError> {
         let u = match self.symbols.get(&n.name) {
             Some(Sym::Unknown(i)) => self.layout.unknowns.get(*i).cloned(),
             Some(Sym::Data(_)) => {
                 return Err(self.err(
                     n.pos,
                     format!(
-                        "'{}' is data, not an unknown: 'eliminate' names unknowns",
+                        "'{}' is data, not an unknown: '{keyword}' names unknowns",
                         n.name
                     ),
                 ))
@@ -511,16 +532,10 @@ impl Checker {
         let Some(u) = u else {
             return Err(self.err(
                 n.pos,
-                format!("'eliminate' names an undeclared unknown '{}'", n.name),
+                format!("'{keyword}' names an undeclared unknown '{}'", n.name),
             ));
         };
-        for v in u.first_var..u.first_var + u.len.unwrap_or(1) {
-            if self.layout.eliminate.contains(&v) {
-                return Err(self.err(n.pos, format!("'{}' is already eliminated", n.name)));
-            }
-            self.layout.eliminate.push(v);
-        }
-        Ok(())
+        Ok((u.first_var..u.first_var + u.len.unwrap_or(1)).collect())
     }
 
     fn equation(&mut self, lhs: &Expr, eq: Pos, rhs: &Expr) -> Result<(), LangError> {

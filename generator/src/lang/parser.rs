@@ -16,11 +16,12 @@ pub const MAX_DEPTH: usize = 64;
 pub const MAX_POWER: u32 = 32;
 
 /// Words that cannot name a symbol.
-pub const KEYWORDS: [&str; 9] = [
+pub const KEYWORDS: [&str; 10] = [
     "problem",
     "unknown",
     "data",
     "eliminate",
+    "positive",
     "nonzero",
     "option",
     "let",
@@ -194,6 +195,17 @@ impl<'a> Parser<'a> {
         }
     }
 
+    /// `NAME, NAME, ...` after `keyword`.
+    fn unknown_names(&mut self, keyword: &str) -> Result<Vec<Name>, LangError> {
+        let mut names = vec![self.ident(&format!("an unknown's name after '{keyword}'"))?];
+        while self.peek().tok == Tok::Comma {
+            self.bump();
+            self.skip_newlines();
+            names.push(self.ident("an unknown's name after ','")?);
+        }
+        Ok(names)
+    }
+
     fn statement(&mut self, block_depth: usize) -> Result<Stmt, LangError> {
         let t = self.peek();
         let word = match &t.tok {
@@ -216,13 +228,11 @@ impl<'a> Parser<'a> {
             }
             "eliminate" => {
                 self.bump();
-                let mut names = vec![self.ident("an unknown's name after 'eliminate'")?];
-                while self.peek().tok == Tok::Comma {
-                    self.bump();
-                    self.skip_newlines();
-                    names.push(self.ident("an unknown's name after ','")?);
-                }
-                Ok(Stmt::Eliminate(names))
+                Ok(Stmt::Eliminate(self.unknown_names("eliminate")?))
+            }
+            "positive" => {
+                self.bump();
+                Ok(Stmt::Positive(self.unknown_names("positive")?))
             }
             "nonzero" => {
                 self.bump();

@@ -31,6 +31,24 @@ pub struct BuiltTemplate {
     pub basis_choice: String,
     /// The weights grading its candidate pool (empty: total degree).
     pub pool_weights: Vec<u32>,
+    /// How many rows its fold would take ([`super::fold::foldable_rows`]), where the
+    /// search knows the equations' constants (0 otherwise): the search compares templates
+    /// by their area after the fold ([`BuiltTemplate::folded_area`]).
+    pub foldable_rows: usize,
+}
+
+impl BuiltTemplate {
+    /// The template's elimination area after its fold: the folded size when the template
+    /// has been folded, else as [`BuiltTemplate::foldable_rows`] predicts.
+    pub fn folded_area(&self) -> usize {
+        let t = &self.template;
+        if t.fold.is_some() || self.foldable_rows == 0 {
+            return t.elimination_area();
+        }
+        let (r, c) = t.eliminated_size();
+        let k = self.foldable_rows.min(r).min(c);
+        (r - k) * (c - k) + t.reduction_size().map_or(0, |(n, m)| n * m)
+    }
 }
 
 /// The candidate degrees [`build_template`] tries, and its limits.
@@ -199,6 +217,7 @@ pub(crate) fn build_template<const P: u32>(
         distinct_eigenvalues: distinct,
         basis_choice,
         pool_weights: weights.to_vec(),
+        foldable_rows: 0,
     })
 }
 

@@ -31,7 +31,7 @@
 //! rows folded win.
 
 use super::EliminationTemplate;
-use crate::algebra::{Monomial, Ring, Q};
+use crate::algebra::{Field, Fp, Monomial, Ring, P1, Q};
 use num_traits::Signed;
 use std::collections::{BTreeMap, HashMap};
 
@@ -106,68 +106,60 @@ const MAX_FOLDED: usize = 512;
 /// The most pivot rows folded after the constant block (the plan's 16-bit indices).
 const MAX_PIVOT_ROWS: usize = 4096;
 
+/// A row's entries by template column: the value where it is a number, `None` where it
+/// depends on the data.
+type Entries<F> = BTreeMap<usize, Option<F>>;
+
 /// The constant block chosen greedily, rows taken in `order` (see the module
 /// documentation): the rows with their entries by template column, the columns, and the
 /// block's exact inverse (`inv[p][f]`: rows by chosen column, columns by chosen row).
-fn choose_block(
+/// `better(s, best)`: whether the Schur scalar `s` makes a better pivot than `best`.
+fn choose_block<F: Field>(
     t: &EliminationTemplate,
-    equations: &[EquationConstants],
+    entries: &[Option<Entries<F>>],
     order: &[usize],
-) -> Block {
+    better: fn(&F, &F) -> bool,
+) -> Block<F> {
     let independent_excess = t.n_excess - t.n_dependent;
-    let column_of: HashMap<&Monomial, usize> =
-        t.columns.iter().enumerate().map(|(i, m)| (m, i)).collect();
-    let zero = <Q as Ring>::zero();
-    // Chosen rows (their entries by column), chosen columns, the block's exact inverse
-    // (`inv[p][f]`: rows by chosen column, columns by chosen row).
-    let mut rows: Vec<(usize, BTreeMap<usize, Option<Q>>)> = Vec::new();
+    let zero = F::zero();
+    let mut rows: Vec<(usize, Entries<F>)> = Vec::new();
     let mut cols: Vec<usize> = Vec::new();
-    let mut inv: Vec<Vec<Q>> = Vec::new();
+    let mut inv: Vec<Vec<F>> = Vec::new();
     for &i in order {
-        let row = &t.rows[i];
         if rows.len() >= MAX_FOLDED {
             break;
         }
-        let Some(terms) = equations.get(row.equation) else {
+        // A row with a term outside the template's columns is never folded.
+        let Some(Some(entries)) = entries.get(i) else {
             continue;
         };
-        let mut entries: BTreeMap<usize, Option<Q>> = BTreeMap::new();
-        let mut outside = false;
-        for (m, q) in terms {
-            match column_of.get(&row.multiplier.mul(m)) {
-                Some(&c) => {
-                    entries.insert(c, q.clone());
-                }
-                None => outside = true,
-            }
-        }
         // The row's entries in the chosen columns must be numbers.
-        let a: Option<Vec<Q>> = cols
+        let a: Option<Vec<F>> = cols
             .iter()
             .map(|c| match entries.get(c) {
                 None => Some(zero.clone()),
                 Some(q) => q.clone(),
             })
             .collect();
-        let (false, Some(a)) = (outside, a) else {
+        let Some(a) = a else {
             continue;
         };
         // a M11⁻¹ (1 x k), shared by every candidate column.
-        let a_inv: Vec<Q> = (0..rows.len())
+        let a_inv: Vec<F> = (0..rows.len())
             .map(|f| {
                 a.iter()
                     .zip(&inv)
-                    .fold(zero.clone(), |s, (x, r)| &s + &(x * &r[f]))
+                    .fold(zero.clone(), |s, (x, r)| s.add(&x.mul(&r[f])))
             })
             .collect();
-        let mut best: Option<(usize, Q, Vec<Q>, Vec<Q>)> = None;
-        for (&c, d) in &entries {
+        let mut best: Option<(usize, F, Vec<F>)> = None;
+        for (&c, d) in entries {
             let Some(d) = d else { continue };
-            if c >= independent_excess || cols.contains(&c) || Ring::is_zero(d) {
+            if c >= independent_excess || cols.contains(&c) || d.is_zero() {
                 continue;
             }
             // The chosen rows' entries in column c must be numbers too.
-            let b: Option<Vec<Q>> = rows
+            let b: Option<Vec<F>> = rows
                 .iter()
                 .map(|(_, e)| match e.get(&c) {
                     None => Some(zero.clone()),
@@ -178,68 +170,62 @@ fn choose_block(
             let s = a_inv
                 .iter()
                 .zip(&b)
-                .fold(d.clone(), |s, (x, y)| &s - &(x * y));
-            if Ring::is_zero(&s) {
+                .fold(d.clone(), |s, (x, y)| s.sub(&x.mul(y)));
+            if s.is_zero() {
                 continue;
             }
-            if best
-                .as_ref()
-                .map_or(true, |(_, bs, _, _)| s.abs() > bs.abs())
-            {
-                best = Some((c, s, b, a.clone()));
+            if best.as_ref().map_or(true, |(_, bs, _)| better(&s, bs)) {
+                best = Some((c, s, b));
             }
         }
-        let Some((c, s, b, _)) = best else {
+        let Some((c, s, b)) = best else {
             continue;
         };
         // Bordered inverse: [[A⁻¹ + A⁻¹b s⁻¹ a A⁻¹, -A⁻¹b s⁻¹], [-s⁻¹ a A⁻¹, s⁻¹]].
-        let inv_b: Vec<Q> = inv
+        let inv_b: Vec<F> = inv
             .iter()
             .map(|r| {
                 r.iter()
                     .zip(&b)
-                    .fold(zero.clone(), |s, (x, y)| &s + &(x * y))
+                    .fold(zero.clone(), |s, (x, y)| s.add(&x.mul(y)))
             })
             .collect();
-        let s_inv = <Q as Ring>::one() / &s;
+        let Some(s_inv) = s.inv() else { continue };
         for (p, r) in inv.iter_mut().enumerate() {
-            let u = &inv_b[p] * &s_inv;
+            let u = inv_b[p].mul(&s_inv);
             for (f, x) in r.iter_mut().enumerate() {
-                *x = &*x + &(&u * &a_inv[f]);
+                *x = x.add(&u.mul(&a_inv[f]));
             }
-            r.push(-u);
+            r.push(u.neg());
         }
-        let mut last: Vec<Q> = a_inv.iter().map(|x| -(x * &s_inv)).collect();
+        let mut last: Vec<F> = a_inv.iter().map(|x| x.mul(&s_inv).neg()).collect();
         last.push(s_inv);
         inv.push(last);
-        rows.push((i, entries));
+        rows.push((i, entries.clone()));
         cols.push(c);
     }
     (rows, cols, inv)
 }
 
 /// See [`choose_block`].
-type Block = (
-    Vec<(usize, BTreeMap<usize, Option<Q>>)>,
-    Vec<usize>,
-    Vec<Vec<Q>>,
-);
+type Block<F> = (Vec<(usize, Entries<F>)>, Vec<usize>, Vec<Vec<F>>);
 
 /// A row after the constant block whose pivot is a constant in a column no earlier folded
 /// row touches: the folded block stays lower triangular below the constant one.
 #[derive(Clone, Debug)]
-struct PivotRow {
+struct PivotRow<F> {
     row: usize,
     col: usize,
-    pivot: Q,
+    pivot: F,
 }
 
 /// Each template row's entries by template column (`None`: the row has a term outside the
-/// template's columns, which does not happen for a built template).
-fn row_entries(
+/// template's columns, which does not happen for a built template), in the field `F`
+/// (a number without an image in `F` counts as data).
+fn row_entries<F: Field>(
     t: &EliminationTemplate,
     equations: &[EquationConstants],
-) -> Vec<Option<BTreeMap<usize, Option<Q>>>> {
+) -> Vec<Option<Entries<F>>> {
     let column_of: HashMap<&Monomial, usize> =
         t.columns.iter().enumerate().map(|(i, m)| (m, i)).collect();
     t.rows
@@ -248,7 +234,10 @@ fn row_entries(
             equations
                 .get(row.equation)?
                 .iter()
-                .map(|(m, q)| Some((*column_of.get(&row.multiplier.mul(m))?, q.clone())))
+                .map(|(m, q)| {
+                    let c = *column_of.get(&row.multiplier.mul(m))?;
+                    Some((c, q.as_ref().and_then(F::from_rational)))
+                })
                 .collect()
         })
         .collect()
@@ -294,13 +283,12 @@ fn column_rankings(t: &EliminationTemplate) -> Vec<Vec<usize>> {
 /// their leading column (the earliest-ranked one they touch), each taking the
 /// earliest-ranked independent excess column where its entry is a non-zero constant and
 /// no row folded so far (the block's included) has an entry.
-fn choose_pivot_rows(
+fn choose_pivot_rows<F: Field>(
     t: &EliminationTemplate,
-    entries: &[Option<BTreeMap<usize, Option<Q>>>],
-    block: &Block,
+    entries: &[Option<Entries<F>>],
+    block: &Block<F>,
     rank: &[usize],
-    limit: usize,
-) -> Vec<PivotRow> {
+) -> Vec<PivotRow<F>> {
     let independent_excess = t.n_excess - t.n_dependent;
     let mut touched = vec![false; t.columns.len()];
     let mut used = vec![false; t.rows.len()];
@@ -318,16 +306,14 @@ fn choose_pivot_rows(
     order.sort_by_key(|&(lead, i)| (std::cmp::Reverse(lead), i));
     let mut pivots = Vec::new();
     for (_, i) in order {
-        if pivots.len() >= limit {
+        if pivots.len() >= MAX_PIVOT_ROWS {
             break;
         }
         let Some(e) = &entries[i] else { continue };
         let best = e
             .iter()
             .filter(|(&c, q)| {
-                c < independent_excess
-                    && !touched[c]
-                    && q.as_ref().is_some_and(|q| !Ring::is_zero(q))
+                c < independent_excess && !touched[c] && q.as_ref().is_some_and(|q| !q.is_zero())
             })
             .min_by_key(|(&c, _)| rank[c]);
         let Some((&col, Some(pivot))) = best else {
@@ -343,16 +329,15 @@ fn choose_pivot_rows(
     pivots
 }
 
-/// Folds what `t` allows (see the module documentation): `equations[e]` are the terms of
-/// template equation `e`. The template's rows and independent excess columns are reordered
-/// (folded rows and their columns first: the constant block, then the pivot rows) and
-/// `t.fold` set; `t` is left as it is when nothing folds, or when its rows are multiples
-/// of equations row-reduced on the data.
-pub fn fold_constant_rows(t: &mut EliminationTemplate, equations: &[EquationConstants]) {
-    t.fold = None;
-    if t.reduction.is_some() || equations.is_empty() {
-        return;
-    }
+/// The fold chosen for `t` (see the module documentation) in the field `F`: the constant
+/// block (the largest of four row orders) followed by pivot rows, or pivot rows alone when
+/// the block's rows would block more pivots than they fold; the most rows folded win, the
+/// block first on ties. `better` as for [`choose_block`].
+fn choose_fold<F: Field>(
+    t: &EliminationTemplate,
+    entries: &[Option<Entries<F>>],
+    better: fn(&F, &F) -> bool,
+) -> (Block<F>, Vec<PivotRow<F>>) {
     // Row orders tried: the template's, its reverse, and by multiplier degree (highest,
     // then lowest first); the largest block wins, the earlier order on ties.
     let n = t.rows.len();
@@ -374,24 +359,17 @@ pub fn fold_constant_rows(t: &mut EliminationTemplate, equations: &[EquationCons
         by_degree(true),
         by_degree(false),
     ];
-    let Some(block) = orders
+    let block = orders
         .iter()
-        .map(|o| choose_block(t, equations, o))
+        .map(|o| choose_block(t, entries, o, better))
         .reduce(|best, b| if b.0.len() > best.0.len() { b } else { best })
-    else {
-        return;
-    };
-    // Pivot rows after the block, or instead of it when the block's rows would block
-    // more pivots than they fold; the most rows folded win, the block first on ties.
-    let entries = row_entries(t, equations);
+        .unwrap_or_default();
     let rankings = column_rankings(t);
-    let limit = MAX_PIVOT_ROWS;
-    let empty: Block = (Vec::new(), Vec::new(), Vec::new());
-    let mut best: Option<(Block, Vec<PivotRow>)> = None;
-    for b in [block, empty] {
+    let mut best: Option<(Block<F>, Vec<PivotRow<F>>)> = None;
+    for b in [block, Default::default()] {
         let pivots = rankings
             .iter()
-            .map(|r| choose_pivot_rows(t, &entries, &b, r, limit))
+            .map(|r| choose_pivot_rows(t, entries, &b, r))
             .reduce(|best, p| if p.len() > best.len() { p } else { best })
             .unwrap_or_default();
         let total = b.0.len() + pivots.len();
@@ -402,9 +380,32 @@ pub fn fold_constant_rows(t: &mut EliminationTemplate, equations: &[EquationCons
             best = Some((b, pivots));
         }
     }
-    let Some(((rows, cols, inv), pivots)) = best else {
+    best.unwrap_or_default()
+}
+
+/// How many rows [`fold_constant_rows`] would fold from `t`, counted in Z_p (no exact
+/// inverse: cheap enough for every template of a search).
+pub fn foldable_rows(t: &EliminationTemplate, equations: &[EquationConstants]) -> usize {
+    if t.reduction.is_some() || equations.is_empty() {
+        return 0;
+    }
+    let entries = row_entries::<Fp<P1>>(t, equations);
+    let (block, pivots) = choose_fold(t, &entries, |_, _| false);
+    block.0.len() + pivots.len()
+}
+
+/// Folds what `t` allows (see the module documentation): `equations[e]` are the terms of
+/// template equation `e`. The template's rows and independent excess columns are reordered
+/// (folded rows and their columns first: the constant block, then the pivot rows) and
+/// `t.fold` set; `t` is left as it is when nothing folds, or when its rows are multiples
+/// of equations row-reduced on the data.
+pub fn fold_constant_rows(t: &mut EliminationTemplate, equations: &[EquationConstants]) {
+    t.fold = None;
+    if t.reduction.is_some() || equations.is_empty() {
         return;
-    };
+    }
+    let entries = row_entries::<Q>(t, equations);
+    let ((rows, cols, inv), pivots) = choose_fold(t, &entries, |s, best| s.abs() > best.abs());
     let k = rows.len();
     if k + pivots.len() == 0 {
         return;

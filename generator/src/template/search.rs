@@ -11,7 +11,7 @@
 
 use super::build::{build_template, BuiltTemplate, DegreeSearch};
 use super::candidates::start_degree;
-use super::fold::{fold_constant_rows, EquationConstants};
+use super::fold::{fold_constant_rows, foldable_rows, EquationConstants};
 use super::linalg::is_squarefree;
 use super::select::{basis_orders, BasisOrder};
 use super::validate::nf_action_charpoly;
@@ -105,13 +105,21 @@ pub(crate) fn best_template_within(
     };
     // Every basis either sample found: the narrow sample's climbs skip them all.
     let both_samples: Vec<AlternativeBasis> = bases.iter().chain(&narrow).cloned().collect();
-    let search_all = |eqs: &[Poly<Fp<P1>>]| {
-        let mut all = search_actions(eqs, basis, gb, opts, deadline, &first);
+    let search_all = |eqs: &[Poly<Fp<P1>>], constants: Constants<'_>| {
+        let mut all = search_actions(eqs, constants, basis, gb, opts, deadline, &first);
         let has_distinct = all
             .iter()
             .any(|(_, r)| r.as_ref().is_ok_and(|b| b.distinct_eigenvalues));
         if opts.actions == ActionChoice::Auto && visible > 1 && !has_distinct {
-            all.extend(search_actions(eqs, basis, gb, opts, deadline, &random()));
+            all.extend(search_actions(
+                eqs,
+                constants,
+                basis,
+                gb,
+                opts,
+                deadline,
+                &random(),
+            ));
         }
         let mut work = 0u64;
         // An action whose check runs out of budget counts as not distinct: the search
@@ -122,6 +130,7 @@ pub(crate) fn best_template_within(
         };
         let starts = try_alternative_bases(
             eqs,
+            constants,
             &bases,
             visible,
             opts,
@@ -131,12 +140,13 @@ pub(crate) fn best_template_within(
             &mut all,
         );
         climb_weights(
-            eqs, basis, &bases, starts, visible, opts, deadline, &mut work, &mut all,
+            eqs, constants, basis, &bases, starts, visible, opts, deadline, &mut work, &mut all,
         );
         // Then the narrow sample, on work of its own, and climbs from its best.
         let mut narrow_work = 0u64;
         let starts = try_alternative_bases(
             eqs,
+            constants,
             &narrow,
             visible,
             opts,
@@ -147,6 +157,7 @@ pub(crate) fn best_template_within(
         );
         climb_weights(
             eqs,
+            constants,
             basis,
             &both_samples,
             starts,
@@ -158,10 +169,10 @@ pub(crate) fn best_template_within(
         );
         all
     };
-    let mut all = search_all(eqs);
+    let mut all = search_all(eqs, Some(constants));
     let mut reduced_all: PerAction = Vec::new();
     if let Some((red, reduced)) = &reduction {
-        reduced_all = search_all(reduced);
+        reduced_all = search_all(reduced, None);
         for (_, r) in &mut reduced_all {
             if let Ok(b) = r {
                 b.template.reduction = Some(red.clone());
@@ -172,31 +183,15 @@ pub(crate) fn best_template_within(
     // The best of each equation set is refined, then the smaller kept (ties: the
     // equations as given): refinement can reorder them.
     let mut finalists = Vec::new();
-    // The equations as given may have rows to fold (`fold.rs`): the actions' templates
-    // are compared as the solvers eliminate them, folded (templates of one size whole can
-    // fold differently: the triangle of `u² + v² + w² + c`'s multiples needs their pivots
-    // outside the action's reducible columns).
-    let folded = |mut b: BuiltTemplate| {
+    if let Some(b) = choose(&all, opts) {
+        // The equations as given may have rows to fold (`fold.rs`): every template was
+        // compared by its area after the fold, counted in Z_p; the chosen one is folded.
+        let mut b = refine(eqs, Some(constants), b, visible, opts, deadline);
         fold_constant_rows(&mut b.template, constants);
-        b
-    };
-    let chosen = all
-        .iter()
-        .filter_map(|(_, r)| r.as_ref().ok())
-        .map(|b| (b.clone(), folded(b.clone())))
-        .enumerate()
-        .min_by_key(|(k, (_, f))| (preference(f, opts), *k))
-        .map(|(_, pair)| pair);
-    if let Some((plain, folded_plain)) = chosen {
-        let refined = folded(refine(eqs, plain, visible, opts, deadline));
-        finalists.push(if area(&refined) <= area(&folded_plain) {
-            refined
-        } else {
-            folded_plain
-        });
+        finalists.push(b);
     }
     if let (Some((red, reduced)), Some(b)) = (&reduction, choose(&reduced_all, opts)) {
-        let mut r = refine(reduced, b, visible, opts, deadline);
+        let mut r = refine(reduced, None, b, visible, opts, deadline);
         r.template.reduction = Some(red.clone());
         finalists.push(r);
     }
@@ -253,8 +248,10 @@ fn merge_per_action(all: &mut PerAction, more: PerAction) {
 
 /// The templates of the actions `monomials`, each first within its window of
 /// `opts.max_extra_degree`, then (see [`raise_degree`]) beyond.
+#[allow(clippy::too_many_arguments)]
 fn search_actions<const P: u32>(
     eqs: &[Poly<Fp<P>>],
+    constants: Constants<'_>,
     basis: &[Monomial],
     gb: &GroebnerBasis<P>,
     opts: &TemplateOptions,
@@ -292,12 +289,12 @@ fn search_actions<const P: u32>(
                 max_pool: None,
             };
             let r = build_template(eqs, basis, STANDARD, v, &search, distinct[k], opts);
-            (v.clone(), r)
+            (v.clone(), with_fold_count(r, constants))
         })
         .collect();
     if opts.adaptive_degree && all.iter().all(|(_, r)| r.is_err()) {
         raise_degree(
-            eqs, basis, monomials, &starts, &distinct, opts, deadline, &mut all,
+            eqs, constants, basis, monomials, &starts, &distinct, opts, deadline, &mut all,
         );
     }
     all
@@ -309,6 +306,7 @@ fn search_actions<const P: u32>(
 #[allow(clippy::too_many_arguments)]
 fn raise_degree<const P: u32>(
     eqs: &[Poly<Fp<P>>],
+    constants: Constants<'_>,
     basis: &[Monomial],
     monomials: &[Action],
     starts: &[u32],
@@ -347,7 +345,10 @@ fn raise_degree<const P: u32>(
                 weights: &[],
                 max_pool: None,
             };
-            let r = build_template(eqs, basis, STANDARD, a, &search, distinct[k], opts);
+            let r = with_fold_count(
+                build_template(eqs, basis, STANDARD, a, &search, distinct[k], opts),
+                constants,
+            );
             let stop = matches!(
                 &r,
                 Err(TemplateError::NotReducible {
@@ -562,7 +563,22 @@ const DRAWS_PER_ORDER: usize = 8;
 
 /// The size every choice minimises: [`super::EliminationTemplate::elimination_area`].
 fn area(b: &BuiltTemplate) -> usize {
-    b.template.elimination_area()
+    b.folded_area()
+}
+
+/// The equations' constants where the search folds (the equations as given), `None` for
+/// equations row-reduced on the data (never folded).
+type Constants<'a> = Option<&'a [EquationConstants]>;
+
+/// `r` with [`BuiltTemplate::foldable_rows`] counted for `constants`.
+fn with_fold_count(
+    r: Result<BuiltTemplate, TemplateError>,
+    constants: Constants<'_>,
+) -> Result<BuiltTemplate, TemplateError> {
+    r.map(|mut b| {
+        b.foldable_rows = constants.map_or(0, |c| foldable_rows(&b.template, c));
+        b
+    })
 }
 
 fn sorted(mut b: Vec<Monomial>) -> Vec<Monomial> {
@@ -580,6 +596,7 @@ fn sorted(mut b: Vec<Monomial>) -> Vec<Monomial> {
 #[allow(clippy::too_many_arguments)]
 fn try_alternative_bases<const P: u32>(
     eqs: &[Poly<Fp<P>>],
+    constants: Constants<'_>,
     bases: &[AlternativeBasis],
     visible: usize,
     opts: &TemplateOptions,
@@ -631,14 +648,17 @@ fn try_alternative_bases<const P: u32>(
                     &alt.weights,
                 ),
             );
-            let r = build_template(
-                eqs,
-                &alt.basis,
-                &alt.label,
-                action,
-                &search,
-                distinct[k],
-                opts,
+            let r = with_fold_count(
+                build_template(
+                    eqs,
+                    &alt.basis,
+                    &alt.label,
+                    action,
+                    &search,
+                    distinct[k],
+                    opts,
+                ),
+                constants,
             );
             if let Ok(t) = r {
                 if !t.pool_weights.is_empty() {
@@ -707,6 +727,7 @@ const CLIMB_MOVES: usize = 6;
 #[allow(clippy::too_many_arguments)]
 fn climb_weights<const P: u32>(
     eqs: &[Poly<Fp<P>>],
+    constants: Constants<'_>,
     basis: &[Monomial],
     bases: &[AlternativeBasis],
     starts: Vec<(usize, BuiltTemplate)>,
@@ -743,7 +764,8 @@ fn climb_weights<const P: u32>(
                     degree_window(eqs, &b, &action, visible, opts, deadline, &weights),
                 );
                 let distinct = current.distinct_eigenvalues;
-                if let Ok(t) = build_template(eqs, &b, &label, &action, &search, distinct, opts) {
+                let r = build_template(eqs, &b, &label, &action, &search, distinct, opts);
+                if let Ok(t) = with_fold_count(r, constants) {
                     if area(&t) < area(&current) {
                         current = t;
                         continue 'moves;
@@ -792,6 +814,7 @@ fn degree_window<'a, const P: u32>(
 /// [`super::exclude`], when that is smaller; otherwise the template itself.
 fn refine<const P: u32>(
     eqs: &[Poly<Fp<P>>],
+    constants: Constants<'_>,
     best: BuiltTemplate,
     visible: usize,
     opts: &TemplateOptions,
@@ -807,7 +830,7 @@ fn refine<const P: u32>(
         ..degree_window(eqs, &t.basis, &t.action, visible, opts, deadline, &weights)
     };
     let label = best.basis_choice.clone();
-    match build_template(
+    let r = build_template(
         eqs,
         &t.basis,
         &label,
@@ -815,8 +838,9 @@ fn refine<const P: u32>(
         &search,
         best.distinct_eigenvalues,
         opts,
-    ) {
-        Ok(r) if r.template.eliminated_size().0 < t.eliminated_size().0 => r,
+    );
+    match with_fold_count(r, constants) {
+        Ok(r) if area(&r) < area(&best) => r,
         _ => best,
     }
 }

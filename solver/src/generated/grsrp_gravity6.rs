@@ -2,9 +2,9 @@
 // Minimal solver for the problem `grsrp_gravity6` (`templates/grsrp_gravity6.mp`).
 //
 // Unknowns: `c`, `s`, `t[3]`. Data: `x1[3]: point`, `x2[3]: point`, `v1[3]: scalar`, `v2[3]: scalar`, `w1: vec3`, `w2: vec3`, `G1: rotation`, `G2: rotation`.
-// Elimination template 3 x 9 (1 excess, 2 reducible, 6 basis columns), action `s`, at most 6 solutions.
+// Elimination template 3 x 9 (1 excess, 2 reducible, 6 basis columns), action `c`, at most 6 solutions.
 // It is the Schur complement of the 9 x 15 template's 6 constant rows (multiples of equations with numeric coefficients), eliminated exactly by the generator.
-// Quotient basis: s^3, c*s, s^2, c, s, 1.
+// Quotient basis: c^3, c^2, c*s, c, s, 1.
 // Coefficients: 515 arithmetic operations in 145 shared intermediates.
 // Eliminated unknowns `t1`, `t2`, `t3` are recovered as the unit null vector of a 3 x 3 matrix (one of the two signs).
 //
@@ -182,15 +182,15 @@ pub static CONSTANT_FOLD: mingen_runtime::ConstantFold<'static> = mingen_runtime
     rows: 3,
     folded: 6,
     cols: 9,
-    inv_start: &[0, 3, 4, 5, 6, 7, 8],
-    inv_cols: &[0, 2, 5, 1, 2, 3, 4, 5],
-    inv_vals: &[1.0, -1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0],
-    m12_start: &[0, 0, 2, 4, 6, 8, 10],
-    m12_cols: &[0, 4, 1, 5, 2, 6, 3, 7, 5, 8],
+    inv_start: &[0, 1, 2, 5, 6, 7, 8],
+    inv_cols: &[0, 1, 1, 2, 5, 3, 4, 5],
+    inv_vals: &[1.0, 1.0, -1.0, 1.0, 1.0, 1.0, 1.0, 1.0],
+    m12_start: &[0, 2, 4, 4, 6, 8, 10],
+    m12_cols: &[0, 5, 1, 4, 3, 6, 2, 7, 4, 8],
 };
 /// Solves `grsrp_gravity6`: all real solutions of the problem's equations for the given data.
 ///
-/// Fills a 3 x 9 elimination template, reduces it (LU with partial pivoting, back substitution of the 2 reducible rows only), builds the 6 x 6 action matrix of `s` on the basis [s^3, c*s, s^2, c, s, 1] and reads each unknown `x` off the real eigenvectors `v` as the least-squares ratio of the entries `v[x b]` and `v[b]` over the basis monomials `b` with `x b` in the basis (`v[x] / v[1]` if that is the only one).
+/// Fills a 3 x 9 elimination template, reduces it (LU with partial pivoting, back substitution of the 2 reducible rows only), builds the 6 x 6 action matrix of `c` on the basis [c^3, c^2, c*s, c, s, 1] and reads each unknown `x` off the real eigenvectors `v` as the least-squares ratio of the entries `v[x b]` and `v[b]` over the basis monomials `b` with `x b` in the basis (`v[x] / v[1]` if that is the only one).
 ///
 /// Never panics: non-finite or degenerate data gives no solutions.
 #[must_use]
@@ -410,50 +410,50 @@ pub fn solve_staged<S: mingen_runtime::Stages>(
     let c144 = c38 * c122 - c37 * c128 + c32 * c134;
     let mut mf = [0.0f64; 135];
     mf[0] = 1.0;
-    mf[2] = 1.0;
-    mf[5] = -1.0;
+    mf[6] = 1.0;
+    mf[11] = -1.0;
     mf[16] = 1.0;
-    mf[21] = 1.0;
+    mf[22] = 1.0;
     mf[25] = -1.0;
+    mf[31] = 1.0;
     mf[32] = 1.0;
-    mf[37] = 1.0;
-    mf[41] = -1.0;
+    mf[35] = -1.0;
     mf[48] = 1.0;
-    mf[53] = 1.0;
+    mf[54] = 1.0;
     mf[57] = -1.0;
     mf[64] = 1.0;
-    mf[69] = 1.0;
+    mf[68] = 1.0;
     mf[73] = -1.0;
     mf[80] = 1.0;
-    mf[86] = 1.0;
+    mf[85] = 1.0;
     mf[89] = -1.0;
-    mf[90] = c144;
-    mf[91] = c143;
-    mf[92] = c141;
-    mf[93] = c142;
-    mf[94] = c140;
-    mf[95] = c139;
+    mf[90] = c143;
+    mf[91] = c141;
+    mf[93] = c137;
     mf[96] = c138;
-    mf[98] = c137;
-    mf[100] = c136;
+    mf[97] = c144;
+    mf[98] = c140;
+    mf[99] = c142;
+    mf[100] = c139;
+    mf[101] = c136;
     mf[102] = c135;
-    mf[106] = c144;
-    mf[107] = c143;
-    mf[109] = c142;
+    mf[105] = c144;
+    mf[106] = c143;
+    mf[107] = c138;
+    mf[108] = c140;
+    mf[109] = c137;
+    mf[110] = c136;
     mf[111] = c141;
-    mf[112] = c138;
-    mf[113] = c140;
-    mf[114] = c137;
-    mf[115] = c139;
-    mf[116] = c136;
+    mf[113] = c142;
+    mf[116] = c139;
     mf[118] = c135;
-    mf[123] = c144;
-    mf[124] = c143;
-    mf[125] = c142;
-    mf[128] = c141;
-    mf[129] = c138;
-    mf[130] = c140;
-    mf[131] = c137;
+    mf[123] = c141;
+    mf[124] = c138;
+    mf[125] = c137;
+    mf[128] = c143;
+    mf[129] = c144;
+    mf[130] = c142;
+    mf[131] = c140;
     mf[132] = c139;
     mf[133] = c136;
     mf[134] = c135;
@@ -477,11 +477,11 @@ pub fn solve_staged<S: mingen_runtime::Stages>(
         return out;
     }
     let mut a = mingen_runtime::nalgebra::SMatrix::<f64, 6, 6>::zeros();
-    a[(2, 0)] = 1.0;
+    a[(1, 0)] = 1.0;
     a[(3, 1)] = 1.0;
     a[(4, 2)] = 1.0;
-    a[(5, 4)] = 1.0;
-    for (j, s) in [(0, 12), (1, 21)] {
+    a[(5, 3)] = 1.0;
+    for (j, s) in [(0, 12), (2, 21)] {
         for (k, x) in m[s..s + 6].iter().enumerate() {
             a[(j, k)] = -x;
         }
@@ -491,8 +491,8 @@ pub fn solve_staged<S: mingen_runtime::Stages>(
     }
     let pairs = mingen_runtime::real_eigenpairs_sturm::<6>(&a);
     const READOUT: [&[(usize, usize)]; 2] = [
-        &[(5, 3), (4, 1)],
-        &[(5, 4), (2, 0), (3, 1), (4, 2)],
+        &[(5, 3), (1, 0), (3, 1), (4, 2)],
+        &[(5, 4), (3, 2)],
     ];
     for (_, v) in pairs.iter() {
         let mut u = [0.0f64; 2];
@@ -535,9 +535,9 @@ pub fn solve_staged<S: mingen_runtime::Stages>(
 /// Minimal solver for the problem `grsrp_gravity6` (`templates/grsrp_gravity6.mp`).
 ///
 /// Unknowns: `c`, `s`, `t[3]`. Data: `x1[3]: point`, `x2[3]: point`, `v1[3]: scalar`, `v2[3]: scalar`, `w1: vec3`, `w2: vec3`, `G1: rotation`, `G2: rotation`.
-/// Elimination template 3 x 9 (1 excess, 2 reducible, 6 basis columns), action `s`, at most 6 solutions.
+/// Elimination template 3 x 9 (1 excess, 2 reducible, 6 basis columns), action `c`, at most 6 solutions.
 /// It is the Schur complement of the 9 x 15 template's 6 constant rows (multiples of equations with numeric coefficients), eliminated exactly by the generator.
-/// Quotient basis: s^3, c*s, s^2, c, s, 1.
+/// Quotient basis: c^3, c^2, c*s, c, s, 1.
 /// Coefficients: 515 arithmetic operations in 145 shared intermediates.
 /// Eliminated unknowns `t1`, `t2`, `t3` are recovered as the unit null vector of a 3 x 3 matrix (one of the two signs).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

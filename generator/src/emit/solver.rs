@@ -1132,7 +1132,7 @@ fn positive_filter(plan: &Plan) -> TokenStream {
     let checks = plan.spec.layout.positive.iter().map(|&i| {
         let v = solution_value(plan, i);
         quote! {
-            if !(#v > 0.0) {
+            if #v.is_nan() || #v <= 0.0 {
                 continue;
             }
         }

@@ -41,8 +41,9 @@
 //! - [`select`]: quotient bases chosen among a template's columns;
 //! - [`reduction`]: the equations row-reduced on their data, which templates may be built
 //!   from;
-//! - [`fold`]: the Schur complement of the rows whose coefficients are constants, taken by
-//!   the generator;
+//! - [`fold`]: the Schur complement of the rows with constant pivots (a block of numbers
+//!   the generator inverts exactly, then a triangle), which the search counts in every
+//!   comparison;
 //! - [`explore`]: size tables over orders for developers (not used by the pipeline);
 //! - [`validate`](mod@validate): the template against Gröbner normal forms on fresh instances;
 //! - [`build`]: the template of one action;
@@ -131,10 +132,12 @@ pub struct EliminationTemplate {
     /// The row reduction of the equations on their data the rows refer to (see
     /// [`reduction`]); `None`: the rows are multiples of the equations as given.
     pub reduction: Option<EquationReduction>,
-    /// The rows whose block on some excess columns is constant, folded by an inverse the
-    /// generator computed exactly (see [`fold`]): they are the first `fold.rows` rows, and
-    /// those columns the first `fold.rows` columns; the solver eliminates the Schur
-    /// complement of the rest. `None`: the whole template is eliminated.
+    /// The rows folded before the elimination (see [`fold`]): a block of numbers the
+    /// generator inverted exactly (`fold.rows` rows), then rows with constant pivots in a
+    /// triangle (`fold.pivot_inv.len()`); they are the first
+    /// [`EliminationTemplate::folded_rows`] rows, and their pivot columns the first as
+    /// many columns; the solver eliminates the Schur complement of the rest. `None`: the
+    /// whole template is eliminated.
     pub fold: Option<ConstantFold>,
 }
 

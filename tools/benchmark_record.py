@@ -85,7 +85,9 @@ def markdown(rows):
     out.append("")
     for r in rows:
         if r["error"]:
-            out.append(f"`{r['problem']}`: {r['error']}")
+            # Paths relative to the repository, so that the table is the same on every machine.
+            error = re.sub(r"\S*/(templates/benchmark/)", r"\1", r["error"])
+            out.append(f"`{r['problem']}`: {error}")
             out.append("")
     return "\n".join(out) + "\n"
 

@@ -240,13 +240,7 @@ pub fn plan(
         let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(options.seed);
         let data = random_data_fp::<{ crate::algebra::P1 }>(&problem.layout, &mut rng);
         if let Err(source) = system(&problem, &data) {
-            let names = problem.unknown_names();
-            let el: Vec<&str> = problem
-                .layout
-                .eliminate
-                .iter()
-                .filter_map(|&i| names.get(i).map(String::as_str))
-                .collect();
+            let el = problem.layout.names_of(&problem.layout.eliminate);
             // The library error numbers the unknowns; here they have their names.
             let source = match source {
                 EliminateError::NotLinear { equation, .. } => EliminateError::NotLinear {
@@ -362,13 +356,7 @@ impl SolverPlan {
 
     /// Names of the eliminated unknowns.
     pub fn eliminated_names(&self) -> Vec<String> {
-        let names = self.problem.unknown_names();
-        self.problem
-            .layout
-            .eliminate
-            .iter()
-            .filter_map(|&i| names.get(i).cloned())
-            .collect()
+        self.problem.layout.names_of(&self.problem.layout.eliminate)
     }
 
     /// The `inspect --json` keys computed by the algebra (the `inspect --json` contract of docs/GENERATOR.md): `solutions`, `basis`,

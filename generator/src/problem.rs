@@ -267,6 +267,12 @@ impl ProblemLayout {
         }
         out
     }
+    /// The names ([`ProblemLayout::unknown_names`]) of the unknown scalars with flat
+    /// indices `vars` (as `eliminate` and `positive` hold them).
+    pub fn names_of(&self, vars: &[usize]) -> Vec<String> {
+        let names = self.unknown_names();
+        vars.iter().filter_map(|&i| names.get(i).cloned()).collect()
+    }
     /// Number of unknown scalars (hidden ones included: the variables of the system).
     pub fn unknown_count(&self) -> usize {
         self.unknowns.iter().map(|u| u.len.unwrap_or(1)).sum()

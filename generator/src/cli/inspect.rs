@@ -55,21 +55,11 @@ fn problem_summary(p: &Problem, equations: &[Poly<Poly<Q>>]) -> Map<String, Valu
     );
     m.insert(
         "eliminated".into(),
-        json!(p
-            .layout
-            .eliminate
-            .iter()
-            .filter_map(|&i| names.get(i).cloned())
-            .collect::<Vec<_>>()),
+        json!(p.layout.names_of(&p.layout.eliminate)),
     );
     m.insert(
         "positive".into(),
-        json!(p
-            .layout
-            .positive
-            .iter()
-            .filter_map(|&i| names.get(i).cloned())
-            .collect::<Vec<_>>()),
+        json!(p.layout.names_of(&p.layout.positive)),
     );
     m
 }
@@ -118,12 +108,7 @@ pub(super) fn inspect(
         outln!(out, "eliminate: {}{how}", el.join(" "));
     }
     if !p.layout.positive.is_empty() {
-        let positive: Vec<&str> = p
-            .layout
-            .positive
-            .iter()
-            .filter_map(|&i| names.get(i).map(String::as_str))
-            .collect();
+        let positive = p.layout.names_of(&p.layout.positive);
         outln!(
             out,
             "positive: {} (solutions where one is not positive are dropped)",

@@ -86,14 +86,7 @@ impl Expr {
                 let i = Literal::usize_unsuffixed(*i);
                 quote!(d[#i])
             }
-            Expr::Const(c) => {
-                let l = f64_literal(c.abs());
-                if c.is_sign_negative() {
-                    quote!(-#l)
-                } else {
-                    quote!(#l)
-                }
-            }
+            Expr::Const(c) => signed_f64_literal(*c),
             Expr::Var(k) => style.var(*k),
             // Left operands of + and - never need parentheses (left associativity); right
             // operands that are sums do, to keep the evaluation order.
@@ -141,6 +134,16 @@ impl VarStyle {
                 quote!(c[#k])
             }
         }
+    }
+}
+
+/// `v` as tokens: [`f64_literal`] of its magnitude, negated when its sign is.
+pub fn signed_f64_literal(v: f64) -> TokenStream {
+    let l = f64_literal(v.abs());
+    if v.is_sign_negative() {
+        quote!(-#l)
+    } else {
+        quote!(#l)
     }
 }
 

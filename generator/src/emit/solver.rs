@@ -1,7 +1,7 @@
 //! The solver emitter: one Rust source file per problem.
 
 use super::action::action_matrix_tokens;
-use super::coefficients::{f64_literal, Expr, Program, VarStyle};
+use super::coefficients::{signed_f64_literal, Expr, Program, VarStyle};
 use super::files::generated_header_for_path;
 use super::polish::EquationTerms;
 use super::runtime_api as rt;
@@ -802,7 +802,7 @@ fn fold_tokens(
         let inv_cols = f.inv_cols.iter().map(|&x| Literal::u16_unsuffixed(x));
         let m12_starts = f.m12_start.iter().map(|&x| Literal::u32_unsuffixed(x));
         let m12_cols = f.m12_cols.iter().map(|&x| Literal::u16_unsuffixed(x));
-        let inv_vals = f.inv_vals.iter().map(|&x| signed_f64(x));
+        let inv_vals = f.inv_vals.iter().map(|&x| signed_f64_literal(x));
         items.extend(quote! {
             /// The inverse of the template's constant block (see
             /// `mingen_runtime::ConstantFold`), computed exactly by the generator.
@@ -844,7 +844,7 @@ fn fold_tokens(
         let (rows_l, cols_l, k_l) = (lit(rows), lit(cols), lit(kt));
         let ty = rt::triangular_fold();
         let fold = rt::fold_triangular_rows();
-        let pivots = f.pivot_inv.iter().map(|&x| signed_f64(x));
+        let pivots = f.pivot_inv.iter().map(|&x| signed_f64_literal(x));
         items.extend(quote! {
             /// The inverse pivots of the template's rows folded in a triangle (see
             /// `mingen_runtime::TriangularFold`).
@@ -864,16 +864,6 @@ fn fold_tokens(
         });
     }
     (items, code)
-}
-
-/// A float literal with its sign.
-fn signed_f64(x: f64) -> TokenStream {
-    let v = f64_literal(x.abs());
-    if x < 0.0 {
-        quote!(-#v)
-    } else {
-        quote!(#v)
-    }
 }
 
 /// The elimination of the filled template: dense or sparse LU.
@@ -1214,12 +1204,10 @@ fn solve_docs(plan: &Plan, lu_words: &str) -> Vec<String> {
         docs.push(String::new());
     }
     if !spec.layout.positive.is_empty() {
-        let names = spec.layout.unknown_names();
         let positive: Vec<String> = spec
             .layout
-            .positive
+            .names_of(&spec.layout.positive)
             .iter()
-            .filter_map(|&i| names.get(i))
             .map(|n| format!("`{n}`"))
             .collect();
         docs.push(format!(

@@ -202,29 +202,13 @@ impl Checker {
                 if !top {
                     return Err(only_top("eliminate"));
                 }
-                for n in names {
-                    let vars = self.unknown_vars(n, "eliminate")?;
-                    if vars.iter().any(|v| self.layout.eliminate.contains(v)) {
-                        return Err(self.err(n.pos, format!("'{}' is already eliminated", n.name)));
-                    }
-                    self.layout.eliminate.extend(vars);
-                }
-                Ok(())
+                self.name_unknowns(names, "eliminate", "eliminated", |l| &mut l.eliminate)
             }
             Stmt::Positive(names) => {
                 if !top {
                     return Err(only_top("positive"));
                 }
-                for n in names {
-                    let vars = self.unknown_vars(n, "positive")?;
-                    if vars.iter().any(|v| self.layout.positive.contains(v)) {
-                        return Err(
-                            self.err(n.pos, format!("'{}' is already declared positive", n.name))
-                        );
-                    }
-                    self.layout.positive.extend(vars);
-                }
-                Ok(())
+                self.name_unknowns(names, "positive", "declared positive", |l| &mut l.positive)
             }
             Stmt::Nonzero { pos, expr } => {
                 if !top {
@@ -511,6 +495,25 @@ impl Checker {
             len,
             first_slot,
         });
+        Ok(())
+    }
+
+    /// Appends the variables of the unknowns `names` (after `keyword`) to the layout's
+    /// list `list`; an unknown already there is an error ("'x' is already `done`").
+    fn name_unknowns(
+        &mut self,
+        names: &[Name],
+        keyword: &str,
+        done: &str,
+        list: fn(&mut ProblemLayout) -> &mut Vec<usize>,
+    ) -> Result<(), LangError> {
+        for n in names {
+            let vars = self.unknown_vars(n, keyword)?;
+            if vars.iter().any(|v| list(&mut self.layout).contains(v)) {
+                return Err(self.err(n.pos, format!("'{}' is already {done}", n.name)));
+            }
+            list(&mut self.layout).extend(vars);
+        }
         Ok(())
     }
 

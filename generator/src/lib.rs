@@ -29,6 +29,7 @@ mod instances_file;
 mod interpret;
 mod lang;
 mod pipeline;
+mod polishing;
 mod problem;
 mod quotient;
 mod report;
@@ -46,6 +47,9 @@ pub use expand::{EvalError, Problem, ProblemError, MAX_PROBLEM_FILE_BYTES};
 pub use lang::LangError;
 pub use pipeline::{
     emit_plan_from, emit_plan_in, plan, plan_file, plan_source, PipelineError, SolverPlan,
+};
+pub use polishing::{
+    AutoPolishing, AUTO_POLISH_INSTANCES, AUTO_POLISH_MEDIAN, AUTO_POLISH_STEPS, AUTO_POLISH_TAIL,
 };
 pub use problem::ProblemOptions;
 pub use report::{

@@ -8,7 +8,8 @@
 //!    random instances mod p -> Gröbner basis, solution count and quotient basis
 //!    ([`analyse_within`]) -> best elimination template on that same instance and Gröbner
 //!    basis ([`best_template`](crate::template::best_template)) -> validation on fresh
-//!    instances;
+//!    instances; then the polishing, unless the file or the command line chose it, by
+//!    solving the template on random f64 instances ([`crate::polishing`]);
 //! 3. [`emit_plan_from`]: traced instance -> Rust source of the solver.
 //!
 //! The resulting [`SolverPlan`] also serves `inspect` (sizes, basis, timings), the
@@ -24,6 +25,7 @@ use crate::emit::{
 };
 use crate::expand::EvalError;
 use crate::instance::random_data_fp;
+use crate::polishing::{self, AutoPolishing};
 use crate::quotient::{analyse_within, InstanceRng, InstanceSource};
 use crate::rewrite;
 use crate::system::{equation_supports, system, ProblemSource, System, SUPPORT_SEED};
@@ -127,7 +129,7 @@ pub struct SolverPlan {
     /// Count, basis, chosen template with its shrink history, per-action sizes, validation.
     pub generated: Generated,
     /// Wall-clock seconds of the whole plan (elimination check, Gröbner work, templates,
-    /// validation).
+    /// validation, the polishing choice).
     pub seconds: f64,
     /// The monomials of each template equation on the problem's data family (generic
     /// instances mod p, rotations exact). A term outside vanishes identically there (e.g.
@@ -135,6 +137,11 @@ pub struct SolverPlan {
     /// the emitted solvers, with data as symbols, and the interpreter, with rounded
     /// rotations, fill exactly the template's columns.
     pub supports: Vec<Vec<Monomial>>,
+    /// The polishing the plan chose by measuring its template, when neither the problem
+    /// file nor the command line set `newton` (see [`AutoPolishing`]); the chosen steps
+    /// are in `problem.layout.options.newton`, which the emitter and the audit read.
+    /// `None` when they set it, or when the solver cannot polish.
+    pub auto_polishing: Option<AutoPolishing>,
 }
 
 /// The template options for `problem`: `options` with the problem file's `option` lines
@@ -288,13 +295,22 @@ pub fn plan(
         None => supports.clone(),
     };
     order_for_sparse_elimination(&mut generated.built.template, &template_supports);
-    Ok(SolverPlan {
+    let mut plan = SolverPlan {
         problem,
         file: file.to_string(),
         generated,
-        seconds: start.elapsed().as_secs_f64(),
+        seconds: 0.0,
         supports,
-    })
+        auto_polishing: None,
+    };
+    if plan.problem.layout.options.newton.is_none() {
+        plan.auto_polishing = polishing::choose(&plan);
+        if let Some(choice) = &plan.auto_polishing {
+            plan.problem.layout.options.newton = Some(choice.steps);
+        }
+    }
+    plan.seconds = start.elapsed().as_secs_f64();
+    Ok(plan)
 }
 
 impl SolverPlan {
@@ -363,7 +379,10 @@ impl SolverPlan {
     /// `action`, `template` `{rows, cols}` (as eliminated by the emitted solver),
     /// `eliminated`, `seconds`, plus `dependent_columns` (excess columns left out of the
     /// elimination), `equation_reduction` (`{rows, cols}` of the equations' coefficient
-    /// matrix the solver row-reduces first, or null) and `per_action`.
+    /// matrix the solver row-reduces first, or null), `per_action` and `polishing`
+    /// (`{"newton_steps", "chosen"}`, `chosen` null when the file or the command line set
+    /// the steps, else `{"instances", "median_log10_residual", "p99_log10_residual"}`, what
+    /// the plan measured, see [`AutoPolishing`]).
     pub fn summary_json(&self) -> Value {
         let names = self.variable_names();
         let t = &self.generated.built.template;
@@ -377,6 +396,14 @@ impl SolverPlan {
             "equation_reduction": t.reduction_size().map(|(r, c)| json!({"rows": r, "cols": c})),
             "eliminated": self.eliminated_names(),
             "seconds": self.seconds,
+            "polishing": {
+                "newton_steps": self.problem.layout.options.newton_steps(),
+                "chosen": self.auto_polishing.as_ref().map(|a| json!({
+                    "instances": a.instances,
+                    "median_log10_residual": a.median_log10_residual,
+                    "p99_log10_residual": a.p99_log10_residual,
+                })),
+            },
             "per_action": self.generated.per_action.iter().map(|(v, s)| json!({
                 "action": v.display_with(&names),
                 "template": s.map(|(r, c)| json!({"rows": r, "cols": c})),

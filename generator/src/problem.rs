@@ -180,12 +180,10 @@ pub struct UnknownSymbol {
     pub hidden: bool,
 }
 
-/// Gauss-Newton steps an emitted solver polishes each solution with when the problem file
-/// does not say (`option newton`): none. Polishing costs a few evaluations of the original
-/// equations and their gradients per solution, which for a small template is several
-/// times the solve itself; `mingen audit` shows what it would give
-/// (`audit::AuditReport::other_polishing`), and a problem whose template leaves solutions
-/// far from rounding level asks for it with `option newton = 2`.
+/// Gauss-Newton steps [`ProblemOptions::newton_steps`] reads when `option newton` is not
+/// set: none. A plan sets it when neither the file nor the command line does, by measuring
+/// its template (`crate::polishing`: [`crate::AutoPolishing`]), so this default applies
+/// only to a layout that was not planned.
 pub const DEFAULT_NEWTON_STEPS: u32 = 0;
 
 /// Template-search options given in the problem file (`option NAME = VALUE`); the
@@ -199,10 +197,11 @@ pub struct ProblemOptions {
     /// `option basis = standard` (grevlex standard monomials only) or `selected` (also
     /// bases selected among the template's columns, the default).
     pub basis: Option<String>,
-    /// `option newton = N` (0 to 8, default [`DEFAULT_NEWTON_STEPS`]): Gauss-Newton steps
-    /// polishing every solution on the problem's original equations (eliminated unknowns
-    /// included), each step kept only if it lowers their squared residual, none once the
-    /// residual is at rounding level. Read it through [`ProblemOptions::newton_steps`].
+    /// `option newton = N` (0 to 8): Gauss-Newton steps polishing every solution on the
+    /// problem's original equations (eliminated unknowns included), each step kept only if
+    /// it lowers their squared residual, none once the residual is at rounding level. Not
+    /// set, the plan chooses 0 or 2 by solving its template on random instances
+    /// ([`crate::AutoPolishing`]). Read it through [`ProblemOptions::newton_steps`].
     pub newton: Option<u32>,
     /// `option auto_eliminate = yes|no` (default yes): whether planning, when the file
     /// eliminates nothing and the solution count stays the same, solves unknowns from

@@ -159,15 +159,16 @@ fn an_exhausted_budget_is_a_clear_error() {
 #[test]
 fn newton_polishes_solutions_in_the_audit_and_the_emitted_solver() {
     // A circle and a hyperbola (4 solutions): polishing may only lower the residuals, and
-    // the emitted solver carries the steps; by default (no `option newton`) it does not
-    // polish, and the audit shows what polishing would give.
+    // the emitted solver carries the steps; with `option newton = 0` it does not polish,
+    // and the audit shows what polishing would give.
     let src = "problem c\nunknown x, y\ndata a: scalar, b: scalar\nx*x + y*y = a\nx*y = b\n";
-    let plain = planned(src, &TemplateOptions::default()).unwrap();
-    assert_eq!(plain.problem.layout.options.newton, None);
-    assert_eq!(
-        plain.problem.layout.options.newton_steps(),
-        mingen::__internal::problem::DEFAULT_NEWTON_STEPS
-    );
+    let plain = planned(
+        &format!("{src}option newton = 0\n"),
+        &TemplateOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(plain.problem.layout.options.newton_steps(), 0);
+    assert_eq!(plain.auto_polishing, None);
     assert_eq!(mingen::__internal::problem::DEFAULT_NEWTON_STEPS, 0);
     let polished = planned(
         &format!("{src}option newton = 2\n"),

@@ -249,6 +249,17 @@ fn print_plan(out: &mut String, plan: &SolverPlan) {
     if let Some(v) = &g.validation {
         outln!(out, "validation: {v:?}");
     }
+    let steps = plan.problem.layout.options.newton_steps();
+    match &plan.auto_polishing {
+        Some(a) => outln!(
+            out,
+            "polishing: {steps} Gauss-Newton steps (chosen: unpolished, {} random instances gave median {:.2} and p99 {:.2} log10 residual; `option newton = N` sets it)",
+            a.instances,
+            a.median_log10_residual,
+            a.p99_log10_residual
+        ),
+        None => outln!(out, "polishing: {steps} Gauss-Newton steps (as set)"),
+    }
     outln!(
         out,
         "seconds: {:.3} (analysis {:.3}, templates {:.3}, validation {:.3})",

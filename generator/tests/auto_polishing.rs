@@ -1,0 +1,118 @@
+//! The plan's choice of polishing when the problem file does not set `option newton`: it
+//! follows the figures it measured, a poorly conditioned template gets polished, a
+//! well-conditioned one does not, the file and the command line override it, and the
+//! emitted solver and the audit carry the choice.
+
+use mingen::{
+    audit_plan, emit_plan_from, plan_file, plan_source, AuditOptions, ProblemOptions, SolverPlan,
+    TemplateOptions, AUTO_POLISH_INSTANCES, AUTO_POLISH_MEDIAN, AUTO_POLISH_STEPS,
+    AUTO_POLISH_TAIL,
+};
+use std::path::Path;
+
+const CIRCLE_HYPERBOLA: &str =
+    "problem c\nunknown x, y\ndata a: scalar, b: scalar\nx*x + y*y = a\nx*y = b\n";
+
+fn repo(path: &str) -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(path)
+}
+
+/// The recorded figures decide the steps, by the documented rule.
+fn assert_consistent(plan: &SolverPlan) {
+    let a = plan.auto_polishing.as_ref().expect("the plan chose");
+    assert_eq!(a.instances, AUTO_POLISH_INSTANCES);
+    let poor =
+        a.median_log10_residual > AUTO_POLISH_MEDIAN || a.p99_log10_residual > AUTO_POLISH_TAIL;
+    assert_eq!(a.steps, if poor { AUTO_POLISH_STEPS } else { 0 }, "{a:?}");
+    assert_eq!(plan.problem.layout.options.newton, Some(a.steps));
+    let source = emit_plan_from(plan, "t.mp").unwrap();
+    assert_eq!(
+        source.contains(&format!(
+            "newton_polish(&mut x, &NEWTON_TERMS, &newton_c, {})",
+            a.steps
+        )),
+        a.steps > 0
+    );
+    assert_eq!(source.contains("newton_polish("), a.steps > 0);
+}
+
+#[test]
+fn a_well_conditioned_template_is_not_polished() {
+    let plan = plan_source(CIRCLE_HYPERBOLA, "c.mp", &TemplateOptions::default()).unwrap();
+    assert_consistent(&plan);
+    assert_eq!(plan.auto_polishing.as_ref().unwrap().steps, 0);
+    // The same plan again: the instances are seeded, the choice the same.
+    let again = plan_source(CIRCLE_HYPERBOLA, "c.mp", &TemplateOptions::default()).unwrap();
+    assert_eq!(plan.auto_polishing, again.auto_polishing);
+}
+
+#[test]
+fn the_file_and_the_command_line_override_the_choice() {
+    let from_file = plan_source(
+        &format!("{CIRCLE_HYPERBOLA}option newton = 3\n"),
+        "c.mp",
+        &TemplateOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(from_file.auto_polishing, None);
+    assert_eq!(from_file.problem.layout.options.newton_steps(), 3);
+    let opts = TemplateOptions {
+        overrides: ProblemOptions {
+            newton: Some(1),
+            ..Default::default()
+        },
+        ..TemplateOptions::default()
+    };
+    let from_cli = plan_source(
+        &format!("{CIRCLE_HYPERBOLA}option newton = 3\n"),
+        "c.mp",
+        &opts,
+    )
+    .unwrap();
+    assert_eq!(from_cli.auto_polishing, None);
+    assert_eq!(from_cli.problem.layout.options.newton_steps(), 1);
+    let json = from_cli.summary_json();
+    assert_eq!(json["polishing"]["newton_steps"], 1);
+    assert!(json["polishing"]["chosen"].is_null());
+}
+
+#[test]
+fn a_poorly_conditioned_template_is_polished_and_the_audit_shows_both() {
+    // P3LL: its template leaves a tail of instances far from rounding level.
+    let plan = plan_file(
+        &repo("templates/classic/p3ll.mp"),
+        &TemplateOptions::default(),
+    )
+    .unwrap();
+    assert_consistent(&plan);
+    let chosen = plan.auto_polishing.clone().unwrap();
+    assert_eq!(chosen.steps, AUTO_POLISH_STEPS, "{chosen:?}");
+    let json = plan.summary_json();
+    assert_eq!(json["polishing"]["newton_steps"], AUTO_POLISH_STEPS);
+    assert_eq!(
+        json["polishing"]["chosen"]["instances"],
+        AUTO_POLISH_INSTANCES
+    );
+    // The audit solves as the emitted solver does (polished) and shows the unpolished
+    // figures beside: polishing only lowers the residuals.
+    let report = audit_plan(
+        &plan,
+        &AuditOptions {
+            instances: 200,
+            seed: 5,
+            time_limit: None,
+        },
+    );
+    let unpolished = report.other_polishing.as_ref().expect("unpolished figures");
+    assert_eq!(unpolished.newton_steps, 0);
+    assert!(
+        report.median_log10_residual <= unpolished.median_log10_residual,
+        "{report}"
+    );
+    assert!(
+        report.p99_log10_residual <= unpolished.p99_log10_residual,
+        "{report}"
+    );
+    assert!(report.failures <= unpolished.failures, "{report}");
+    assert!(report.p99_log10_residual < AUTO_POLISH_TAIL, "{report}");
+}

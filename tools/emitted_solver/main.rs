@@ -87,7 +87,7 @@ fn run() -> Result<(), String> {
     }
     times.sort_by(f64::total_cmp);
     println!(
-        "{} instances x {rounds} rounds: {:.1} us per call (median round; fastest {:.1}), {:.2} real solutions per instance",
+        "{} instances x {rounds} rounds: {:.3} us per call (median round; fastest {:.3}), {:.2} real solutions per instance",
         data.len(),
         times[times.len() / 2],
         times[0],

@@ -71,6 +71,15 @@ fn bench_elimination(c: &mut Criterion) {
     });
 }
 
+/// `V diag(lambda) V^-1` with random `V` and eigenvalues in `[-1, 1]`.
+fn with_real_spectrum<const N: usize>(rng: &mut ChaCha8Rng) -> SMatrix<f64, N, N> {
+    let v = SMatrix::<f64, N, N>::from_fn(|_, _| rng.gen_range(-1.0..1.0));
+    let d = SMatrix::<f64, N, N>::from_diagonal(&nalgebra::SVector::<f64, N>::from_fn(|_, _| {
+        rng.gen_range(-1.0..1.0)
+    }));
+    v * d * v.try_inverse().expect("a random matrix is invertible")
+}
+
 fn bench_eigen(c: &mut Criterion) {
     let mut rng = ChaCha8Rng::seed_from_u64(2);
     let m10 = SMatrix::<f64, 10, 10>::from_fn(|_, _| rng.gen_range(-1.0..1.0));
@@ -80,6 +89,18 @@ fn bench_eigen(c: &mut Criterion) {
     });
     c.bench_function("real_eigenpairs 20x20", |b| {
         b.iter(|| real_eigenpairs(black_box(&m20)))
+    });
+    // Small actions with real spectra (V diag V^-1): the closed-form root path.
+    let m2 = with_real_spectrum::<2>(&mut rng);
+    let m4 = with_real_spectrum::<4>(&mut rng);
+    c.bench_function("real_eigenpairs_sturm 2x2 (2 real)", |b| {
+        b.iter(|| real_eigenpairs_sturm(black_box(&m2)))
+    });
+    c.bench_function("real_eigenpairs_sturm 4x4 (4 real)", |b| {
+        b.iter(|| real_eigenpairs_sturm(black_box(&m4)))
+    });
+    c.bench_function("real_eigenpairs_hqr 4x4 (4 real)", |b| {
+        b.iter(|| real_eigenpairs_hqr(black_box(&m4)))
     });
     c.bench_function("real_eigenpairs_sturm 10x10", |b| {
         b.iter(|| real_eigenpairs_sturm(black_box(&m10)))

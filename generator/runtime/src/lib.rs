@@ -26,7 +26,8 @@
 //!   on the heap at any size ([`real_eigenpairs_hqr_dyn`] for sizes known at run time, the
 //!   same bits).
 //! - [`real_eigenpairs_sturm`]: the same contract through balancing, Hessenberg form,
-//!   characteristic polynomial, Sturm-sequence root isolation + Newton, and per real root
+//!   characteristic polynomial, its real roots (closed forms up to degree 4, else
+//!   Sturm-sequence root isolation) + Newton, and per real root
 //!   the Hessenberg backward recurrence (again after a Newton step on Hyman's determinant,
 //!   then inverse iteration, when its residual is not at rounding level); hands the matrix to [`real_eigenpairs_hqr`] when a root is not
 //!   confirmed (residual or eigenvalue disagreement: spurious real roots of ±λ spectra) or
@@ -56,6 +57,7 @@
 
 pub use nalgebra;
 
+mod closed_form;
 mod coefficient_table;
 mod constant_fold;
 mod dynamic;

@@ -6,7 +6,8 @@
 //!    elimination with partial pivoting; `S` kept), see [`super::hessenberg`].
 //! 2. Characteristic polynomial of `H` by the Hessenberg determinant recurrence
 //!    (O(N^3 / 6)); every root lies in `[-1, 1]`.
-//! 3. Its real roots ([`super::sturm_sequence`]): Sturm sequence (stored as linear
+//! 3. Its real roots: in closed form up to degree 4 ([`super::closed_form`]), else (and
+//!    near a double root) by [`super::sturm_sequence`]: Sturm sequence (stored as linear
 //!    quotients, O(N) per evaluation),
 //!    quadrisection on sign-change counts (three points evaluated together) until each
 //!    interval holds one root, one octasection round on the sign of `p`, then Newton
@@ -24,6 +25,7 @@
 //! [`ACCEPT_RESIDUAL`]: a spurious real root from a complex pair near the real axis), or
 //! when two roots converge to one eigenvalue.
 
+use super::closed_form::monic_real_roots;
 use super::hessenberg::{
     balance, eigenvector_by_recurrence, hessenberg_of_columns, hyman_newton_step,
     inverse_iteration, normalise, subdiagonal_reciprocals, transpose,
@@ -126,9 +128,13 @@ fn sturm_eigenpairs<const N: usize>(
     let sim = hessenberg_of_columns(&mut cols);
     let h = transpose(&cols);
     let p = char_poly(&h)?;
-    let sturm = Sturm::new(&p)?;
     let mut roots = [0.0f64; N];
-    let nroots = sturm.real_roots(&p, &mut roots);
+    // Degree 4 and below in closed form; the Sturm sequence where the formulas cannot
+    // separate the roots (and above).
+    let nroots = match monic_real_roots(&p, &mut roots) {
+        Some(n) => n,
+        None => Sturm::new(&p)?.real_roots(&p, &mut roots),
+    };
     let mut lams = [0.0f64; N];
     let inv_sub = subdiagonal_reciprocals(&h);
     for (k, &mu) in roots[..nroots].iter().enumerate() {

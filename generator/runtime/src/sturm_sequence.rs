@@ -13,7 +13,7 @@ const OCTASECTIONS: usize = 1;
 
 /// Horner evaluation of the monic polynomial with lower coefficients `c` and its derivative.
 #[inline]
-fn eval_monic<const N: usize>(c: &[f64; N], x: f64) -> (f64, f64) {
+pub(super) fn eval_monic<const N: usize>(c: &[f64; N], x: f64) -> (f64, f64) {
     let mut p = 1.0;
     let mut dp = 0.0;
     for &ck in c.iter().rev() {

@@ -49,7 +49,8 @@ pub use pipeline::{
     emit_plan_from, emit_plan_in, plan, plan_file, plan_source, PipelineError, SolverPlan,
 };
 pub use polishing::{
-    AutoPolishing, AUTO_POLISH_INSTANCES, AUTO_POLISH_MEDIAN, AUTO_POLISH_STEPS, AUTO_POLISH_TAIL,
+    AutoPolishing, AUTO_POLISH_FAILURE_RATE, AUTO_POLISH_INSTANCES, AUTO_POLISH_MEDIAN,
+    AUTO_POLISH_MORE_INSTANCES, AUTO_POLISH_STEPS,
 };
 pub use problem::ProblemOptions;
 pub use report::{

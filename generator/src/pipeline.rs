@@ -381,7 +381,8 @@ impl SolverPlan {
     /// elimination), `equation_reduction` (`{rows, cols}` of the equations' coefficient
     /// matrix the solver row-reduces first, or null), `per_action` and `polishing`
     /// (`{"newton_steps", "chosen"}`, `chosen` null when the file or the command line set
-    /// the steps, else `{"instances", "median_log10_residual", "p99_log10_residual"}`, what
+    /// the steps, else `{"instances", "median_log10_residual", "p99_log10_residual",
+    /// "failures"}`, what
     /// the plan measured, see [`AutoPolishing`]).
     pub fn summary_json(&self) -> Value {
         let names = self.variable_names();
@@ -402,6 +403,7 @@ impl SolverPlan {
                     "instances": a.instances,
                     "median_log10_residual": a.median_log10_residual,
                     "p99_log10_residual": a.p99_log10_residual,
+                    "failures": a.failures,
                 })),
             },
             "per_action": self.generated.per_action.iter().map(|(v, s)| json!({

@@ -5,8 +5,8 @@
 
 use mingen::{
     audit_plan, emit_plan_from, plan_file, plan_source, AuditOptions, ProblemOptions, SolverPlan,
-    TemplateOptions, AUTO_POLISH_INSTANCES, AUTO_POLISH_MEDIAN, AUTO_POLISH_STEPS,
-    AUTO_POLISH_TAIL,
+    TemplateOptions, AUTO_POLISH_FAILURE_RATE, AUTO_POLISH_INSTANCES, AUTO_POLISH_MEDIAN,
+    AUTO_POLISH_MORE_INSTANCES, AUTO_POLISH_STEPS,
 };
 use std::path::Path;
 
@@ -20,9 +20,16 @@ fn repo(path: &str) -> std::path::PathBuf {
 /// The recorded figures decide the steps, by the documented rule.
 fn assert_consistent(plan: &SolverPlan) {
     let a = plan.auto_polishing.as_ref().expect("the plan chose");
-    assert_eq!(a.instances, AUTO_POLISH_INSTANCES);
-    let poor =
-        a.median_log10_residual > AUTO_POLISH_MEDIAN || a.p99_log10_residual > AUTO_POLISH_TAIL;
+    // The first instances, and more only after one or two failures.
+    let more = a.instances == AUTO_POLISH_INSTANCES + AUTO_POLISH_MORE_INSTANCES;
+    assert!(a.instances == AUTO_POLISH_INSTANCES || more, "{a:?}");
+    if more {
+        assert!(a.failures >= 1, "{a:?}");
+    } else {
+        assert!(a.failures == 0 || a.failures >= 3, "{a:?}");
+    }
+    let poor = a.median_log10_residual > AUTO_POLISH_MEDIAN
+        || a.failures as f64 >= AUTO_POLISH_FAILURE_RATE * a.instances as f64;
     assert_eq!(a.steps, if poor { AUTO_POLISH_STEPS } else { 0 }, "{a:?}");
     assert_eq!(plan.problem.layout.options.newton, Some(a.steps));
     let source = emit_plan_from(plan, "t.mp").unwrap();
@@ -78,9 +85,9 @@ fn the_file_and_the_command_line_override_the_choice() {
 
 #[test]
 fn a_poorly_conditioned_template_is_polished_and_the_audit_shows_both() {
-    // P3LL: its template leaves a tail of instances far from rounding level.
+    // Weighted PnP: its template fails on a few percent of uniform instances unpolished.
     let plan = plan_file(
-        &repo("templates/classic/p3ll.mp"),
+        &repo("templates/benchmark/wpnp.mp"),
         &TemplateOptions::default(),
     )
     .unwrap();
@@ -113,6 +120,5 @@ fn a_poorly_conditioned_template_is_polished_and_the_audit_shows_both() {
         report.p99_log10_residual <= unpolished.p99_log10_residual,
         "{report}"
     );
-    assert!(report.failures <= unpolished.failures, "{report}");
-    assert!(report.p99_log10_residual < AUTO_POLISH_TAIL, "{report}");
+    assert!(report.failures < unpolished.failures, "{report}");
 }

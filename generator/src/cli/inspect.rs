@@ -253,10 +253,12 @@ fn print_plan(out: &mut String, plan: &SolverPlan) {
     match &plan.auto_polishing {
         Some(a) => outln!(
             out,
-            "polishing: {steps} Gauss-Newton steps (chosen: unpolished, {} random instances gave median {:.2} and p99 {:.2} log10 residual; `option newton = N` sets it)",
-            a.instances,
+            "polishing: {steps} Gauss-Newton steps (chosen: unpolished, {} random instances gave median {:.2} and p99 {:.2} log10 residual, {} failures in {}; `option newton = N` sets it)",
+            mingen::AUTO_POLISH_INSTANCES,
             a.median_log10_residual,
-            a.p99_log10_residual
+            a.p99_log10_residual,
+            a.failures,
+            a.instances
         ),
         None => outln!(out, "polishing: {steps} Gauss-Newton steps (as set)"),
     }

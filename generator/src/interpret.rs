@@ -443,7 +443,9 @@ pub fn normalized_residual(p: &Poly<f64>, x: &[f64]) -> f64 {
 /// unit null vector (sign arbitrary), or, if `inhomogeneous` (the last column holds the
 /// free terms), the null vector divided by its last entry. Three homogeneous columns go
 /// through [`mingen_runtime::null_vector3_rows`], other widths through
-/// [`mingen_runtime::null_vector_dyn`] and [`mingen_runtime::dehomogenize`]. `None` for
+/// [`mingen_runtime::null_vector_dyn`] and [`mingen_runtime::dehomogenize`]; inhomogeneous
+/// equations whose eliminated unknowns have constant coefficients (data only) through
+/// [`mingen_runtime::least_squares_dyn`] on `A n = -b`. `None` for
 /// ragged or too few rows, a non-finite value, a rank below the width minus one, or a
 /// solution at infinity.
 pub fn recover_eliminated(
@@ -460,6 +462,23 @@ pub fn recover_eliminated(
         .iter()
         .flat_map(|row| row.iter().map(|p| eval(p, remaining)))
         .collect();
+    let k = width - usize::from(inhomogeneous);
+    if inhomogeneous
+        && coefficient_matrix
+            .iter()
+            .all(|row| row[..k].iter().all(|p| p.terms().all(|(m, _)| m.is_one())))
+    {
+        // Data-only coefficients: least squares on `A n = -b`, as the emitted solver.
+        let rows = coefficient_matrix.len();
+        let (a, b): (Vec<f64>, Vec<f64>) = (
+            values
+                .chunks_exact(width)
+                .flat_map(|r| r[..k].to_vec())
+                .collect(),
+            values.chunks_exact(width).map(|r| r[k]).collect(),
+        );
+        return mingen_runtime::least_squares_dyn(&a, rows, k, &b);
+    }
     if width == 3 && !inhomogeneous {
         let rows: Vec<[f64; 3]> = values.chunks_exact(3).map(|r| [r[0], r[1], r[2]]).collect();
         return mingen_runtime::null_vector3_rows(&rows).map(|v| v.to_vec());

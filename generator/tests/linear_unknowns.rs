@@ -178,3 +178,31 @@ P0[0] - x[0][0]*P0[2] = 0
     assert!(code.contains("#[allow(non_snake_case)]"));
     syn::parse_file(&code).expect("the emitted code parses");
 }
+
+#[test]
+fn data_only_coefficients_are_factored_once_per_instance() {
+    // `eliminate t` of the upright 2-point pose: t's coefficients are data (skew(x)), so
+    // the solver factors them once and solves per solution; the upright relative pose's
+    // translation has coefficients in (c, s): a null vector per solution.
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let opts = TemplateOptions::default();
+    let up2p = mingen::plan_file(&root.join("templates/classic/up2p_elim.mp"), &opts).unwrap();
+    let source = emit_plan_from(&up2p, "up2p_elim.mp").unwrap();
+    let compact: String = source.split_whitespace().collect();
+    assert!(
+        compact.contains("mingen_runtime::LeastSquares::<6,3,>::new("),
+        "{source}"
+    );
+    assert!(compact.contains("elim_ls.solve("));
+    assert!(!source.contains("null_vector"));
+    // The interpreter recovers t the same way: the audit's residuals are at rounding level.
+    assert!(audit_median(&up2p) < -14.0);
+    let upright = mingen::plan_file(
+        &root.join("templates/classic/relpose_upright_3pt_elim.mp"),
+        &opts,
+    )
+    .unwrap();
+    let source = emit_plan_from(&upright, "relpose_upright_3pt_elim.mp").unwrap();
+    assert!(!source.contains("LeastSquares"));
+    assert!(source.contains("null_vector"));
+}

@@ -32,6 +32,8 @@
 //!   then inverse iteration, when its residual is not at rounding level); hands the matrix to [`real_eigenpairs_hqr`] when a root is not
 //!   confirmed (residual or eigenvalue disagreement: spurious real roots of ±λ spectra) or
 //!   the Sturm sequence degenerates. The emitted solvers use it at every shipped size.
+//! - [`LeastSquares`]: a matrix factored once for many right-hand sides (eliminated
+//!   unknowns with data-only coefficients, recovered per solution).
 //! - [`reduce_equations`]: the equations row-reduced on their data to the pivot monomials
 //!   the generator chose, before the template is filled (smaller templates).
 //! - [`fold_constant_rows`]: the Schur complement of a template's constant rows (multiples
@@ -67,6 +69,7 @@ mod equation_reduction;
 mod hessenberg;
 mod hessenberg_dyn;
 mod hqr;
+mod least_squares;
 mod newton;
 mod null;
 mod null_general;
@@ -86,6 +89,7 @@ pub use eigen::{real_eigenpairs, NEAR_REAL_TOL};
 pub use elim::{gauss_jordan, lu_solve_template, lu_solve_template_fixed, PIVOT_TOL};
 pub use equation_reduction::reduce_equations;
 pub use hqr::{real_eigenpairs_hqr, real_eigenpairs_hqr_dyn};
+pub use least_squares::{least_squares_dyn, LeastSquares};
 pub use newton::{newton_polish, NewtonTerm, AT_ROUNDING_LEVEL, MAX_NEWTON_UNKNOWNS};
 pub use null::{null_vector3, null_vector3_rows};
 pub use null_general::{dehomogenize, null_vector, null_vector_dyn};

@@ -103,6 +103,12 @@ pub(crate) fn null_vector() -> TokenStream {
     quote!(mingen_runtime::null_vector)
 }
 
+/// `LeastSquares::<R, K>::new(a: &[[f64; K]; R]) -> Option<Self>`, then
+/// `.solve(b: &[f64; R]) -> Option<[f64; K]>` (`n` minimising `|A n + b|`).
+pub(crate) fn least_squares() -> TokenStream {
+    quote!(mingen_runtime::LeastSquares)
+}
+
 /// `dehomogenize(v: &[f64], out: &mut [f64]) -> bool` (`out = v[..k] / v[k]`).
 pub(crate) fn dehomogenize() -> TokenStream {
     quote!(mingen_runtime::dehomogenize)

@@ -460,7 +460,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let fill = fill_tokens(plan, &mut coefficients)?;
     let (units, from_template_loop) = action_matrix_tokens(t, &plan.column_of, cols, pivots, nb);
     let readout = Readout::new(plan);
-    let elim_block = eliminated_unknowns_tokens(plan, &coefficients, fill.style);
+    let (elim_setup, elim_block) = eliminated_unknowns_tokens(plan, &coefficients, fill.style);
     let (polish_consts, polish_block) = polish_tokens(plan, &coefficients, fill.style);
     let field_inits = solution_fields(plan)?;
     let filter = positive_filter(plan);
@@ -533,6 +533,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
                 return out;
             }
             let pairs = #eig::<#nb_l>(&a);
+            #elim_setup
             #polish_consts
             const READOUT: [&[(usize, usize)]; #nvars_l] = [#(#readout_pairs),*];
             for (_, v) in pairs.iter() {
@@ -1014,18 +1015,22 @@ impl Readout {
     }
 }
 
-/// The eliminated unknowns `n` of one solution: the null vector of the elimination
-/// coefficient matrix at the template variables (nothing without an elimination).
+/// The eliminated unknowns `n` of one solution, `(before the solution loop, in it)`: the
+/// null vector of the elimination coefficient matrix at the template variables; when the
+/// equations are inhomogeneous and the eliminated unknowns' coefficients are data only
+/// (`A n + b(u) = 0`), `A` is factored once before the loop
+/// (`mingen_runtime::LeastSquares`) and each solution solves with its `b`. Nothing without
+/// an elimination.
 fn eliminated_unknowns_tokens(
     plan: &Plan,
     coefficients: &Coefficients,
     style: VarStyle,
-) -> TokenStream {
+) -> (TokenStream, TokenStream) {
     let Some(el) = &plan.spec.elimination else {
-        return quote!();
+        return (quote!(), quote!());
     };
     let mut outs = coefficients.program.outputs[coefficients.n_fill..].iter();
-    let mut row_tokens = Vec::new();
+    let mut rows: Vec<Vec<TokenStream>> = Vec::new();
     for row in &coefficients.elim_terms {
         let mut entries = Vec::new();
         for support in row {
@@ -1035,11 +1040,33 @@ fn eliminated_unknowns_tokens(
                 .collect();
             entries.push(entry_tokens(&terms, style));
         }
-        row_tokens.push(quote!([#(#entries),*]));
+        rows.push(entries);
     }
+    let row_tokens: Vec<TokenStream> = rows.iter().map(|r| quote!([#(#r),*])).collect();
     let nr = lit(el.coefficient_matrix.len());
     let k = el.eliminated.len();
-    if el.inhomogeneous {
+    if el.inhomogeneous && data_only_columns(&coefficients.elim_terms, k) {
+        let ls = rt::least_squares();
+        let kl = lit(k);
+        let a_rows = rows.iter().map(|r| {
+            let a = &r[..k];
+            quote!([#(#a),*])
+        });
+        let b = rows.iter().map(|r| &r[k]);
+        return (
+            quote! {
+                let Some(elim_ls) = #ls::<#nr, #kl>::new(&[#(#a_rows),*]) else {
+                    return out;
+                };
+            },
+            quote! {
+                let Some(n) = elim_ls.solve(&[#(#b),*]) else {
+                    continue;
+                };
+            },
+        );
+    }
+    let in_loop = if el.inhomogeneous {
         let (width, kl) = (lit(k + 1), lit(k));
         let (nv, dh) = (rt::null_vector(), rt::dehomogenize());
         quote! {
@@ -1068,7 +1095,17 @@ fn eliminated_unknowns_tokens(
                 continue;
             };
         }
-    }
+    };
+    (quote!(), in_loop)
+}
+
+/// Whether the first `k` columns of the elimination matrix (its entries' monomials in the
+/// template variables, row by row) are constant: coefficients that depend on the data
+/// only, the same for every solution of an instance.
+fn data_only_columns(elim_terms: &[Vec<Vec<Monomial>>], k: usize) -> bool {
+    elim_terms
+        .iter()
+        .all(|row| row.len() > k && row[..k].iter().flatten().all(Monomial::is_one))
 }
 
 /// The value of the problem's unknown scalar `i` in one solution: a template variable

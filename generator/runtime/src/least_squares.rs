@@ -1,0 +1,196 @@
+//! Linear least squares with a matrix shared by many right-hand sides: the recovery of
+//! eliminated unknowns whose coefficients are data only (a translation, say). The
+//! equations are `A n + b(u) = 0`, `A` the same for every solution `u` of an instance, so
+//! `A` is factored once per instance and each solution costs a product with `Qᵀ` and a back
+//! substitution, where the general recovery ([`super::null_vector`] of `[A b]`) factors the
+//! whole matrix per solution.
+//!
+//! `A` (`rows x k`, `rows >= k`) is scaled to max |a_ij| = 1 and factored `A = Q R` by
+//! Householder reflections; `n = -R⁻¹ (Qᵀ b)[..k]`, with `b` scaled alike, minimises
+//! `|A n + b|`. For equations that have an exact solution (a minimal problem's, at one of
+//! its solutions) that solution is the one returned.
+
+/// A diagonal entry of `R` at most this (of the scaled matrix) makes `A` rank deficient.
+const RANK_TOL: f64 = 1e-12;
+
+/// The factorisation `A = Q R` of a fixed-size `R x K` matrix (see the module
+/// documentation); [`LeastSquares::solve`] per right-hand side. No heap allocation.
+#[derive(Clone, Debug)]
+pub struct LeastSquares<const R: usize, const K: usize> {
+    /// Householder vectors below the diagonal, `R` on and above it (row-major).
+    qr: [[f64; K]; R],
+    /// Per column, `(v_0, vᵀv)` of its reflection (the vector's first entry is not stored
+    /// in `qr`, whose diagonal holds `R`'s).
+    reflections: [(f64, f64); K],
+    /// The factor `A` was scaled by.
+    scale: f64,
+}
+
+impl<const R: usize, const K: usize> LeastSquares<R, K> {
+    /// Factors `a`; `None` if `K == 0`, `R < K`, an entry is not finite, `a` is zero, or
+    /// its rank is below `K`. Never panics.
+    pub fn new(a: &[[f64; K]; R]) -> Option<Self> {
+        let mut qr = *a;
+        let mut reflections = [(0.0, 0.0); K];
+        let scale = factor(qr.as_flattened_mut(), R, K, &mut reflections)?;
+        Some(LeastSquares {
+            qr,
+            reflections,
+            scale,
+        })
+    }
+
+    /// The `n` minimising `|A n + b|` (for consistent equations, `A n = -b`); `None` if a
+    /// value is not finite. Never panics.
+    pub fn solve(&self, b: &[f64; R]) -> Option<[f64; K]> {
+        let mut work = *b;
+        let mut n = [0.0; K];
+        solve(
+            self.qr.as_flattened(),
+            R,
+            K,
+            &self.reflections,
+            self.scale,
+            &mut work,
+            &mut n,
+        )
+        .then_some(n)
+    }
+}
+
+/// [`LeastSquares`] for sizes known at run time only (the interpreter's entry point): `a`
+/// row-major `rows x k`, one right-hand side `b` of `rows` entries; the same algorithm and
+/// the same bits. Allocates its work space.
+pub fn least_squares_dyn(a: &[f64], rows: usize, k: usize, b: &[f64]) -> Option<Vec<f64>> {
+    if a.len() != rows * k || b.len() != rows {
+        return None;
+    }
+    let mut qr = a.to_vec();
+    let mut reflections = vec![(0.0, 0.0); k];
+    let scale = factor(&mut qr, rows, k, &mut reflections)?;
+    let mut work = b.to_vec();
+    let mut n = vec![0.0; k];
+    solve(&qr, rows, k, &reflections, scale, &mut work, &mut n).then_some(n)
+}
+
+/// Scales the row-major `r x k` matrix `a` to max |a_ij| = 1 and overwrites it with its
+/// Householder QR (see [`LeastSquares::qr`]); returns the scale, `None` if the matrix is
+/// not of full column rank (or not finite, or `r < k`, or `k == 0`).
+fn factor(a: &mut [f64], r: usize, k: usize, reflections: &mut [(f64, f64)]) -> Option<f64> {
+    if k == 0 || r < k {
+        return None;
+    }
+    let mut max = 0.0f64;
+    for x in a.iter() {
+        if !x.is_finite() {
+            return None;
+        }
+        max = max.max(x.abs());
+    }
+    if max == 0.0 {
+        return None;
+    }
+    let scale = 1.0 / max;
+    a.iter_mut().for_each(|x| *x *= scale);
+    let at = |i: usize, j: usize| i * k + j;
+    for j in 0..k {
+        let norm = (j..r)
+            .map(|i| a[at(i, j)] * a[at(i, j)])
+            .sum::<f64>()
+            .sqrt();
+        if norm.is_nan() || norm <= RANK_TOL {
+            return None;
+        }
+        // Reflection mapping a[j.., j] to (alpha, 0, ...): v = a[j.., j] - alpha e_1.
+        let alpha = if a[at(j, j)] > 0.0 { -norm } else { norm };
+        let v0 = a[at(j, j)] - alpha;
+        let vtv = v0 * v0 + (j + 1..r).map(|i| a[at(i, j)] * a[at(i, j)]).sum::<f64>();
+        for c in j + 1..k {
+            let d = v0 * a[at(j, c)] + (j + 1..r).map(|i| a[at(i, j)] * a[at(i, c)]).sum::<f64>();
+            let f = 2.0 * d / vtv;
+            a[at(j, c)] -= f * v0;
+            for i in j + 1..r {
+                a[at(i, c)] -= f * a[at(i, j)];
+            }
+        }
+        a[at(j, j)] = alpha;
+        reflections[j] = (v0, vtv);
+    }
+    Some(scale)
+}
+
+/// `n = -R⁻¹ (Qᵀ (scale b))[..k]` from the factorisation of [`factor`]; `b` is work space.
+fn solve(
+    qr: &[f64],
+    r: usize,
+    k: usize,
+    reflections: &[(f64, f64)],
+    scale: f64,
+    b: &mut [f64],
+    n: &mut [f64],
+) -> bool {
+    let at = |i: usize, j: usize| i * k + j;
+    b.iter_mut().for_each(|x| *x *= scale);
+    for (j, &(v0, vtv)) in reflections.iter().enumerate() {
+        let d = v0 * b[j] + (j + 1..r).map(|i| qr[at(i, j)] * b[i]).sum::<f64>();
+        let f = 2.0 * d / vtv;
+        b[j] -= f * v0;
+        for i in j + 1..r {
+            b[i] -= f * qr[at(i, j)];
+        }
+    }
+    for i in (0..k).rev() {
+        let s: f64 = b[i] + (i + 1..k).map(|l| qr[at(i, l)] * n[l]).sum::<f64>();
+        n[i] = -s / qr[at(i, i)];
+    }
+    n.iter().all(|x| x.is_finite())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    #[test]
+    fn solves_consistent_and_overdetermined_systems() {
+        let mut rng = ChaCha8Rng::seed_from_u64(71);
+        for _ in 0..200 {
+            let a: [[f64; 3]; 6] =
+                std::array::from_fn(|_| std::array::from_fn(|_| rng.gen_range(-1.0..1.0)));
+            let n: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-5.0..5.0));
+            // Consistent: b = -A n.
+            let b: [f64; 6] = std::array::from_fn(|i| -(0..3).map(|j| a[i][j] * n[j]).sum::<f64>());
+            let ls = LeastSquares::new(&a).unwrap();
+            let got = ls.solve(&b).unwrap();
+            for j in 0..3 {
+                assert!((got[j] - n[j]).abs() < 1e-11, "{got:?} {n:?}");
+            }
+            // The same bits at run-time sizes.
+            let dynamic = least_squares_dyn(a.as_flattened(), 6, 3, &b).unwrap();
+            assert_eq!(dynamic, got.to_vec());
+            // Inconsistent: the residual is orthogonal to the columns (normal equations).
+            let noisy: [f64; 6] = std::array::from_fn(|i| b[i] + rng.gen_range(-0.1..0.1));
+            let x = ls.solve(&noisy).unwrap();
+            let res: Vec<f64> = (0..6)
+                .map(|i| (0..3).map(|j| a[i][j] * x[j]).sum::<f64>() + noisy[i])
+                .collect();
+            let gradient = (0..3).map(|j| (0..6).map(|i| a[i][j] * res[i]).sum::<f64>());
+            for g in gradient {
+                assert!(g.abs() < 1e-12, "{g}");
+            }
+        }
+    }
+
+    #[test]
+    fn rank_deficiency_and_bad_input_give_none() {
+        let rank1 = [[1.0, 2.0], [2.0, 4.0], [-1.0, -2.0]];
+        assert!(LeastSquares::new(&rank1).is_none());
+        assert!(LeastSquares::new(&[[0.0; 2]; 3]).is_none());
+        assert!(LeastSquares::new(&[[f64::NAN, 1.0], [1.0, 0.0]]).is_none());
+        assert!(LeastSquares::<1, 2>::new(&[[1.0, 0.0]]).is_none());
+        let ls = LeastSquares::new(&[[1.0, 0.0], [0.0, 1.0]]).unwrap();
+        assert!(ls.solve(&[f64::INFINITY, 0.0]).is_none());
+        assert_eq!(least_squares_dyn(&[1.0; 5], 3, 2, &[0.0; 3]), None);
+    }
+}

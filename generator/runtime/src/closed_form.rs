@@ -10,6 +10,9 @@
 //!   into two quadratics through the largest root of the resolvent cubic
 //!   `8 m^3 + 8 p m^2 + (2 p^2 - 8 r) m - q^2` (biquadratic when `q` is zero).
 //!
+//! - 2x2 matrices: eigenvalues from the trace and `(a - d)^2 + 4 b c`, each eigenvector
+//!   the larger of the two null vectors of `A - lambda I`'s rows ([`eigenpairs_2x2`]).
+//!
 //! Every root is then polished by Newton's iteration on the polynomial as given (at most
 //! [`NEWTON_STEPS`], a step kept only if it lowers `|p|`), which restores the accuracy
 //! the formulas lose to cancellation. Close to a double root the formulas cannot tell a
@@ -215,6 +218,61 @@ fn quartic(a: f64, b: f64, c: f64, d: f64, out: &mut [f64; 4]) -> Option<usize> 
     Some(n)
 }
 
+/// The acceptance residual of [`eigenpairs_2x2`]: `|A v - lambda v|` relative to the
+/// largest entry of `A`.
+const EIGENPAIR_RESIDUAL: f64 = 1e-13;
+
+/// Up to two eigenpairs `(lambda, unit v)` of a 2x2 matrix.
+pub(crate) type Eigenpairs2 = [(f64, [f64; 2]); 2];
+
+/// Real eigenpairs of `[[a, b], [c, d]]` in closed form, unit vectors, in increasing order
+/// of eigenvalue: `Some` of none or two pairs; `None` (the caller's general method decides)
+/// for a non-finite or zero matrix, a (near) double eigenvalue, or a pair whose residual is
+/// above [`EIGENPAIR_RESIDUAL`].
+pub(crate) fn eigenpairs_2x2(m: [[f64; 2]; 2]) -> Option<(Eigenpairs2, usize)> {
+    let [[a, b], [c, d]] = m;
+    let size = a.abs().max(b.abs()).max(c.abs()).max(d.abs());
+    if !size.is_finite() || size == 0.0 {
+        return None;
+    }
+    // (a - d)^2 + 4 b c = tr^2 - 4 det, without its cancellation for distinct diagonals.
+    let half = 0.5 * (a - d);
+    let disc = half * half + b * c;
+    if disc.abs() <= DISCRIMINANT_TOL * (half * half + (b * c).abs()) {
+        return None;
+    }
+    let mut pairs = [(0.0, [0.0; 2]); 2];
+    if disc < 0.0 {
+        return Some((pairs, 0));
+    }
+    let mean = 0.5 * (a + d);
+    let root = disc.sqrt();
+    for (k, lambda) in [mean - root, mean + root].into_iter().enumerate() {
+        // Null vectors of the rows (a - l, b) and (c, d - l); the longer is the better.
+        let (v1, v2) = ([b, lambda - a], [lambda - d, c]);
+        // Entries are at most a few times `size`: squares neither overflow nor underflow
+        // for any matrix an action can be.
+        let n1 = v1[0] * v1[0] + v1[1] * v1[1];
+        let n2 = v2[0] * v2[0] + v2[1] * v2[1];
+        let (v, n2) = if n1 >= n2 { (v1, n1) } else { (v2, n2) };
+        let n = n2.sqrt();
+        if n.is_nan() || n <= f64::EPSILON * size {
+            return None;
+        }
+        let v = [v[0] / n, v[1] / n];
+        let r0 = a * v[0] + b * v[1] - lambda * v[0];
+        let r1 = c * v[0] + d * v[1] - lambda * v[1];
+        let tolerance = EIGENPAIR_RESIDUAL * size;
+        if (r0 * r0 + r1 * r1).partial_cmp(&(tolerance * tolerance))
+            != Some(std::cmp::Ordering::Less)
+        {
+            return None;
+        }
+        pairs[k] = (lambda, v);
+    }
+    Some((pairs, 2))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -288,6 +346,49 @@ mod tests {
             check::<4>(&mut rng, 2);
             check::<4>(&mut rng, 0);
         }
+    }
+
+    #[test]
+    fn eigenpairs_of_2x2_matrices() {
+        let mut rng = ChaCha8Rng::seed_from_u64(45);
+        let (mut real, mut complex) = (0, 0);
+        for _ in 0..5000 {
+            let m: [[f64; 2]; 2] =
+                std::array::from_fn(|_| std::array::from_fn(|_| rng.gen_range(-1.0..1.0)));
+            let reference =
+                crate::real_eigenpairs(&nalgebra::Matrix2::new(m[0][0], m[0][1], m[1][0], m[1][1]));
+            match eigenpairs_2x2(m) {
+                Some((pairs, n)) => {
+                    assert_eq!(n, reference.len(), "{m:?}");
+                    for (lambda, v) in &pairs[..n] {
+                        assert!(
+                            reference.iter().any(|(l, _)| (l - lambda).abs() < 1e-12),
+                            "{m:?}"
+                        );
+                        assert!((v[0].hypot(v[1]) - 1.0).abs() < 1e-15);
+                    }
+                    if n == 2 {
+                        assert!(pairs[0].0 < pairs[1].0);
+                        real += 1;
+                    } else {
+                        complex += 1;
+                    }
+                }
+                None => panic!("{m:?} refused"),
+            }
+        }
+        assert!(real > 1000 && complex > 1000, "{real} {complex}");
+        // A double eigenvalue, a zero and a non-finite matrix are left to the general path.
+        assert_eq!(eigenpairs_2x2([[1.0, 1.0], [0.0, 1.0]]), None);
+        assert_eq!(eigenpairs_2x2([[0.0; 2]; 2]), None);
+        assert_eq!(eigenpairs_2x2([[f64::NAN, 0.0], [0.0, 1.0]]), None);
+        // Badly scaled entries keep their accuracy.
+        let (pairs, n) = eigenpairs_2x2([[1e8, 1.0], [1e-8, 2.0]]).unwrap();
+        assert_eq!(n, 2);
+        assert!(
+            (pairs[1].0 - 1e8).abs() < 1e-6 && (pairs[0].0 - 2.0).abs() < 1e-9,
+            "{pairs:?}"
+        );
     }
 
     #[test]

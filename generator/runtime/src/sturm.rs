@@ -19,13 +19,17 @@
 //!    `H - lambda I` (Hessenberg LU with partial pivoting, O(N^2), up to three steps, the
 //!    eigenvalue refined from the last); `v = S y`.
 //!
+//! A 2x2 matrix takes none of these steps: its eigenpairs are formulas
+//! ([`super::closed_form`]), unless its eigenvalues are (nearly) double or a pair's residual
+//! is not at rounding level.
+//!
 //! Every loop is bounded. The QR back end takes over when the Sturm sequence degenerates
 //! (a remainder vanishes exactly: multiple roots or special structure), when a root is not
 //! confirmed by inverse iteration (moved by more than [`AGREE_TOL`], or a residual above
 //! [`ACCEPT_RESIDUAL`]: a spurious real root from a complex pair near the real axis), or
 //! when two roots converge to one eigenvalue.
 
-use super::closed_form::monic_real_roots;
+use super::closed_form::{eigenpairs_2x2, monic_real_roots};
 use super::hessenberg::{
     balance, eigenvector_by_recurrence, hessenberg_of_columns, hyman_newton_step,
     inverse_iteration, normalise, subdiagonal_reciprocals, transpose,
@@ -53,6 +57,14 @@ pub fn real_eigenpairs_sturm<const N: usize>(
     m: &SMatrix<f64, N, N>,
 ) -> SolutionSet<(f64, SVector<f64, N>), N> {
     let mut out = SolutionSet::filled_with((0.0, SVector::zeros()));
+    if N == 2 {
+        if let Some((pairs, n)) = eigenpairs_2x2([[m[(0, 0)], m[(0, 1)]], [m[(1, 0)], m[(1, 1)]]]) {
+            for (lambda, v) in &pairs[..n] {
+                out.push((*lambda, SVector::from_fn(|i, _| v[i])));
+            }
+            return out;
+        }
+    }
     #[cfg(target_arch = "x86_64")]
     let found = if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU supports AVX2, checked just above.

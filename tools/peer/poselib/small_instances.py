@@ -1,0 +1,159 @@
+#!/usr/bin/env python3
+"""Planted geometric instances of the small classic problems, written twice: once in our
+problem file's data-slot order (the `data slot order` line of `mingen inspect`, for
+`tools/emitted_solver/run.sh` and `mingen audit --instances-from`) and once as PoseLib's
+solver inputs (for small_solvers.cc), with the planted solution in our unknowns' order.
+
+  small_instances.py PROBLEM COUNT SEED OURS PEER SOLUTIONS
+
+PROBLEM (templates/classic/PROBLEM.mp)       PoseLib          peer line (x y z each)
+  p3p        lambda x = R X + t               p3p              x[3] (unit), X[3]
+  gp3p       p + lambda x = R X + t           gp3p             p[3], x[3] (unit), X[3]
+  up2p_elim  lambda x = R X + t, R about y    up2p             x[2] (unit), X[2]
+  relpose_upright_3pt_elim                    relpose_upright_3pt  x1[3], x2[3] (unit)
+             lambda2 x2 = R lambda1 x1 + t, R about y, |t| = 1
+  p3ll       l' (R (X + mu V) + t) = 0        p3ll             l[3], X[3], V[3]
+
+Geometry: camera-frame points with x, y uniform in [-1, 1] and depth in [2, 6] (in front
+of every camera), rotations uniform (a normalised Gaussian quaternion; about the y axis,
+the angle uniform, for the upright problems), translations with entries N(0, 1)
+(N(0, 0.5) between the two views of the relative pose). Solutions: p3p depths along
+(x, y, 1); gp3p distances along unit rays from the origins p; up2p (cos, sin, t);
+relative pose (cos, sin, t / |t|); p3ll the rotation as (b, c, d) = (x, y, z) / w of its
+quaternion and z = 1 / (1 + b^2 + c^2 + d^2).
+"""
+import math
+import random
+import sys
+
+
+def quaternion(rng):
+    while True:
+        q = [rng.gauss(0, 1) for _ in range(4)]
+        n = math.sqrt(sum(x * x for x in q))
+        if n > 1e-3 and abs(q[0]) > 0.05 * n:
+            return [x / n for x in q]
+
+
+def rotation(q):
+    w, x, y, z = q
+    return [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]]
+
+
+def upright(angle):
+    c, s = math.cos(angle), math.sin(angle)
+    return [[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]]
+
+
+def mul(m, v):
+    return [sum(m[i][j] * v[j] for j in range(3)) for i in range(3)]
+
+
+def tmul(m, v):
+    return [sum(m[j][i] * v[j] for j in range(3)) for i in range(3)]
+
+
+def sub(a, b):
+    return [x - y for x, y in zip(a, b)]
+
+
+def add(a, b):
+    return [x + y for x, y in zip(a, b)]
+
+
+def cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def unit(v):
+    n = math.sqrt(sum(x * x for x in v))
+    return [x / n for x in v]
+
+
+def dist2(a, b):
+    return sum((x - y) ** 2 for x, y in zip(a, b))
+
+
+def in_front(rng):
+    return [rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(2, 6)]
+
+
+def p3p(rng):
+    R, t = rotation(quaternion(rng)), [rng.gauss(0, 1) for _ in range(3)]
+    xc = [in_front(rng) for _ in range(3)]
+    X = [tmul(R, sub(p, t)) for p in xc]
+    ours = [v for p in xc for v in (p[0] / p[2], p[1] / p[2])]
+    ours += [dist2(xc[0], xc[1]), dist2(xc[0], xc[2]), dist2(xc[1], xc[2])]
+    peer = [v for p in xc for v in unit(p)] + [v for p in X for v in p]
+    return ours, peer, [p[2] for p in xc]
+
+
+def gp3p(rng):
+    R, t = rotation(quaternion(rng)), [rng.gauss(0, 1) for _ in range(3)]
+    xc = [in_front(rng) for _ in range(3)]
+    origins = [[rng.uniform(-1, 1) for _ in range(3)] for _ in range(3)]
+    rays = [unit(sub(p, o)) for p, o in zip(xc, origins)]
+    X = [tmul(R, sub(p, t)) for p in xc]
+    ours = [v for o in origins for v in o] + [v for r in rays for v in r]
+    ours += [dist2(xc[0], xc[1]), dist2(xc[0], xc[2]), dist2(xc[1], xc[2])]
+    peer = [v for o in origins for v in o] + [v for r in rays for v in r] + [v for p in X for v in p]
+    return ours, peer, [math.sqrt(dist2(p, o)) for p, o in zip(xc, origins)]
+
+
+def up2p_elim(rng):
+    angle = rng.uniform(-math.pi, math.pi)
+    R, t = upright(angle), [rng.gauss(0, 1) for _ in range(3)]
+    xc = [in_front(rng) for _ in range(2)]
+    X = [tmul(R, sub(p, t)) for p in xc]
+    ours = [v for p in X for v in p] + [v for p in xc for v in (p[0] / p[2], p[1] / p[2])]
+    peer = [v for p in xc for v in unit(p)] + [v for p in X for v in p]
+    return ours, peer, [math.cos(angle), math.sin(angle)] + t
+
+
+def relpose_upright_3pt_elim(rng):
+    while True:
+        angle = rng.uniform(-math.pi, math.pi)
+        R, t = upright(angle), [rng.gauss(0, 0.5) for _ in range(3)]
+        x1 = [in_front(rng) for _ in range(3)]
+        x2 = [add(mul(R, p), t) for p in x1]
+        if all(p[2] > 0.5 for p in x2):
+            break
+    ours = [v for p in x1 + x2 for v in (p[0] / p[2], p[1] / p[2])]
+    peer = [v for p in x1 + x2 for v in unit(p)]
+    return ours, peer, [math.cos(angle), math.sin(angle)] + unit(t)
+
+
+def p3ll(rng):
+    q = quaternion(rng)
+    if q[0] < 0:
+        q = [-x for x in q]
+    R, t = rotation(q), [rng.gauss(0, 1) for _ in range(3)]
+    X = [tmul(R, sub(in_front(rng), t)) for _ in range(3)]
+    V = [unit([rng.gauss(0, 1) for _ in range(3)]) for _ in range(3)]
+    lines = [unit(cross(add(mul(R, x), t), mul(R, v))) for x, v in zip(X, V)]
+    b, c, d = q[1] / q[0], q[2] / q[0], q[3] / q[0]
+    ours = [v for l in lines for v in l] + [v for w in V for v in w]
+    peer = [v for l in lines for v in l] + [v for x in X for v in x] + [v for w in V for v in w]
+    return ours, peer, [b, c, d, 1 / (1 + b * b + c * c + d * d)]
+
+
+PROBLEMS = {f.__name__: f for f in (p3p, gp3p, up2p_elim, relpose_upright_3pt_elim, p3ll)}
+
+
+def main():
+    if len(sys.argv) != 7 or sys.argv[1] not in PROBLEMS:
+        sys.exit(__doc__)
+    make = PROBLEMS[sys.argv[1]]
+    count, rng = int(sys.argv[2]), random.Random(int(sys.argv[3]))
+    with open(sys.argv[4], "w") as ours, open(sys.argv[5], "w") as peer, \
+            open(sys.argv[6], "w") as solutions:
+        for _ in range(count):
+            o, p, s = make(rng)
+            for f, row in ((ours, o), (peer, p), (solutions, s)):
+                f.write(" ".join(repr(x) for x in row) + "\n")
+
+
+if __name__ == "__main__":
+    main()

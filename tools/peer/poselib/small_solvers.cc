@@ -1,0 +1,189 @@
+// Runs one of PoseLib's small minimal solvers on the instances small_instances.py writes
+// (its PEER file: PoseLib's inputs, x y z each) and prints the figures
+// tools/emitted_solver/main.rs prints for our emitted solver on the same instances (its
+// OURS file): per-call time, solutions per instance, and how many planted solutions (our
+// unknowns, the SOLUTIONS file) are recovered to 1e-6 relative, PoseLib's poses converted
+// to our unknowns. Our own code, compiled against a PoseLib checkout the user provides
+// (small_solvers.sh).
+//
+//   small_solvers PROBLEM PEER SOLUTIONS
+//
+// PROBLEM: p3p, gp3p, up2p_elim (PoseLib's up2p), relpose_upright_3pt_elim (PoseLib's
+// relpose_upright_3pt), p3ll. Work per call: PoseLib's poses (rotation and translation);
+// ours returns what its problem file solves for (depths for p3p and gp3p; the rotation alone
+// for p3ll).
+#include <PoseLib/poselib.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+using Points = std::vector<Vec3>;
+
+std::vector<std::vector<double>> read_rows(const char *path, size_t width) {
+    std::ifstream in(path);
+    std::vector<std::vector<double>> rows;
+    std::string line;
+    while (std::getline(in, line)) {
+        std::istringstream s(line);
+        std::vector<double> row;
+        double x;
+        while (s >> x) row.push_back(x);
+        if (row.size() == width) rows.push_back(row);
+    }
+    return rows;
+}
+
+// The `count` vectors of block `block` of a peer line (blocks of `count` x y z each).
+Points block(const std::vector<double> &r, int block, int count) {
+    Points out;
+    for (int i = 0; i < count; ++i) {
+        int k = 3 * (count * block + i);
+        out.emplace_back(r[k], r[k + 1], r[k + 2]);
+    }
+    return out;
+}
+
+// One problem: the width of a peer line, the call, and a pose's value in our unknowns.
+struct Problem {
+    size_t width;
+    size_t unknowns;
+    std::function<void(const std::vector<double> &, std::vector<poselib::CameraPose> *)> solve;
+    std::function<std::vector<double>(const std::vector<double> &, const poselib::CameraPose &)> ours;
+    // Unknowns whose joint sign is free (a translation of unit length).
+    std::vector<int> sign_free;
+};
+
+bool problem(const std::string &name, Problem *p) {
+    if (name == "p3p") {
+        *p = {18, 3,
+              [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out) {
+                  poselib::p3p(block(r, 0, 3), block(r, 1, 3), out);
+              },
+              [](const std::vector<double> &r, const poselib::CameraPose &pose) {
+                  // Depth along (x, y, 1): the camera-frame point's z.
+                  std::vector<double> d;
+                  for (const auto &X : block(r, 1, 3)) d.push_back(pose.apply(X).z());
+                  return d;
+              },
+              {}};
+    } else if (name == "gp3p") {
+        *p = {27, 3,
+              [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out) {
+                  poselib::gp3p(block(r, 0, 3), block(r, 1, 3), block(r, 2, 3), out);
+              },
+              [](const std::vector<double> &r, const poselib::CameraPose &pose) {
+                  // Distance along the unit ray from its origin.
+                  auto o = block(r, 0, 3), x = block(r, 1, 3), X = block(r, 2, 3);
+                  std::vector<double> d;
+                  for (int i = 0; i < 3; ++i) d.push_back((pose.apply(X[i]) - o[i]).dot(x[i]));
+                  return d;
+              },
+              {}};
+    } else if (name == "up2p_elim") {
+        *p = {12, 5,
+              [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out) {
+                  poselib::up2p(block(r, 0, 2), block(r, 1, 2), out);
+              },
+              [](const std::vector<double> &, const poselib::CameraPose &pose) {
+                  Eigen::Matrix3d R = pose.R();
+                  return std::vector<double>{R(0, 0), R(0, 2), pose.t(0), pose.t(1), pose.t(2)};
+              },
+              {}};
+    } else if (name == "relpose_upright_3pt_elim") {
+        *p = {18, 5,
+              [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out) {
+                  poselib::relpose_upright_3pt(block(r, 0, 3), block(r, 1, 3), out);
+              },
+              [](const std::vector<double> &, const poselib::CameraPose &pose) {
+                  Eigen::Matrix3d R = pose.R();
+                  Vec3 t = pose.t.normalized();
+                  return std::vector<double>{R(0, 0), R(0, 2), t(0), t(1), t(2)};
+              },
+              {2, 3, 4}};
+    } else if (name == "p3ll") {
+        *p = {27, 4,
+              [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out) {
+                  poselib::p3ll(block(r, 0, 3), block(r, 1, 3), block(r, 2, 3), out);
+              },
+              [](const std::vector<double> &, const poselib::CameraPose &pose) {
+                  double w = pose.q(0), b = pose.q(1) / w, c = pose.q(2) / w, d = pose.q(3) / w;
+                  return std::vector<double>{b, c, d, 1.0 / (1.0 + b * b + c * c + d * d)};
+              },
+              {}};
+    } else {
+        return false;
+    }
+    return true;
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+    Problem p;
+    if (argc < 4 || !problem(argv[1], &p)) {
+        std::fprintf(stderr, "usage: %s p3p|gp3p|up2p_elim|relpose_upright_3pt_elim|p3ll PEER SOLUTIONS\n", argv[0]);
+        return 2;
+    }
+    auto rows = read_rows(argv[2], p.width);
+    auto truths = read_rows(argv[3], p.unknowns);
+    if (rows.empty() || rows.size() != truths.size()) {
+        std::fprintf(stderr, "%zu instances, %zu solutions\n", rows.size(), truths.size());
+        return 2;
+    }
+    int rounds = std::clamp(2000 / int(rows.size()), 3, 25);
+    std::vector<double> times;
+    size_t poses = 0;
+    std::vector<poselib::CameraPose> out;
+    for (int round = 0; round < rounds; ++round) {
+        poses = 0;
+        auto start = std::chrono::steady_clock::now();
+        for (const auto &r : rows) {
+            out.clear();
+            p.solve(r, &out);
+            poses += out.size();
+        }
+        auto end = std::chrono::steady_clock::now();
+        times.push_back(std::chrono::duration<double, std::micro>(end - start).count() / rows.size());
+    }
+    std::sort(times.begin(), times.end());
+    std::printf("%zu instances x %d rounds: %.3f us per call (median round; fastest %.3f), %.2f real solutions per instance\n",
+                rows.size(), rounds, times[times.size() / 2], times[0], double(poses) / rows.size());
+    std::vector<double> errors;
+    for (size_t k = 0; k < rows.size(); ++k) {
+        out.clear();
+        p.solve(rows[k], &out);
+        const auto &t = truths[k];
+        std::vector<double> flipped = t;
+        for (int i : p.sign_free) flipped[i] = -flipped[i];
+        double scale = 1.0;
+        for (double x : t) scale = std::max(scale, std::abs(x));
+        double best = INFINITY;
+        for (const auto &pose : out) {
+            auto s = p.ours(rows[k], pose);
+            for (const auto *truth : {&t, &flipped}) {
+                double e = 0;
+                for (size_t i = 0; i < s.size(); ++i) e += (s[i] - (*truth)[i]) * (s[i] - (*truth)[i]);
+                best = std::min(best, std::sqrt(e) / scale);
+            }
+        }
+        errors.push_back(best);
+    }
+    size_t recovered = std::count_if(errors.begin(), errors.end(), [](double e) { return e <= 1e-6; });
+    std::sort(errors.begin(), errors.end());
+    auto lg = [](double e) { return std::log10(std::max(e, 1e-17)); };
+    std::printf("planted solution recovered (to 1e-6): %zu of %zu; error log10 median %.2f, p99 %.2f\n", recovered,
+                errors.size(), lg(errors[errors.size() / 2]),
+                lg(errors[std::min(errors.size() - 1, errors.size() * 99 / 100)]));
+    return 0;
+}

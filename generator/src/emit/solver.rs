@@ -1055,6 +1055,9 @@ fn eliminated_unknowns_tokens(
         let b = rows.iter().map(|r| &r[k]);
         return (
             quote! {
+                if pairs.is_empty() {
+                    return out;
+                }
                 let Some(elim_ls) = #ls::<#nr, #kl>::new(&[#(#a_rows),*]) else {
                     return out;
                 };

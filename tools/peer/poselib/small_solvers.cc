@@ -171,7 +171,7 @@ int main(int argc, char **argv) {
         double best = INFINITY;
         for (const auto &pose : out) {
             auto s = p.ours(rows[k], pose);
-            for (const auto *truth : {&t, &flipped}) {
+            for (const std::vector<double> *truth : {&t, static_cast<const std::vector<double> *>(&flipped)}) {
                 double e = 0;
                 for (size_t i = 0; i < s.size(); ++i) e += (s[i] - (*truth)[i]) * (s[i] - (*truth)[i]);
                 best = std::min(best, std::sqrt(e) / scale);

@@ -48,7 +48,7 @@ done
 python3 - "$work/log" <<'PY'
 import collections, re, statistics, sys
 time = collections.defaultdict(dict)
-sols, recovered = {}, {}
+sols, recovered, instances = {}, {}, "?"
 for line in open(sys.argv[1]):
     f = line.split()
     p, r, who = f[0], f[1], f[2]
@@ -57,8 +57,9 @@ for line in open(sys.argv[1]):
         sols[(p, who)] = float(f[f.index("real") - 1])
     elif line.split(None, 3)[3].startswith("planted"):
         m = re.search(r"(\d+) of (\d+)", line)
-        recovered[(p, who)] = f"{m.group(1)} / {m.group(2)}"
-print("| problem | PoseLib µs | ours µs | ratio ours / PoseLib | solutions returned, PoseLib / ours | planted recovered, PoseLib / ours |")
+        recovered[(p, who)] = m.group(1)
+        instances = m.group(2)
+print("| problem | PoseLib µs | ours µs | ratio ours / PoseLib | solutions returned, PoseLib / ours | planted recovered (of instances), PoseLib / ours |")
 print("|---|---|---|---|---|---|")
 for p, t in time.items():
     rounds = sorted({r for r, _ in t})
@@ -66,5 +67,5 @@ for p, t in time.items():
     med = lambda who: statistics.median(t[(r, who)] for r in rounds if (r, who) in t)
     print(f"| `{p}` | {med('poselib'):.3f} | {med('ours'):.3f} | {statistics.median(ratios):.2f} | "
           f"{sols[(p, 'poselib')]:.2f} / {sols[(p, 'ours')]:.2f} | "
-          f"{recovered.get((p, 'poselib'), '?')} / {recovered.get((p, 'ours'), '?')} |")
+          f"{recovered.get((p, 'poselib'), '?')} / {recovered.get((p, 'ours'), '?')} (of {instances}) |")
 PY

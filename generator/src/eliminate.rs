@@ -78,6 +78,17 @@ pub struct Eliminated<C: Ring> {
     pub dropped: Vec<usize>,
 }
 
+/// Whether the eliminated unknowns' columns of an elimination coefficient matrix (the first
+/// `k` of each row; the free terms follow) are constant in the remaining unknowns: data
+/// only, the same for every solution of an instance, so that a solver factors them once
+/// (`mingen_runtime::LeastSquares`) instead of per solution. The emitter and the
+/// interpreter decide with this one test.
+pub fn has_data_only_columns<C: Ring>(matrix: &[Vec<Poly<C>>], k: usize) -> bool {
+    matrix
+        .iter()
+        .all(|row| row.len() > k && row[..k].iter().all(|p| p.terms().all(|(m, _)| m.is_one())))
+}
+
 /// Eliminates the unknowns `eliminated` (flat indices) from `equations` (polynomials in
 /// `nvars` unknowns). See the module documentation.
 pub fn eliminate_linear<C: Ring>(

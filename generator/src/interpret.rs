@@ -14,6 +14,7 @@
 //! intermediates there), so both agree to rounding.
 
 use crate::algebra::{Monomial, Poly};
+use crate::eliminate::has_data_only_columns;
 use crate::template::{EliminationTemplate, ShapeError};
 use nalgebra::DMatrix;
 use std::collections::HashMap;
@@ -463,11 +464,7 @@ pub fn recover_eliminated(
         .flat_map(|row| row.iter().map(|p| eval(p, remaining)))
         .collect();
     let k = width - usize::from(inhomogeneous);
-    if inhomogeneous
-        && coefficient_matrix
-            .iter()
-            .all(|row| row[..k].iter().all(|p| p.terms().all(|(m, _)| m.is_one())))
-    {
+    if inhomogeneous && has_data_only_columns(coefficient_matrix, k) {
         // Data-only coefficients: least squares on `A n = -b`, as the emitted solver.
         let rows = coefficient_matrix.len();
         let (a, b): (Vec<f64>, Vec<f64>) = (

@@ -19,6 +19,7 @@
 //! template, is the same on every run.
 
 use crate::audit::{audit_plan, AuditOptions};
+use crate::emit::polish::check_polishable;
 use crate::instance::random_data_f64;
 use crate::pipeline::SolverPlan;
 use rand::SeedableRng;
@@ -54,9 +55,7 @@ pub struct AutoPolishing {
 }
 
 /// Measures `plan`'s template unpolished and chooses the steps (see the module
-/// documentation). `None` when the solver cannot polish: more unknowns than
-/// `mingen_runtime::MAX_NEWTON_UNKNOWNS`, fewer equations than unknowns, or an exponent
-/// above 255 (what `option newton` refuses).
+/// documentation). `None` when the solver cannot polish (what `option newton` refuses).
 pub(crate) fn choose(plan: &SolverPlan) -> Option<AutoPolishing> {
     if !can_polish(plan) {
         return None;
@@ -91,16 +90,10 @@ pub(crate) fn choose(plan: &SolverPlan) -> Option<AutoPolishing> {
     })
 }
 
-/// Whether the emitted solver can polish `plan`'s solutions (the conditions of
-/// `option newton`), read off the original equations of one instance.
+/// Whether the emitted solver can polish `plan`'s solutions (what `option newton` needs,
+/// `emit::polish::check_polishable`), read off the original equations of one instance.
 fn can_polish(plan: &SolverPlan) -> bool {
-    let unknowns = plan.visible_unknowns();
     let mut rng = ChaCha8Rng::seed_from_u64(AUTO_POLISH_SEED);
     let equations = plan.visible_equations(&random_data_f64(&plan.problem.layout, &mut rng));
-    unknowns <= mingen_runtime::MAX_NEWTON_UNKNOWNS
-        && equations.len() >= unknowns
-        && equations.iter().all(|e| {
-            e.terms()
-                .all(|(m, _)| m.0[..unknowns].iter().all(|&d| d <= u8::MAX as _))
-        })
+    check_polishable(plan.visible_unknowns(), &equations).is_ok()
 }

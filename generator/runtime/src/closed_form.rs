@@ -104,61 +104,22 @@ fn quadratic(b: f64, c: f64, out: &mut [f64; 4]) -> Option<usize> {
     Some(2)
 }
 
-/// Real roots of `t^3 + p t + q` (unsorted), `None` near a double root.
-fn depressed_cubic(p: f64, q: f64, out: &mut [f64; 4]) -> Option<usize> {
-    // Discriminant -(4 p^3 + 27 q^2): positive for three distinct real roots.
-    let (a, b) = (4.0 * p * p * p, 27.0 * q * q);
-    let disc = -(a + b);
-    if disc.abs() <= DISCRIMINANT_TOL * (a.abs() + b) {
-        return None;
-    }
-    if disc > 0.0 {
-        // p < 0 here.
-        let r = (-p / 3.0).sqrt();
-        let arg = (1.5 * q / (p * r)).clamp(-1.0, 1.0);
-        let phi = arg.acos() / 3.0;
-        let tau = 2.0 * std::f64::consts::PI / 3.0;
-        for (k, o) in out.iter_mut().take(3).enumerate() {
-            *o = 2.0 * r * (phi - tau * k as f64).cos();
-        }
-        return Some(3);
-    }
-    out[0] = if p == 0.0 {
-        (-q).cbrt()
-    } else if p < 0.0 {
-        let r = (-p / 3.0).sqrt();
-        -2.0 * q.signum() * r * ((1.5 * q.abs() / (-p * r)).acosh() / 3.0).cosh()
-    } else {
-        let r = (p / 3.0).sqrt();
-        -2.0 * r * ((1.5 * q / (p * r)).asinh() / 3.0).sinh()
-    };
-    Some(1)
+/// `x^3 + a x^2 + b x + c` with `x = t - s` is `t^3 + p t + q`: `(s, p, q)`.
+fn depressed(a: f64, b: f64, c: f64) -> (f64, f64, f64) {
+    let s = a / 3.0;
+    (s, b - a * s, (2.0 * s * s - b) * s + c)
 }
 
-/// Real roots of `x^3 + a x^2 + b x + c` (unsorted).
-fn cubic(a: f64, b: f64, c: f64, out: &mut [f64; 4]) -> Option<usize> {
-    let s = a / 3.0;
-    let p = b - a * s;
-    let q = (2.0 * s * s - b) * s + c;
-    let n = depressed_cubic(p, q, out)?;
-    for x in out.iter_mut().take(n) {
-        *x -= s;
-    }
-    Some(n)
+/// For `t^3 + p t + q` with three real roots (`p < 0`): `(amplitude, phi)` such that the
+/// roots are `amplitude * cos(phi - 2 pi k / 3)`, `k = 0` the largest (Viète).
+fn trigonometric(p: f64, q: f64) -> (f64, f64) {
+    let r = (-p / 3.0).sqrt();
+    (2.0 * r, (1.5 * q / (p * r)).clamp(-1.0, 1.0).acos() / 3.0)
 }
 
-/// The largest real root of `x^3 + a x^2 + b x + c`, polished by Newton's iteration: the
-/// formulas of [`depressed_cubic`] without its refusal near a double root (the largest
-/// root is continuous there; NaN for non-finite input).
-fn largest_cubic_root(a: f64, b: f64, c: f64) -> f64 {
-    let s = a / 3.0;
-    let p = b - a * s;
-    let q = (2.0 * s * s - b) * s + c;
-    let t = if 4.0 * p * p * p + 27.0 * q * q < 0.0 {
-        // Three real roots (p < 0): the largest of the trigonometric form.
-        let r = (-p / 3.0).sqrt();
-        2.0 * r * ((1.5 * q / (p * r)).clamp(-1.0, 1.0).acos() / 3.0).cos()
-    } else if p == 0.0 {
+/// The real root of `t^3 + p t + q` when the other two are complex (hyperbolic forms).
+fn single_real_root(p: f64, q: f64) -> f64 {
+    if p == 0.0 {
         (-q).cbrt()
     } else if p < 0.0 {
         let r = (-p / 3.0).sqrt();
@@ -166,6 +127,40 @@ fn largest_cubic_root(a: f64, b: f64, c: f64) -> f64 {
     } else {
         let r = (p / 3.0).sqrt();
         -2.0 * r * ((1.5 * q / (p * r)).asinh() / 3.0).sinh()
+    }
+}
+
+/// Real roots of `x^3 + a x^2 + b x + c` (unsorted), `None` near a double root.
+fn cubic(a: f64, b: f64, c: f64, out: &mut [f64; 4]) -> Option<usize> {
+    let (s, p, q) = depressed(a, b, c);
+    // Discriminant -(4 p^3 + 27 q^2): positive for three distinct real roots.
+    let (p3, q2) = (4.0 * p * p * p, 27.0 * q * q);
+    let disc = -(p3 + q2);
+    if disc.abs() <= DISCRIMINANT_TOL * (p3.abs() + q2) {
+        return None;
+    }
+    if disc < 0.0 {
+        out[0] = single_real_root(p, q) - s;
+        return Some(1);
+    }
+    let (amplitude, phi) = trigonometric(p, q);
+    let tau = 2.0 * std::f64::consts::PI / 3.0;
+    for (k, o) in out.iter_mut().take(3).enumerate() {
+        *o = amplitude * (phi - tau * k as f64).cos() - s;
+    }
+    Some(3)
+}
+
+/// The largest real root of `x^3 + a x^2 + b x + c`, polished by Newton's iteration: the
+/// formulas of [`cubic`] without its refusal near a double root (the largest root is
+/// continuous there; NaN for non-finite input).
+fn largest_cubic_root(a: f64, b: f64, c: f64) -> f64 {
+    let (s, p, q) = depressed(a, b, c);
+    let t = if 4.0 * p * p * p + 27.0 * q * q < 0.0 {
+        let (amplitude, phi) = trigonometric(p, q);
+        amplitude * phi.cos()
+    } else {
+        single_real_root(p, q)
     };
     polish(&[c, b, a], t - s)
 }

@@ -10,6 +10,8 @@
 //! `|A n + b|`. For equations that have an exact solution (a minimal problem's, at one of
 //! its solutions) that solution is the one returned.
 
+use super::null_general::scale_to_unit_max;
+
 /// A diagonal entry of `R` at most this (of the scaled matrix) makes `A` rank deficient.
 const RANK_TOL: f64 = 1e-12;
 
@@ -22,7 +24,7 @@ pub struct LeastSquares<const R: usize, const K: usize> {
     /// Per column, `(v_0, vᵀv)` of its reflection (the vector's first entry is not stored
     /// in `qr`, whose diagonal holds `R`'s).
     reflections: [(f64, f64); K],
-    /// The factor `A` was scaled by.
+    /// The largest `|a_ij|`, which `A` and every `b` are divided by.
     scale: f64,
 }
 
@@ -74,24 +76,13 @@ pub fn least_squares_dyn(a: &[f64], rows: usize, k: usize, b: &[f64]) -> Option<
 }
 
 /// Scales the row-major `r x k` matrix `a` to max |a_ij| = 1 and overwrites it with its
-/// Householder QR (see [`LeastSquares::qr`]); returns the scale, `None` if the matrix is
+/// Householder QR (see [`LeastSquares::qr`]); returns the largest `|a_ij|`, `None` if the matrix is
 /// not of full column rank (or not finite, or `r < k`, or `k == 0`).
 fn factor(a: &mut [f64], r: usize, k: usize, reflections: &mut [(f64, f64)]) -> Option<f64> {
     if k == 0 || r < k {
         return None;
     }
-    let mut max = 0.0f64;
-    for x in a.iter() {
-        if !x.is_finite() {
-            return None;
-        }
-        max = max.max(x.abs());
-    }
-    if max == 0.0 {
-        return None;
-    }
-    let scale = 1.0 / max;
-    a.iter_mut().for_each(|x| *x *= scale);
+    let scale = scale_to_unit_max(a)?;
     let at = |i: usize, j: usize| i * k + j;
     for j in 0..k {
         let norm = (j..r)
@@ -119,7 +110,7 @@ fn factor(a: &mut [f64], r: usize, k: usize, reflections: &mut [(f64, f64)]) -> 
     Some(scale)
 }
 
-/// `n = -R⁻¹ (Qᵀ (scale b))[..k]` from the factorisation of [`factor`]; `b` is work space.
+/// `n = -R⁻¹ (Qᵀ (b / scale))[..k]` from the factorisation of [`factor`]; `b` is work space.
 fn solve(
     qr: &[f64],
     r: usize,
@@ -130,7 +121,7 @@ fn solve(
     n: &mut [f64],
 ) -> bool {
     let at = |i: usize, j: usize| i * k + j;
-    b.iter_mut().for_each(|x| *x *= scale);
+    b.iter_mut().for_each(|x| *x /= scale);
     for (j, &(v0, vtv)) in reflections.iter().enumerate() {
         let d = v0 * b[j] + (j + 1..r).map(|i| qr[at(i, j)] * b[i]).sum::<f64>();
         let f = 2.0 * d / vtv;

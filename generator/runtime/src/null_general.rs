@@ -53,6 +53,23 @@ pub fn dehomogenize(v: &[f64], out: &mut [f64]) -> bool {
     out.iter().all(|x| x.is_finite())
 }
 
+/// Divides every entry of `a` by the largest magnitude among them and returns it; `None`
+/// (`a` untouched) if an entry is not finite or every entry is zero.
+pub(crate) fn scale_to_unit_max(a: &mut [f64]) -> Option<f64> {
+    let mut max = 0.0f64;
+    for x in a.iter() {
+        if !x.is_finite() {
+            return None;
+        }
+        max = max.max(x.abs());
+    }
+    if max == 0.0 {
+        return None;
+    }
+    a.iter_mut().for_each(|x| *x /= max);
+    Some(max)
+}
+
 /// The algorithm of [`null_vector`] on row-major `a` (`r x n`, overwritten); `perm` and `x`
 /// are work space of length `n`.
 fn null_vector_core(
@@ -63,21 +80,8 @@ fn null_vector_core(
     x: &mut [f64],
     out: &mut [f64],
 ) -> bool {
-    if n == 0 || r + 1 < n {
+    if n == 0 || r + 1 < n || scale_to_unit_max(a).is_none() {
         return false;
-    }
-    let mut scale = 0.0f64;
-    for x in a.iter() {
-        if !x.is_finite() {
-            return false;
-        }
-        scale = scale.max(x.abs());
-    }
-    if scale == 0.0 {
-        return false;
-    }
-    for x in a.iter_mut() {
-        *x /= scale;
     }
     for (j, p) in perm.iter_mut().enumerate() {
         *p = j;

@@ -21,7 +21,7 @@
 mod action;
 pub mod coefficients;
 mod files;
-mod polish;
+pub(crate) mod polish;
 mod reduction;
 mod runtime_api;
 mod solver;

@@ -6,6 +6,7 @@ use super::coefficients::{Expr, VarStyle};
 use super::runtime_api as rt;
 use super::tokens::lit;
 use super::{EmitError, PolishSpec, Traced};
+use crate::algebra::{Monomial, Poly, Ring};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
@@ -13,32 +14,44 @@ use quote::quote;
 /// unknowns).
 pub(super) type EquationTerms = Vec<(usize, Vec<u8>)>;
 
+/// Whether a solver can polish solutions on `equations` in their first `unknowns` unknowns
+/// (`option newton`): at most `mingen_runtime::MAX_NEWTON_UNKNOWNS` unknowns, at least as
+/// many equations, no exponent above 255 (the term tables store `u8`).
+pub(crate) fn check_polishable<C: Ring>(
+    unknowns: usize,
+    equations: &[Poly<C>],
+) -> Result<(), EmitError> {
+    if unknowns > mingen_runtime::MAX_NEWTON_UNKNOWNS || equations.len() < unknowns {
+        return Err(EmitError::Unsupported(format!(
+            "option newton needs at most {} unknowns and as many equations ({} unknowns, {} equations)",
+            mingen_runtime::MAX_NEWTON_UNKNOWNS,
+            unknowns,
+            equations.len()
+        )));
+    }
+    let small = |m: &Monomial| m.0[..unknowns].iter().all(|&d| d <= u8::MAX.into());
+    if !equations.iter().all(|e| e.terms().all(|(m, _)| small(m))) {
+        return Err(EmitError::Unsupported(
+            "option newton with an exponent above 255".into(),
+        ));
+    }
+    Ok(())
+}
+
 /// Appends the coefficients of `p`'s equations to `values` and returns each equation's
 /// terms: (index among the appended coefficients, exponents of the declared unknowns).
 pub(super) fn coefficients(
     p: &PolishSpec,
     values: &mut Vec<Traced>,
 ) -> Result<Vec<EquationTerms>, EmitError> {
-    if p.unknowns > mingen_runtime::MAX_NEWTON_UNKNOWNS || p.equations.len() < p.unknowns {
-        return Err(EmitError::Unsupported(format!(
-            "option newton needs at most {} unknowns and as many equations ({} unknowns, {} equations)",
-            mingen_runtime::MAX_NEWTON_UNKNOWNS,
-            p.unknowns,
-            p.equations.len()
-        )));
-    }
+    check_polishable(p.unknowns, &p.equations)?;
     let first = values.len();
     let mut out = Vec::with_capacity(p.equations.len());
     for eq in &p.equations {
         let mut terms = Vec::new();
         for (m, c) in eq.terms() {
-            let e = m.0[..p.unknowns]
-                .iter()
-                .map(|&d| u8::try_from(d))
-                .collect::<Result<Vec<u8>, _>>()
-                .map_err(|_| {
-                    EmitError::Unsupported("option newton with an exponent above 255".into())
-                })?;
+            // Exponents fit in `u8`: checked above.
+            let e = m.0[..p.unknowns].iter().map(|&d| d as u8).collect();
             terms.push((values.len() - first, e));
             values.push(c.clone());
         }

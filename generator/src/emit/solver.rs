@@ -13,6 +13,7 @@ use super::tokens::{doc, lit};
 use super::traced::Traced;
 use super::{CodeForm, EmitError, SolverSpec};
 use crate::algebra::{Monomial, MonomialOrder, Poly};
+use crate::eliminate::has_data_only_columns;
 use crate::template::{ConstantFold, EliminationTemplate, ShapeError};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
@@ -1042,10 +1043,9 @@ fn eliminated_unknowns_tokens(
         }
         rows.push(entries);
     }
-    let row_tokens: Vec<TokenStream> = rows.iter().map(|r| quote!([#(#r),*])).collect();
     let nr = lit(el.coefficient_matrix.len());
     let k = el.eliminated.len();
-    if el.inhomogeneous && data_only_columns(&coefficients.elim_terms, k) {
+    if el.inhomogeneous && has_data_only_columns(&el.coefficient_matrix, k) {
         let ls = rt::least_squares();
         let kl = lit(k);
         let a_rows = rows.iter().map(|r| {
@@ -1069,6 +1069,7 @@ fn eliminated_unknowns_tokens(
             },
         );
     }
+    let row_tokens: Vec<TokenStream> = rows.iter().map(|r| quote!([#(#r),*])).collect();
     let in_loop = if el.inhomogeneous {
         let (width, kl) = (lit(k + 1), lit(k));
         let (nv, dh) = (rt::null_vector(), rt::dehomogenize());
@@ -1100,15 +1101,6 @@ fn eliminated_unknowns_tokens(
         }
     };
     (quote!(), in_loop)
-}
-
-/// Whether the first `k` columns of the elimination matrix (its entries' monomials in the
-/// template variables, row by row) are constant: coefficients that depend on the data
-/// only, the same for every solution of an instance.
-fn data_only_columns(elim_terms: &[Vec<Vec<Monomial>>], k: usize) -> bool {
-    elim_terms
-        .iter()
-        .all(|row| row.len() > k && row[..k].iter().flatten().all(Monomial::is_one))
 }
 
 /// The value of the problem's unknown scalar `i` in one solution: a template variable

@@ -12,6 +12,8 @@
 // solution, each polished by up to two Gauss-Newton steps.
 #include <PoseLib/poselib.h>
 
+#include "rows.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -22,20 +24,6 @@
 #include <vector>
 
 namespace {
-
-std::vector<std::vector<double>> read_rows(const char *path, size_t width) {
-    std::ifstream in(path);
-    std::vector<std::vector<double>> rows;
-    std::string line;
-    while (std::getline(in, line)) {
-        std::istringstream s(line);
-        std::vector<double> row;
-        double x;
-        while (s >> x) row.push_back(x);
-        if (row.size() == width) rows.push_back(row);
-    }
-    return rows;
-}
 
 struct Instance {
     std::vector<Eigen::Vector3d> p1, x1, p2, x2;

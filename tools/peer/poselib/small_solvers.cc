@@ -14,6 +14,8 @@
 // for p3ll).
 #include <PoseLib/poselib.h>
 
+#include "rows.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -29,20 +31,6 @@ namespace {
 
 using Vec3 = Eigen::Vector3d;
 using Points = std::vector<Vec3>;
-
-std::vector<std::vector<double>> read_rows(const char *path, size_t width) {
-    std::ifstream in(path);
-    std::vector<std::vector<double>> rows;
-    std::string line;
-    while (std::getline(in, line)) {
-        std::istringstream s(line);
-        std::vector<double> row;
-        double x;
-        while (s >> x) row.push_back(x);
-        if (row.size() == width) rows.push_back(row);
-    }
-    return rows;
-}
 
 // The `count` vectors of block `block` of a peer line (blocks of `count` x y z each).
 Points block(const std::vector<double> &r, int block, int count) {

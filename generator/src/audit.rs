@@ -88,6 +88,10 @@ pub struct AuditInstance {
     /// where one is not positive are not returned (residuals are still measured on every
     /// real solution; [`AuditReport::mean_kept_solutions`] counts the others).
     pub positive: Vec<usize>,
+    /// The sign folds of the template's system (`crate::symmetry`; empty: none): each
+    /// solution of the template gives both signs before the eliminated unknowns are
+    /// recovered.
+    pub sign_folds: Vec<crate::symmetry::SignFold>,
 }
 
 /// Result of an audit (serialised by [`AuditReport::to_json`]).
@@ -256,17 +260,72 @@ struct Outcome {
 /// nothing).
 fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<Outcome> {
     let solved = solve_template(template, &inst.equations).ok()?;
-    let mut worst: Option<f64> = None;
-    let mut worst_other: Option<f64> = None;
-    let mut real = 0;
-    let mut returned = Vec::new();
-    for s in &solved.solutions {
+    let mut tally = Tally::default();
+    // Eigenpairs that gave a solution, or a pair of complex ones (a negative square).
+    let mut accounted = 0;
+    let signed: Vec<Vec<Vec<f64>>> = solved
+        .solutions
+        .iter()
+        .map(|s| crate::symmetry::unfold_all(&inst.sign_folds, s))
+        .collect();
+    for (w, signs) in solved.solutions.iter().zip(&signed) {
+        if signs.is_empty() && !inst.sign_folds.is_empty() {
+            let negative = |f: &crate::symmetry::SignFold| w.get(f.pivot).is_some_and(|&s| s < 0.0);
+            if inst.sign_folds.iter().any(negative) {
+                accounted += 1;
+            }
+            continue;
+        }
+        let before = tally.real;
+        for s in signs {
+            // A solution whose eliminated unknowns cannot be recovered is missed.
+            let _ = tally.add(inst, s);
+        }
+        if tally.real > before {
+            accounted += 1;
+        }
+    }
+    // Only a homogeneous null vector is defined up to scale (compared up to sign).
+    let projective = inst
+        .eliminated
+        .as_ref()
+        .filter(|e| !e.inhomogeneous)
+        .map_or(&[][..], |e| e.positions.as_slice());
+    Some(Outcome {
+        log10_residual: tally.worst.map(clamped_log10),
+        log10_other: tally.worst_other.map(clamped_log10),
+        real: tally.real,
+        kept: tally.returned.len(),
+        missed: solved.eigenpairs - accounted,
+        planted_error: inst
+            .planted
+            .as_deref()
+            .map(|p| recovery_error(&tally.returned, p, projective)),
+    })
+}
+
+/// The real solutions of one instance as they are found (see [`run_instance`]).
+#[derive(Default)]
+struct Tally {
+    /// Real solutions found.
+    real: usize,
+    /// The worst residual over them, as the emitted solver polishes.
+    worst: Option<f64>,
+    /// The same with the other polishing ([`AuditReport::other_polishing`]).
+    worst_other: Option<f64>,
+    /// Those whose `positive` unknowns are positive.
+    returned: Vec<Vec<f64>>,
+}
+
+impl Tally {
+    /// Adds one real solution `s` of the template's variables (signs unfolded): the
+    /// eliminated unknowns recovered, polished as the emitted solver does, its residual on
+    /// the original equations. `None` when the eliminated unknowns cannot be recovered.
+    fn add(&mut self, inst: &AuditInstance, s: &[f64]) -> Option<()> {
         let mut full = match &inst.eliminated {
-            None => s.clone(),
+            None => s.to_vec(),
             Some(el) => {
-                let Some(e) = recover_eliminated(&el.matrix, s, el.inhomogeneous) else {
-                    continue;
-                };
+                let e = recover_eliminated(&el.matrix, s, el.inhomogeneous)?;
                 let n = s.len() + e.len();
                 let (mut si, mut ei) = (s.iter(), e.iter());
                 let mut full = Vec::with_capacity(n);
@@ -289,44 +348,28 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
                 r
             }
         };
-        if inst.newton_steps > 0 {
+        let other = if inst.newton_steps > 0 {
             let r = residual(&full);
-            worst_other = Some(worst_other.map_or(r, |w| w.max(r)));
             newton_polish_polys(&inst.original, &mut full, inst.newton_steps);
+            r
         } else {
             let mut polished = full.clone();
             newton_polish_polys(&inst.original, &mut polished, COMPARISON_NEWTON_STEPS);
-            let r = residual(&polished);
-            worst_other = Some(worst_other.map_or(r, |w| w.max(r)));
-        }
-        real += 1;
+            residual(&polished)
+        };
+        self.worst_other = Some(self.worst_other.map_or(other, |w| w.max(other)));
+        self.real += 1;
         let r = residual(&full);
-        worst = Some(worst.map_or(r, |w| w.max(r)));
+        self.worst = Some(self.worst.map_or(r, |w| w.max(r)));
         if inst
             .positive
             .iter()
             .all(|&i| full.get(i).is_some_and(|&v| v > 0.0))
         {
-            returned.push(full);
+            self.returned.push(full);
         }
+        Some(())
     }
-    // Only a homogeneous null vector is defined up to scale (compared up to sign).
-    let projective = inst
-        .eliminated
-        .as_ref()
-        .filter(|e| !e.inhomogeneous)
-        .map_or(&[][..], |e| e.positions.as_slice());
-    Some(Outcome {
-        log10_residual: worst.map(clamped_log10),
-        log10_other: worst_other.map(clamped_log10),
-        real,
-        kept: returned.len(),
-        missed: solved.eigenpairs - real,
-        planted_error: inst
-            .planted
-            .as_deref()
-            .map(|p| recovery_error(&returned, p, projective)),
-    })
 }
 
 /// Runs `opts.instances` instances (at most [`MAX_INSTANCES`]) through the interpreted
@@ -602,7 +645,7 @@ impl fmt::Display for AuditReport {
 /// the audit's seeded generator). Each instance's template equations and elimination come
 /// from [`SolverPlan::equations`], the residuals are measured on the original equations
 /// (`plan.problem.evaluate`, all unknowns, eliminated ones recovered and merged back), and
-/// `plan.generated.count` solutions are expected per instance.
+/// `plan.solution_count()` solutions are expected per instance.
 ///
 /// ```no_run
 /// # use mingen::{audit_plan, plan_file, AuditOptions, TemplateOptions};
@@ -613,7 +656,7 @@ pub fn audit_plan(plan: &SolverPlan, options: &AuditOptions) -> AuditReport {
     let layout = &plan.problem.layout;
     audit(
         &plan.generated.built.template,
-        plan.generated.count,
+        plan.solution_count(),
         options,
         |rng| plan_instance(plan, &random_data_f64(layout, rng)),
     )
@@ -657,7 +700,7 @@ pub fn audit_plan_planted(
     };
     audit(
         &plan.generated.built.template,
-        plan.generated.count,
+        plan.solution_count(),
         &options,
         |_| {
             let mut inst = plan_instance(plan, next.next().expect("one instance per draw"));
@@ -681,6 +724,7 @@ fn plan_instance(plan: &SolverPlan, data: &[f64]) -> AuditInstance {
         newton_steps: plan.problem.layout.options.newton_steps() as usize,
         planted: None,
         positive: plan.problem.layout.positive.clone(),
+        sign_folds: plan.problem.sign_folds().to_vec(),
     }
 }
 

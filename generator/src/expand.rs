@@ -38,6 +38,8 @@ pub struct Problem {
     /// The affine equations whose unknowns `layout.eliminate` are substituted into the
     /// others (see [`Problem::with_substitution`]); `None`: `eliminate` takes minors.
     substitution: Option<(Vec<usize>, Vec<usize>)>,
+    /// Sign folds applied to the system, in order (see [`Problem::with_sign_fold`]).
+    sign_folds: Vec<crate::symmetry::SignFold>,
     /// Laurent equations (`x^-1`, `e / x`): see [`Laurent`]; empty when there are none.
     laurent: Laurent,
 }
@@ -774,6 +776,7 @@ impl Problem {
             divisions,
             independent: None,
             substitution: None,
+            sign_folds: Vec::new(),
             laurent: Laurent::default(),
         }
     }
@@ -897,6 +900,21 @@ impl Problem {
         p.layout.eliminate = pivots;
         p.substitution = Some((linear, implied));
         p
+    }
+
+    /// The same problem with its system folded by `fold` after the folds it has
+    /// (`crate::symmetry`): the system's variables keep their positions, the pivot standing
+    /// for its square and the scaled ones for their ratios to it. Planning chooses folds
+    /// where every equation is even or odd in the fold's variables and the count halves.
+    pub fn with_sign_fold(&self, fold: crate::symmetry::SignFold) -> Problem {
+        let mut p = self.clone();
+        p.sign_folds.push(fold);
+        p
+    }
+
+    /// See [`Problem::with_sign_fold`] (empty: the system as evaluated).
+    pub fn sign_folds(&self) -> &[crate::symmetry::SignFold] {
+        &self.sign_folds
     }
 
     /// See [`Problem::with_substitution`]: the solved and the implied affine equations.

@@ -34,6 +34,7 @@ mod problem;
 mod quotient;
 mod report;
 mod rewrite;
+mod symmetry;
 mod system;
 mod template;
 
@@ -56,6 +57,7 @@ pub use problem::ProblemOptions;
 pub use report::{
     report, report_with, to_json, to_markdown, PublishedSizes, ReportError, ReportRow,
 };
+pub use symmetry::SignFold;
 pub use template::{ActionChoice, TemplateOptions};
 
 /// The stages, for this package's binary, tests and examples and for the workspace's
@@ -113,6 +115,10 @@ pub mod __internal {
     /// Quotient basis and solution count.
     pub mod quotient {
         pub use crate::quotient::*;
+    }
+    /// Sign symmetry: folding and unfolding.
+    pub mod symmetry {
+        pub use crate::symmetry::*;
     }
     /// A problem as a family of polynomial systems.
     pub mod system {

@@ -274,9 +274,13 @@ pub fn plan(
         options,
         &deadline,
     );
-    let problem = rewrite::drop_dependent_equations(
-        rewrite::divide_out_nonzero(problem, options, &deadline),
-        options.seed,
+    let problem = rewrite::fold_sign_symmetry(
+        rewrite::drop_dependent_equations(
+            rewrite::divide_out_nonzero(problem, options, &deadline),
+            options.seed,
+        ),
+        options,
+        &deadline,
     );
     // The equations' generic monomials serve the template search (its fold of constant
     // rows) and the sparse elimination order alike.
@@ -288,7 +292,14 @@ pub fn plan(
     )
     .map_err(|source| PipelineError::Template {
         file: file.to_string(),
-        source,
+        // The problem's count, not the folded system's.
+        source: match source {
+            TemplateError::Counted { count, source } => TemplateError::Counted {
+                count: count << problem.sign_folds().len(),
+                source,
+            },
+            other => other,
+        },
     })?;
     let template_supports = match &generated.built.template.reduction {
         Some(r) => r.reduced_supports(),
@@ -353,6 +364,43 @@ impl SolverPlan {
             .collect()
     }
 
+    /// The problem's number of solutions (real and complex): the template's count, times
+    /// two per sign fold (`Generated::count` is the folded system's).
+    pub fn solution_count(&self) -> usize {
+        self.generated.count << self.problem.sign_folds().len()
+    }
+
+    /// The sign symmetry the plan folded, for people: `None` without one, else e.g.
+    /// `"d1 d2 d3 (folded by d1: the system's d1 is d1^2, d2 is d2/d1, d3 is d3/d1)"`, one
+    /// clause per fold joined by `"; "`.
+    pub fn sign_symmetry_description(&self) -> Option<String> {
+        let folds = self.problem.sign_folds();
+        if folds.is_empty() {
+            return None;
+        }
+        let names = self.variable_names();
+        let name = |i: usize| names.get(i).cloned().unwrap_or_else(|| format!("x{i}"));
+        let clauses: Vec<String> = folds
+            .iter()
+            .map(|f| {
+                let vars: Vec<String> = f.variables().into_iter().map(name).collect();
+                let p = name(f.pivot);
+                let mut meaning = vec![format!("{p} is {p}^2")];
+                meaning.extend(
+                    f.scaled
+                        .iter()
+                        .map(|&j| format!("{} is {}/{p}", name(j), name(j))),
+                );
+                format!(
+                    "{} (folded by {p}: the system's {})",
+                    vars.join(" "),
+                    meaning.join(", ")
+                )
+            })
+            .collect();
+        Some(clauses.join("; "))
+    }
+
     /// The number of declared (not hidden) unknowns: the first variables of every system.
     pub fn visible_unknowns(&self) -> usize {
         let layout = &self.problem.layout;
@@ -389,7 +437,8 @@ impl SolverPlan {
         let t = &self.generated.built.template;
         let (rows, cols) = t.eliminated_size();
         json!({
-            "solutions": self.generated.count,
+            "solutions": self.solution_count(),
+            "sign_symmetry": self.sign_symmetry_description(),
             "dependent_columns": t.n_dependent,
             "basis": t.basis.iter().map(|m| m.display_with(&names)).collect::<Vec<_>>(),
             "action": t.action.display_with(&names),
@@ -555,6 +604,7 @@ pub fn emit_plan_in(
         }),
         polish,
         code_form,
+        sign_folds: plan.problem.sign_folds().to_vec(),
     };
     emit_solver(&spec).map_err(|source| PipelineError::Emit {
         file: plan.file.clone(),

@@ -213,6 +213,11 @@ pub struct ProblemOptions {
     /// builds templates from the equations row-reduced on their data (each reduced equation
     /// has a pivot monomial no other has; see `template/reduction.rs`) and keeps the smaller.
     pub reduce_equations: Option<bool>,
+    /// `option sign_symmetry = yes|no` (default yes): whether planning, when every
+    /// equation is even or odd in a set of unknowns (the solutions come in pairs `x`,
+    /// `-x` on them), solves the system folded to half the solutions and recovers both
+    /// signs (`symmetry.rs`); kept only where the count halves.
+    pub sign_symmetry: Option<bool>,
     /// `option weighted_orders = N` (default 32, at most [`MAX_WEIGHTED_ORDERS`]): how many
     /// weighted monomial orders the template search samples for other quotient bases (0:
     /// none); more can find smaller templates at the cost of planning time.

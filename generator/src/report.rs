@@ -229,7 +229,7 @@ pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOpti
             let shown = names.len() - p.problem.layout.hidden_count().min(names.len());
             row.unknowns = names[..shown].to_vec();
             row.eliminated = p.eliminated_names();
-            row.solutions = Some(p.generated.count);
+            row.solutions = Some(p.solution_count());
             row.template = Some(t.eliminated_size());
             row.folded = t.folded_rows();
             row.reduction = t.reduction_size();

@@ -8,14 +8,19 @@
 //!    by the maximal minors of their coefficient matrix;
 //! 3. [`divide_out_nonzero`]: `nonzero` expressions divided out of the equations they
 //!    divide exactly, and the saturation dropped where the count allows;
-//! 4. [`drop_dependent_equations`]: equations that are combinations of others dropped.
+//! 4. [`drop_dependent_equations`]: equations that are combinations of others dropped;
+//! 5. [`fold_sign_symmetry`]: a system whose solutions come in sign pairs folded to half
+//!    of them (`crate::symmetry`).
 
 use crate::algebra::{MonomialOrder, Poly};
 use crate::budget::Deadline;
 use crate::eliminate::{affine_equations, linear_pivots, purely_linear_unknowns};
+use crate::groebner::{groebner_with, GroebnerError, GroebnerOptions};
 use crate::instance::random_data_fp;
+use crate::quotient::InstanceSource;
 use crate::quotient::{analyse_within, InstanceRng};
-use crate::system::{system, system_and_factors, ProblemSource};
+use crate::symmetry::{sign_symmetries, SignFold};
+use crate::system::{equation_supports, system, system_and_factors, ProblemSource};
 use crate::template::TemplateOptions;
 use crate::Problem;
 
@@ -232,4 +237,98 @@ fn nonzero_divisions(problem: &Problem, seed: u64) -> Vec<Vec<u32>> {
         return Vec::new();
     }
     counts
+}
+
+/// The most sign folds [`fold_sign_symmetry`] applies (each halves the count).
+const MAX_SIGN_FOLDS: u64 = 4;
+
+/// `problem` folded by its sign symmetries (`crate::symmetry`), one at a time while some
+/// remain, when the command line and the file allow it (`option sign_symmetry`, default
+/// yes). A fold is kept only when it halves the solution count and no solution of the
+/// folded system has its pivot (the square) zero, so that each of its solutions is exactly
+/// one pair of the original's; the pivots are tried among the declared unknowns of each
+/// symmetry in order. Unchanged when there is none.
+pub(crate) fn fold_sign_symmetry(
+    problem: Problem,
+    options: &TemplateOptions,
+    deadline: &Deadline,
+) -> Problem {
+    let allowed = options
+        .overrides
+        .sign_symmetry
+        .or(problem.layout.options.sign_symmetry)
+        .unwrap_or(true);
+    if !allowed {
+        return problem;
+    }
+    let count = |p: &Problem| {
+        analyse_within(&ProblemSource::new(p), options.seed, Some(*deadline))
+            .ok()
+            .map(|a| a.count)
+    };
+    let mut problem = problem;
+    let mut total = None;
+    for round in 0..MAX_SIGN_FOLDS {
+        let source = ProblemSource::new(&problem);
+        let n = source.nvars();
+        let visible = n - source.hidden_vars().min(n);
+        let supports = equation_supports(&problem, options.seed ^ 0x5167 ^ round);
+        let symmetries = sign_symmetries(&supports, n);
+        if symmetries.is_empty() {
+            break;
+        }
+        let Some(before) = total.or_else(|| count(&problem)) else {
+            break;
+        };
+        if before % 2 != 0 {
+            break;
+        }
+        let mut folded = None;
+        'search: for mask in symmetries {
+            let vars: Vec<usize> = (0..n).filter(|&i| mask >> i & 1 == 1).collect();
+            for &pivot in vars.iter().filter(|&&p| p < visible) {
+                let fold = SignFold {
+                    pivot,
+                    scaled: vars.iter().copied().filter(|&j| j != pivot).collect(),
+                };
+                let candidate = problem.with_sign_fold(fold);
+                if count(&candidate) == Some(before / 2)
+                    && square_never_zero(&candidate, pivot, options.seed, deadline)
+                {
+                    folded = Some(candidate);
+                    break 'search;
+                }
+            }
+        }
+        match folded {
+            Some(f) => {
+                problem = f;
+                total = Some(before / 2);
+            }
+            None => break,
+        }
+    }
+    problem
+}
+
+/// Whether the folded system of `problem` has no solution with variable `pivot` zero (its
+/// equations and `pivot` generate the whole ring) on a random instance mod p.
+fn square_never_zero(problem: &Problem, pivot: usize, seed: u64, deadline: &Deadline) -> bool {
+    const P: u32 = crate::algebra::P1;
+    let source = ProblemSource::new(problem);
+    let n = source.nvars();
+    let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(seed ^ 0x0f01d);
+    let mut equations = source.instance::<P>(&mut rng);
+    if equations.is_empty() {
+        return false;
+    }
+    equations.push(Poly::var(n, pivot));
+    let opts = GroebnerOptions {
+        deadline: Some(*deadline),
+        ..GroebnerOptions::default()
+    };
+    matches!(
+        groebner_with(n, &equations, &opts),
+        Err(GroebnerError::Inconsistent)
+    )
 }

@@ -194,6 +194,18 @@ pub(crate) fn system_and_factors<C: Ring>(
             e.equations.clone_from(&equations);
         }
     }
+    // Sign folds come last: the eliminated unknowns' coefficient matrix stays in the
+    // unfolded variables, which the solver recovers before it.
+    if !problem.sign_folds().is_empty() {
+        for fold in problem.sign_folds() {
+            for eq in equations.iter_mut() {
+                *eq = fold.fold_poly(eq);
+            }
+        }
+        if let Some(e) = &mut elimination {
+            e.equations.clone_from(&equations);
+        }
+    }
     Ok(((equations, elimination), factors))
 }
 

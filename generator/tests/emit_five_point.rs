@@ -155,6 +155,7 @@ fn five_point_spec() -> (SolverSpec, Tracer) {
         problem_path: "templates/fivept.mp".into(),
         elimination: None,
         polish: None,
+        sign_folds: Vec::new(),
         code_form: mingen::__internal::emit::CodeForm::Auto,
     };
     (spec, tracer)
@@ -482,6 +483,7 @@ fn elimination_emission_parses() {
             inhomogeneous: false,
         }),
         polish: None,
+        sign_folds: Vec::new(),
         code_form: mingen::__internal::emit::CodeForm::Auto,
     };
     let a = emit_solver(&spec).unwrap();

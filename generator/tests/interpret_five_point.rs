@@ -157,6 +157,7 @@ fn instance(rng: &mut ChaCha8Rng) -> AuditInstance {
         newton_steps: 0,
         planted: Some(truth.to_vec()),
         positive: vec![],
+        sign_folds: Vec::new(),
     }
 }
 
@@ -324,6 +325,7 @@ fn audit_with_eliminated_unknowns() {
         newton_steps: 0,
         planted: None,
         positive: vec![],
+        sign_folds: Vec::new(),
     });
     assert!(report.planted.is_none());
     assert_eq!(report.failures, 0, "{report}");

@@ -102,7 +102,9 @@ fn affine_equations_with_dependent_rows_are_substituted() {
 fn affine_equations_are_substituted_and_a_homogeneous_unknown_keeps_both_signs() {
     // The epipolar constraints with a known rotation are linear and homogeneous in t.
     // Minors would identify t and -t; instead two of t1, t2, t3 are solved from them by
-    // Cramer's rule and substituted into t't = 1, which keeps both solutions.
+    // Cramer's rule and substituted into t't = 1, which keeps both solutions. That leaves
+    // an equation even in t1: the plan folds it (`t1^2` one solution) and the solver
+    // recovers both signs.
     let src = "problem kr
 unknown t[3]
 data x1[2]: point, x2[2]: point, R: rotation
@@ -115,12 +117,17 @@ t' * t = 1
     let p = planned(src, &opts);
     assert_eq!(eliminated(&p), ["t2", "t3"]);
     assert_eq!(p.problem.substitution(), Some((&[0, 1][..], &[][..])));
-    assert_eq!(p.generated.count, 2);
-    assert_eq!(p.generated.built.template.eliminated_size(), (1, 3));
+    assert_eq!((p.solution_count(), p.generated.count), (2, 1));
+    assert_eq!(p.problem.sign_folds().len(), 1);
+    assert_eq!(p.generated.built.template.eliminated_size(), (1, 2));
     assert!(audit_median(&p) < -13.0);
+    let unfolded = planned(&format!("{src}option sign_symmetry = no\n"), &opts);
+    assert_eq!(unfolded.generated.count, 2);
+    assert_eq!(unfolded.generated.built.template.eliminated_size(), (1, 3));
+    assert!(audit_median(&unfolded) < -13.0);
     let kept = planned(&format!("{src}option auto_eliminate = no\n"), &opts);
     assert!(eliminated(&kept).is_empty());
-    assert_eq!(kept.generated.count, 2);
+    assert_eq!(kept.solution_count(), 2);
     // The five-point problem on the entries of E: five entries substituted, the
     // published 10x20.
     let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))

@@ -20,6 +20,7 @@ use common::{assert_all_emitted_listed, emitted, problem_file, Emitted};
 use mingen::__internal::algebra::Poly;
 use mingen::__internal::instance::random_data_f64;
 use mingen::__internal::interpret::{normalized_residual, recover_eliminated, solve_template_real};
+use mingen::__internal::symmetry::unfold_all;
 use mingen::plan_file;
 use mingen::SolverPlan;
 use mingen::TemplateOptions;
@@ -40,7 +41,11 @@ const GOOD_RESIDUAL: f64 = 1e-6;
 fn interpreted(plan: &SolverPlan, data: &[f64]) -> Vec<Vec<f64>> {
     let n = plan.problem.layout.unknown_count();
     let (equations, elimination) = plan.equations::<f64>(data);
-    let sols = solve_template_real(&plan.generated.built.template, &equations);
+    let folds = plan.problem.sign_folds();
+    let sols: Vec<Vec<f64>> = solve_template_real(&plan.generated.built.template, &equations)
+        .iter()
+        .flat_map(|s| unfold_all(folds, s))
+        .collect();
     let Some(el) = elimination else {
         return sols;
     };

@@ -112,7 +112,8 @@ fn run() -> Result<(), String> {
         None => Vec::new(),
     };
     let mut errors = Vec::new();
-    for (d, truth) in data.iter().zip(&truths) {
+    let mut missed = Vec::new();
+    for (k, (d, truth)) in data.iter().zip(&truths).enumerate() {
         let mut flipped = truth.clone();
         for &i in &sign_free {
             if let Some(x) = flipped.get_mut(i) {
@@ -128,6 +129,9 @@ fn run() -> Result<(), String> {
                 best = best.min(e / scale);
             }
         }
+        if best > RECOVERY_TOLERANCE {
+            missed.push((k, best));
+        }
         errors.push(best);
     }
     let recovered = errors.iter().filter(|&&e| e <= RECOVERY_TOLERANCE).count();
@@ -139,6 +143,14 @@ fn run() -> Result<(), String> {
         log(errors[errors.len() / 2]),
         log(errors[(errors.len() * 99 / 100).min(errors.len() - 1)])
     );
+    if !missed.is_empty() {
+        let shown: Vec<String> = missed
+            .iter()
+            .take(5)
+            .map(|(k, e)| format!("line {} ({e:.1e})", k + 1))
+            .collect();
+        println!("not recovered: {}", shown.join(", "));
+    }
     Ok(())
 }
 

@@ -74,6 +74,7 @@ mod newton;
 mod null;
 mod null_general;
 mod readout;
+mod sign_symmetry;
 mod solution_set;
 mod solver;
 mod sparse_elim;
@@ -94,6 +95,7 @@ pub use newton::{newton_polish, NewtonTerm, AT_ROUNDING_LEVEL, MAX_NEWTON_UNKNOW
 pub use null::{null_vector3, null_vector3_rows};
 pub use null_general::{dehomogenize, null_vector, null_vector_dyn};
 pub use readout::{read_linear, read_unknowns, MIN_UNIT_ENTRY};
+pub use sign_symmetry::{flip_sign, unfold_sign, unfold_signs, SignFold};
 pub use solution_set::SolutionSet;
 pub use solver::{FlatValues, MinimalSolver};
 pub use sparse_elim::{lu_solve_template_sparse, lu_solve_template_sparse_fixed, SparseLuPlan};

@@ -127,7 +127,7 @@ pub(super) fn audit(
     emit(&format!(
         "problem {} (template {rows} x {cols}, {} solutions; {source})\n{report}{hint}",
         plan.problem.name(),
-        plan.generated.count
+        plan.solution_count()
     ))
 }
 

@@ -152,7 +152,21 @@ fn print_plan(out: &mut String, plan: &SolverPlan) {
     let names = plan.variable_names();
     let g = &plan.generated;
     let t = &g.built.template;
-    outln!(out, "solutions: {}", g.count);
+    match plan.sign_symmetry_description() {
+        None => outln!(out, "solutions: {}", g.count),
+        Some(symmetry) => {
+            outln!(
+                out,
+                "solutions: {} ({} up to sign)",
+                plan.solution_count(),
+                g.count
+            );
+            outln!(
+                out,
+                "sign symmetry: {symmetry}; `option sign_symmetry = no` solves as written"
+            );
+        }
+    }
     if plan.problem.nonzero_count() > 0 {
         let divisions = plan.problem.divisions();
         let divided = divisions

@@ -167,6 +167,11 @@ struct SearchArgs {
     /// the file's `option reduce_equations`.
     #[arg(long, value_name = "yes|no", value_parser = ["yes", "no"])]
     reduce_equations: Option<String>,
+    /// Solve a system whose solutions come in sign pairs (every equation even or odd in
+    /// some unknowns) at half its size and recover both signs (`yes`, the default, when the
+    /// count halves), or as written (`no`); default: the file's `option sign_symmetry`.
+    #[arg(long, value_name = "yes|no", value_parser = ["yes", "no"])]
+    sign_symmetry: Option<String>,
     /// How many weighted monomial orders to sample for other quotient bases (0 to 1024;
     /// default: the file's `option weighted_orders`, else 32); more may find smaller
     /// templates and take longer.
@@ -213,6 +218,7 @@ impl SearchArgs {
                 newton: self.newton,
                 auto_eliminate: self.auto_eliminate.as_deref().map(|v| v == "yes"),
                 reduce_equations: self.reduce_equations.as_deref().map(|v| v == "yes"),
+                sign_symmetry: self.sign_symmetry.as_deref().map(|v| v == "yes"),
                 weighted_orders: self.weighted_orders.map(|n| n as usize),
             },
             weights: self.weights.iter().map(|w| w.0.clone()).collect(),

@@ -103,6 +103,9 @@ pub struct SolverSpec {
     pub elimination: Option<EliminationSpec>,
     /// Newton polishing of the solutions, if the problem asks for it.
     pub polish: Option<PolishSpec>,
+    /// The sign folds of the system, in the order applied (`crate::symmetry`; empty: none):
+    /// each solution of the template gives both signs.
+    pub sign_folds: Vec<crate::symmetry::SignFold>,
     /// The form of the coefficient code.
     pub code_form: CodeForm,
 }

@@ -12,6 +12,18 @@ pub(crate) fn solution_set() -> TokenStream {
     quote!(mingen_runtime::SolutionSet)
 }
 
+/// `unfold_signs::<N, M>(w: &[f64; N], folds: &[SignFold], out: &mut [[f64; N]; M]) ->
+/// usize`: both signs of a solution of a sign-folded system (`SignFold<'a> = (usize,
+/// &'a [usize])`).
+pub(crate) fn unfold_signs() -> TokenStream {
+    quote!(mingen_runtime::unfold_signs)
+}
+
+/// The type of one sign fold, `SignFold<'a> = (usize, &'a [usize])`.
+pub(crate) fn sign_fold() -> TokenStream {
+    quote!(mingen_runtime::SignFold)
+}
+
 /// `lu_solve_template_fixed::<ROWS, COLS, PIVOTS, FIRST>(m: &mut [f64]) -> bool`: like
 /// Gauss-Jordan elimination for rows `FIRST..PIVOTS` (row-major, in place), the shape as
 /// constants.

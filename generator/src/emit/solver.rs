@@ -355,7 +355,7 @@ pub fn emit_solver(spec: &SolverSpec) -> Result<String, EmitError> {
         .collect();
     let solver_doc: Vec<TokenStream> = module_doc[..module_doc.len() - 2].iter().map(doc).collect();
 
-    let max = lit(nb);
+    let max = lit(nb << spec.sign_folds.len());
     let set = rt::solution_set();
     let solver_trait = rt::minimal_solver();
     let stages = rt::stages();
@@ -489,6 +489,58 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let stages = rt::stages();
     let smat = rt::smatrix();
     let read = rt::read_unknowns();
+    let solution_loop = if spec.sign_folds.is_empty() {
+        quote! {
+            for (_, v) in pairs.iter() {
+                let mut u = [0.0f64; #nvars_l];
+                if !#read(v.as_slice(), #one_l, &READOUT, &mut u) {
+                    continue;
+                }
+                #(#linear_reads)*
+                let [#(#unknown_idents),*] = u;
+                #elim_block
+                #polish_block
+                #filter
+                if !out.push(Solution { #(#field_inits)* }) {
+                    break;
+                }
+            }
+        }
+    } else {
+        // Each eigenvector gives a solution of the folded system and up to 2^k of the
+        // problem's (both signs per fold).
+        let nvars = plan.readout.len();
+        let folds = spec.sign_folds.iter().map(|f| {
+            let pivot = lit(f.pivot);
+            let scaled = f.scaled.iter().filter(|&&j| j < nvars).map(|&j| lit(j));
+            quote!((#pivot, &[#(#scaled),*]))
+        });
+        let (kl, ml) = (
+            lit(spec.sign_folds.len()),
+            lit(1usize << spec.sign_folds.len()),
+        );
+        let (unfold, fold_type) = (rt::unfold_signs(), rt::sign_fold());
+        quote! {
+            const SIGN_FOLDS: [#fold_type<'static>; #kl] = [#(#folds),*];
+            'pairs: for (_, v) in pairs.iter() {
+                let mut u = [0.0f64; #nvars_l];
+                if !#read(v.as_slice(), #one_l, &READOUT, &mut u) {
+                    continue;
+                }
+                #(#linear_reads)*
+                let mut signs = [[0.0f64; #nvars_l]; #ml];
+                let found = #unfold(&u, &SIGN_FOLDS, &mut signs);
+                for &[#(#unknown_idents),*] in &signs[..found] {
+                    #elim_block
+                    #polish_block
+                    #filter
+                    if !out.push(Solution { #(#field_inits)* }) {
+                        break 'pairs;
+                    }
+                }
+            }
+        }
+    };
     let solve = quote! {
         /// The elimination template's `[rows, cols, pivot columns, first reduced row]`.
         pub const TEMPLATE_SHAPE: [usize; 4] = [#rows_l, #cols_l, #pivots_l, #first_row];
@@ -537,20 +589,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
             #elim_setup
             #polish_consts
             const READOUT: [&[(usize, usize)]; #nvars_l] = [#(#readout_pairs),*];
-            for (_, v) in pairs.iter() {
-                let mut u = [0.0f64; #nvars_l];
-                if !#read(v.as_slice(), #one_l, &READOUT, &mut u) {
-                    continue;
-                }
-                #(#linear_reads)*
-                let [#(#unknown_idents),*] = u;
-                #elim_block
-                #polish_block
-                #filter
-                if !out.push(Solution { #(#field_inits)* }) {
-                    break;
-                }
-            }
+            #solution_loop
             out
         }
     };
@@ -1223,6 +1262,33 @@ fn solve_docs(plan: &Plan, lu_words: &str) -> Vec<String> {
             "The template's rows are multiples of the equations row-reduced on the data \
              (`mingen_runtime::reduce_equations`) to the pivot monomials [{}].",
             pivots.join(", ")
+        ));
+        docs.push(String::new());
+    }
+    for fold in &spec.sign_folds {
+        let name = |i: usize| {
+            plan.var_names
+                .get(i)
+                .cloned()
+                .unwrap_or_else(|| format!("x{i}"))
+        };
+        let p = name(fold.pivot);
+        let vars: Vec<String> = fold
+            .variables()
+            .into_iter()
+            .map(|j| format!("`{}`", name(j)))
+            .collect();
+        let others = if fold.scaled.is_empty() {
+            String::new()
+        } else {
+            format!(", the others for their ratios to `{p}`")
+        };
+        docs.push(format!(
+            "Every equation is even or odd in {} together, so solutions come in sign \
+             pairs: the template solves the system folded by `{p}` (its `{p}` stands for \
+             `{p}^2`{others}), and each solution with `{p}^2 > 0` gives both signs \
+             (`mingen_runtime::unfold_signs`).",
+            vars.join(", ")
         ));
         docs.push(String::new());
     }

@@ -397,6 +397,15 @@ impl Checker {
                         ))
                     }
                 },
+                "sign_symmetry" => match v.as_str() {
+                    "yes" => o.sign_symmetry.replace(true).is_some(),
+                    "no" => o.sign_symmetry.replace(false).is_some(),
+                    _ => {
+                        return bad(&format!(
+                            "option sign_symmetry: expected 'yes' or 'no', found '{v}'"
+                        ))
+                    }
+                },
                 "weighted_orders" => match v.parse::<usize>() {
                     Ok(n) if n <= MAX_WEIGHTED_ORDERS => o.weighted_orders.replace(n).is_some(),
                     _ => {
@@ -409,7 +418,7 @@ impl Checker {
                     return Err(LangError::new(
                         name.pos,
                         format!(
-                            "unknown option '{other}' (the options are action, extra_degree, basis, newton, auto_eliminate, reduce_equations, weighted_orders)"
+                            "unknown option '{other}' (the options are action, extra_degree, basis, newton, auto_eliminate, reduce_equations, sign_symmetry, weighted_orders)"
                         ),
                     ))
                 }

@@ -141,7 +141,8 @@ def main():
     table = markdown(rows)
     stale = []
     for r in rows:
-        f = pathlib.Path(r["file"])
+        # Rows cached by a run in another checkout name their files there.
+        f = BENCH / pathlib.Path(r["file"]).name
         size = size_text(r)
         old = f.read_text()
         new = with_recorded(old, size, r["seconds"])

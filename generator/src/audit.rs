@@ -348,6 +348,14 @@ impl Tally {
                 r
             }
         };
+        let positive = |x: &[f64]| {
+            inst.positive
+                .iter()
+                .all(|&i| x.get(i).is_some_and(|&v| v > 0.0))
+        };
+        // As the emitted solver: a polished solution is returned if it was positive
+        // before polishing too.
+        let positive_before = positive(&full);
         let other = if inst.newton_steps > 0 {
             let r = residual(&full);
             newton_polish_polys(&inst.original, &mut full, inst.newton_steps);
@@ -361,11 +369,7 @@ impl Tally {
         self.real += 1;
         let r = residual(&full);
         self.worst = Some(self.worst.map_or(r, |w| w.max(r)));
-        if inst
-            .positive
-            .iter()
-            .all(|&i| full.get(i).is_some_and(|&v| v > 0.0))
-        {
+        if positive_before && positive(&full) {
             self.returned.push(full);
         }
         Some(())

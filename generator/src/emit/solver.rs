@@ -464,7 +464,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let (elim_setup, elim_block) = eliminated_unknowns_tokens(plan, &coefficients, fill.style);
     let (polish_consts, polish_block) = polish_tokens(plan, &coefficients, fill.style);
     let field_inits = solution_fields(plan)?;
-    let filter = positive_filter(plan);
+    let (prefilter, filter) = positive_filter(plan);
     let elimination = Elimination::new(t);
     let eig = eigen_function(nb);
     let docs: Vec<TokenStream> = solve_docs(plan, elimination.words)
@@ -499,6 +499,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
                 #(#linear_reads)*
                 let [#(#unknown_idents),*] = u;
                 #elim_block
+                #prefilter
                 #polish_block
                 #filter
                 if !out.push(Solution { #(#field_inits)* }) {
@@ -532,6 +533,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
                 let found = #unfold(&u, &SIGN_FOLDS, &mut signs);
                 for &[#(#unknown_idents),*] in &signs[..found] {
                     #elim_block
+                    #prefilter
                     #polish_block
                     #filter
                     if !out.push(Solution { #(#field_inits)* }) {
@@ -1188,10 +1190,21 @@ fn solution_value(plan: &Plan, i: usize) -> TokenStream {
 }
 
 /// The checks that drop a solution whose unknowns declared `positive` are not positive
-/// (`NaN` included), in the solution loop before the push.
-fn positive_filter(plan: &Plan) -> TokenStream {
+/// (`NaN` included), in the solution loop: `(before polishing, before the push)`. With
+/// polishing, a solution is checked before it (none is polished only to be dropped) and
+/// again on its polished values; without, once.
+fn positive_filter(plan: &Plan) -> (TokenStream, TokenStream) {
+    let after = positive_checks(plan, solution_value);
+    if plan.spec.polish.is_none() {
+        return (quote!(), after);
+    }
+    (positive_checks(plan, source_value), after)
+}
+
+/// One check per `positive` unknown of the values `value` gives.
+fn positive_checks(plan: &Plan, value: fn(&Plan, usize) -> TokenStream) -> TokenStream {
     let checks = plan.spec.layout.positive.iter().map(|&i| {
-        let v = solution_value(plan, i);
+        let v = value(plan, i);
         quote! {
             if #v.is_nan() || #v <= 0.0 {
                 continue;

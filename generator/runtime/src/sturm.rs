@@ -57,6 +57,14 @@ pub fn real_eigenpairs_sturm<const N: usize>(
     m: &SMatrix<f64, N, N>,
 ) -> SolutionSet<(f64, SVector<f64, N>), N> {
     let mut out = SolutionSet::filled_with((0.0, SVector::zeros()));
+    if N == 1 {
+        // A single solution (a sign-folded pair, say): the entry is the eigenvalue.
+        let lambda = m[(0, 0)];
+        if lambda.is_finite() {
+            out.push((lambda, SVector::from_element(1.0)));
+        }
+        return out;
+    }
     if N == 2 {
         if let Some((pairs, n)) = eigenpairs_2x2([[m[(0, 0)], m[(0, 1)]], [m[(1, 0)], m[(1, 1)]]]) {
             for (lambda, v) in &pairs[..n] {
@@ -241,6 +249,15 @@ mod tests {
 
     fn residual<const N: usize>(m: &SMatrix<f64, N, N>, lam: f64, v: &SVector<f64, N>) -> f64 {
         (m * v - v * lam).norm() / m.norm()
+    }
+
+    #[test]
+    fn one_by_one_is_its_entry() {
+        let got = real_eigenpairs_sturm(&SMatrix::<f64, 1, 1>::new(-2.5));
+        assert_eq!(got.len(), 1);
+        assert_eq!(got[0].0, -2.5);
+        assert_eq!(got[0].1[0], 1.0);
+        assert!(real_eigenpairs_sturm(&SMatrix::<f64, 1, 1>::new(f64::NAN)).is_empty());
     }
 
     #[test]

@@ -22,15 +22,17 @@ pub const MAX_NEWTON_UNKNOWNS: usize = 24;
 const MAX_TABULATED_POWER: usize = 15;
 
 /// The powers `x_j^0 ..= x_j^MAX_TABULATED_POWER` of every unknown, so that a term costs a
-/// few multiplications instead of a `powi` per factor.
-struct Powers<'x> {
+/// few multiplications instead of a `powi` per factor. `M` is the capacity (at least
+/// `x.len()`): the working arrays of a polish are sized by it, so a small problem does not
+/// fill and clear arrays for [`MAX_NEWTON_UNKNOWNS`] unknowns at every evaluation.
+struct Powers<'x, const M: usize> {
     x: &'x [f64],
-    table: [[f64; MAX_TABULATED_POWER + 1]; MAX_NEWTON_UNKNOWNS],
+    table: [[f64; MAX_TABULATED_POWER + 1]; M],
 }
 
-impl<'x> Powers<'x> {
+impl<'x, const M: usize> Powers<'x, M> {
     fn new(x: &'x [f64]) -> Self {
-        let mut table = [[1.0; MAX_TABULATED_POWER + 1]; MAX_NEWTON_UNKNOWNS];
+        let mut table = [[1.0; MAX_TABULATED_POWER + 1]; M];
         for (row, &xi) in table.iter_mut().zip(x) {
             for p in 1..=MAX_TABULATED_POWER {
                 row[p] = row[p - 1] * xi;
@@ -49,11 +51,11 @@ impl<'x> Powers<'x> {
 
 /// The coefficient of a term and its factors `x_j^e_j` (into `factors[..n]`), or `None` if
 /// the term is malformed.
-fn term_factors(
+fn term_factors<const M: usize>(
     (c, e): NewtonTerm<'_>,
     coefficients: &[f64],
-    powers: &Powers<'_>,
-    factors: &mut [f64; MAX_NEWTON_UNKNOWNS],
+    powers: &Powers<'_, M>,
+    factors: &mut [f64; M],
 ) -> Option<f64> {
     let n = powers.x.len();
     if e.len() != n {
@@ -66,13 +68,13 @@ fn term_factors(
 }
 
 /// Value of `Σ_terms c x^e` and its magnitude `Σ_terms |c x^e|`.
-fn value(
+fn value<const M: usize>(
     terms: &[NewtonTerm<'_>],
     coefficients: &[f64],
-    powers: &Powers<'_>,
+    powers: &Powers<'_, M>,
 ) -> Option<(f64, f64)> {
     let n = powers.x.len();
-    let mut factors = [0.0; MAX_NEWTON_UNKNOWNS];
+    let mut factors = [0.0; M];
     let (mut value, mut magnitude) = (0.0, 0.0);
     for &term in terms {
         let c = term_factors(term, coefficients, powers, &mut factors)?;
@@ -86,30 +88,34 @@ fn value(
 /// Value and gradient of `Σ_terms c x^e` (gradient into `grad[..n]`): per term, the
 /// products of the factors before and after each unknown (prefix and suffix products), so
 /// the gradient costs O(n) per term.
-fn value_and_gradient(
+fn value_and_gradient<const M: usize>(
     terms: &[NewtonTerm<'_>],
     coefficients: &[f64],
-    powers: &Powers<'_>,
+    powers: &Powers<'_, M>,
     grad: &mut [f64],
 ) -> Option<f64> {
     let n = powers.x.len();
+    if n == 0 {
+        return None;
+    }
     grad[..n].iter_mut().for_each(|g| *g = 0.0);
-    let mut factors = [0.0; MAX_NEWTON_UNKNOWNS];
-    let mut suffix = [1.0; MAX_NEWTON_UNKNOWNS + 1];
+    let mut factors = [0.0; M];
+    // after[j]: the product of the factors after unknown j.
+    let mut after = [1.0; M];
     let mut value = 0.0;
     for &term in terms {
         let c = term_factors(term, coefficients, powers, &mut factors)?;
         let e = term.1;
-        suffix[n] = 1.0;
-        for j in (0..n).rev() {
-            suffix[j] = factors[j] * suffix[j + 1];
+        after[n - 1] = 1.0;
+        for j in (0..n - 1).rev() {
+            after[j] = factors[j + 1] * after[j + 1];
         }
-        value += c * suffix[0];
+        value += c * (factors[0] * after[0]);
         let mut prefix = c;
         for k in 0..n {
             if e[k] != 0 {
                 // ∂/∂x_k of x^e: e_k x_k^(e_k - 1) times the other factors.
-                grad[k] += prefix * f64::from(e[k]) * powers.pow(k, e[k] - 1) * suffix[k + 1];
+                grad[k] += prefix * f64::from(e[k]) * powers.pow(k, e[k] - 1) * after[k];
             }
             prefix *= factors[k];
         }
@@ -124,12 +130,12 @@ pub const AT_ROUNDING_LEVEL: f64 = 16.0 * f64::EPSILON;
 
 /// The sum of squares `Σ_i f_i(x)²` and whether every equation is at rounding level
 /// ([`AT_ROUNDING_LEVEL`]); `None` if an equation is malformed or a value not finite.
-fn squared_residual(
+fn squared_residual<const M: usize>(
     equations: &[&[NewtonTerm<'_>]],
     coefficients: &[f64],
     x: &[f64],
 ) -> Option<(f64, bool)> {
-    let powers = Powers::new(x);
+    let powers = Powers::<M>::new(x);
     let mut sum = 0.0;
     let mut converged = true;
     for eq in equations {
@@ -143,11 +149,7 @@ fn squared_residual(
 /// Solves `h δ = b` for the symmetric positive semi-definite `n x n` leading block of `h`
 /// (Cholesky with a relative ridge), in place into `b`; `false` if it breaks down.
 #[allow(clippy::needless_range_loop)] // triangular index ranges read clearer than iterators
-fn solve_normal(
-    h: &mut [[f64; MAX_NEWTON_UNKNOWNS]; MAX_NEWTON_UNKNOWNS],
-    b: &mut [f64],
-    n: usize,
-) -> bool {
+fn solve_normal<const M: usize>(h: &mut [[f64; M]; M], b: &mut [f64], n: usize) -> bool {
     let scale = (0..n).map(|i| h[i][i]).fold(0.0f64, f64::max);
     if !(scale.is_finite() && scale > 0.0) {
         return false;
@@ -195,7 +197,6 @@ fn solve_normal(
 /// documentation). Returns the number of steps taken; `x` is never made worse. Nothing
 /// is done for more than [`MAX_NEWTON_UNKNOWNS`] unknowns, fewer equations than
 /// unknowns, a malformed term or non-finite values.
-#[allow(clippy::needless_range_loop)] // the normal equations' triangular index ranges
 pub fn newton_polish(
     x: &mut [f64],
     equations: &[&[NewtonTerm<'_>]],
@@ -206,18 +207,35 @@ pub fn newton_polish(
     if n == 0 || n > MAX_NEWTON_UNKNOWNS || equations.len() < n {
         return 0;
     }
-    let Some((mut cost, mut converged)) = squared_residual(equations, coefficients, x) else {
+    match n {
+        1..=3 => polish::<3>(x, equations, coefficients, steps),
+        4..=6 => polish::<6>(x, equations, coefficients, steps),
+        7..=12 => polish::<12>(x, equations, coefficients, steps),
+        _ => polish::<MAX_NEWTON_UNKNOWNS>(x, equations, coefficients, steps),
+    }
+}
+
+/// [`newton_polish`] with working arrays for `M >= x.len()` unknowns.
+#[allow(clippy::needless_range_loop)] // the normal equations' triangular index ranges
+fn polish<const M: usize>(
+    x: &mut [f64],
+    equations: &[&[NewtonTerm<'_>]],
+    coefficients: &[f64],
+    steps: usize,
+) -> usize {
+    let n = x.len();
+    let Some((mut cost, mut converged)) = squared_residual::<M>(equations, coefficients, x) else {
         return 0;
     };
     let mut taken = 0;
-    let mut grad = [0.0; MAX_NEWTON_UNKNOWNS];
+    let mut grad = [0.0; M];
     for _ in 0..steps {
         if cost == 0.0 || converged {
             break;
         }
-        let mut h = [[0.0; MAX_NEWTON_UNKNOWNS]; MAX_NEWTON_UNKNOWNS];
-        let mut b = [0.0; MAX_NEWTON_UNKNOWNS];
-        let powers = Powers::new(x);
+        let mut h = [[0.0; M]; M];
+        let mut b = [0.0; M];
+        let powers = Powers::<M>::new(x);
         for eq in equations {
             let Some(f) = value_and_gradient(eq, coefficients, &powers, &mut grad) else {
                 return taken;
@@ -232,11 +250,11 @@ pub fn newton_polish(
         if !solve_normal(&mut h, &mut b, n) {
             break;
         }
-        let mut next = [0.0; MAX_NEWTON_UNKNOWNS];
+        let mut next = [0.0; M];
         for i in 0..n {
             next[i] = x[i] + b[i];
         }
-        match squared_residual(equations, coefficients, &next[..n]) {
+        match squared_residual::<M>(equations, coefficients, &next[..n]) {
             Some((c, at_rounding_level)) if c < cost => {
                 x.copy_from_slice(&next[..n]);
                 cost = c;
@@ -285,8 +303,8 @@ mod tests {
             8.5 * a.powi(3) * b.powi(16) * z - 4.0 * b * z.powi(4),
             0.5 * a.powi(3) * b.powi(17) - 8.0 * b * b * z.powi(3),
         ];
-        let powers = Powers::new(&x);
-        let mut grad = [0.0; MAX_NEWTON_UNKNOWNS];
+        let powers = Powers::<3>::new(&x);
+        let mut grad = [0.0; 3];
         let v = value_and_gradient(&terms, &c, &powers, &mut grad).unwrap();
         let close = |p: f64, q: f64| (p - q).abs() <= 1e-14 * q.abs().max(1.0);
         assert!(close(v, f), "{v} {f}");
@@ -325,10 +343,10 @@ mod tests {
         assert_eq!(x, [1.1, 0.9]);
         assert_eq!(newton_polish(&mut x, &eqs[..1], &c, 3), 0);
         // Far from a root the cost still only goes down.
-        let before = squared_residual(&eqs, &c, &[3.0, -2.0]).unwrap().0;
+        let before = squared_residual::<3>(&eqs, &c, &[3.0, -2.0]).unwrap().0;
         let mut x = [3.0, -2.0];
         newton_polish(&mut x, &eqs, &c, 8);
-        assert!(squared_residual(&eqs, &c, &x).unwrap().0 <= before);
+        assert!(squared_residual::<3>(&eqs, &c, &x).unwrap().0 <= before);
     }
 
     #[test]
@@ -338,15 +356,15 @@ mod tests {
         // One ulp off the root: the residual (about 4e-16 against terms of size 1) is at
         // rounding level, so no step is taken even with steps to spare.
         let mut x = [1.0 + f64::EPSILON, 1.0];
-        assert!(squared_residual(&eqs, &c, &x).unwrap().1);
+        assert!(squared_residual::<3>(&eqs, &c, &x).unwrap().1);
         assert_eq!(newton_polish(&mut x, &eqs, &c, 8), 0);
         assert_eq!(x, [1.0 + f64::EPSILON, 1.0]);
         // A millionth off: not at rounding level; polishing takes steps and then stops
         // before its budget, once the residual is at rounding level.
         let mut x = [1.0 + 1e-6, 1.0 - 1e-6];
-        assert!(!squared_residual(&eqs, &c, &x).unwrap().1);
+        assert!(!squared_residual::<3>(&eqs, &c, &x).unwrap().1);
         let steps = newton_polish(&mut x, &eqs, &c, 8);
         assert!((1..8).contains(&steps), "{steps}");
-        assert!(squared_residual(&eqs, &c, &x).unwrap().1, "{x:?}");
+        assert!(squared_residual::<3>(&eqs, &c, &x).unwrap().1, "{x:?}");
     }
 }

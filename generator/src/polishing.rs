@@ -12,11 +12,12 @@
 //! or no solve at all): at least 2 of the first 100, or, after exactly one, at least 3 of
 //! 500 once [`AUTO_POLISH_MORE_INSTANCES`] more are solved (a rate this low is not told
 //! apart from zero by 100 instances). The rate is half the audit's target of 1 %, a margin
-//! for the estimate. Otherwise it does not polish, since polishing costs a few
-//! evaluations of the equations and their gradients per solution, several times a small
-//! template's solve; a tail of instances a few orders above rounding level but below the
-//! failure residual is left as it is. The instances are seeded, so the choice, like the
-//! template, is the same on every run.
+//! for the estimate. It polishes too when the 99th percentile is above [`AUTO_POLISH_P99`],
+//! within two orders of magnitude of the failure residual: the sample's worst instances
+//! are that close to failing, so failures at a rate it cannot resolve are to be expected.
+//! Otherwise it does not polish, since polishing costs a few evaluations of the equations
+//! and their gradients per solution, up to several times a small template's solve. The
+//! instances are seeded, so the choice, like the template, is the same on every run.
 
 use crate::audit::{audit_plan, AuditOptions};
 use crate::emit::polish::check_polishable;
@@ -33,6 +34,9 @@ pub const AUTO_POLISH_MORE_INSTANCES: usize = 400;
 pub const AUTO_POLISH_FAILURE_RATE: f64 = 0.005;
 /// Polishing is chosen when the median log10 residual is above this.
 pub const AUTO_POLISH_MEDIAN: f64 = -11.0;
+/// Polishing is chosen when the 99th percentile of the log10 residual (of the first
+/// [`AUTO_POLISH_INSTANCES`]) is above this.
+pub const AUTO_POLISH_P99: f64 = -8.0;
 /// The Gauss-Newton steps chosen (polishing converges in one or two from an eliminated
 /// solution; a step that does not lower the residual is not kept).
 pub const AUTO_POLISH_STEPS: u32 = 2;
@@ -80,6 +84,7 @@ pub(crate) fn choose(plan: &SolverPlan) -> Option<AutoPolishing> {
         failures += more.failures;
     }
     let poor = report.median_log10_residual > AUTO_POLISH_MEDIAN
+        || report.p99_log10_residual > AUTO_POLISH_P99
         || failures as f64 >= AUTO_POLISH_FAILURE_RATE * instances as f64;
     Some(AutoPolishing {
         steps: if poor { AUTO_POLISH_STEPS } else { 0 },

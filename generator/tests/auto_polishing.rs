@@ -6,7 +6,7 @@
 use mingen::{
     audit_plan, emit_plan_from, plan_file, plan_source, AuditOptions, ProblemOptions, SolverPlan,
     TemplateOptions, AUTO_POLISH_FAILURE_RATE, AUTO_POLISH_INSTANCES, AUTO_POLISH_MEDIAN,
-    AUTO_POLISH_MORE_INSTANCES, AUTO_POLISH_STEPS,
+    AUTO_POLISH_MORE_INSTANCES, AUTO_POLISH_P99, AUTO_POLISH_STEPS,
 };
 use std::path::Path;
 
@@ -29,6 +29,7 @@ fn assert_consistent(plan: &SolverPlan) {
         assert!(a.failures == 0 || a.failures >= 2, "{a:?}");
     }
     let poor = a.median_log10_residual > AUTO_POLISH_MEDIAN
+        || a.p99_log10_residual > AUTO_POLISH_P99
         || a.failures as f64 >= AUTO_POLISH_FAILURE_RATE * a.instances as f64;
     assert_eq!(a.steps, if poor { AUTO_POLISH_STEPS } else { 0 }, "{a:?}");
     assert_eq!(plan.problem.layout.options.newton, Some(a.steps));

@@ -8,6 +8,8 @@
 //! - `solver`: [`emit_solver`] — data/solution structs and `solve` (template fill,
 //!   Gauss-Jordan, action matrix, real eigenvectors, read-out, null-vector recovery of
 //!   eliminated unknowns), built with `quote!` and formatted with `prettyplease`.
+//! - `solution_loop`: the loop over the action matrix's real eigenvectors that reads,
+//!   unfolds, recovers, polishes, filters and pushes each solution.
 //! - `structs`: the emitted `Data` / `Solution` structs and their slot conversions.
 //! - `tokens`: literal and doc-attribute helpers both of the above use.
 //! - `files`: header line, atomic write, freshness check.
@@ -24,6 +26,7 @@ mod files;
 pub(crate) mod polish;
 mod reduction;
 mod runtime_api;
+mod solution_loop;
 mod solver;
 mod structs;
 mod table_form;

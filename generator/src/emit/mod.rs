@@ -8,6 +8,7 @@
 //! - `solver`: [`emit_solver`] — data/solution structs and `solve` (template fill,
 //!   Gauss-Jordan, action matrix, real eigenvectors, read-out, null-vector recovery of
 //!   eliminated unknowns), built with `quote!` and formatted with `prettyplease`.
+//! - `fill`: the coefficient code and the template fill (inline or table form, the fold).
 //! - `solution_loop`: the loop over the action matrix's real eigenvectors that reads,
 //!   unfolds, recovers, polishes, filters and pushes each solution.
 //! - `structs`: the emitted `Data` / `Solution` structs and their slot conversions.
@@ -23,6 +24,7 @@
 mod action;
 pub mod coefficients;
 mod files;
+mod fill;
 pub(crate) mod polish;
 mod reduction;
 mod runtime_api;

@@ -4,8 +4,9 @@
 //! solution (ARCHITECTURE §2, emission).
 
 use super::coefficients::{Expr, VarStyle};
+use super::fill::Coefficients;
 use super::runtime_api as rt;
-use super::solver::{entry_tokens, Coefficients, Plan};
+use super::solver::{entry_tokens, Plan};
 use super::structs::solution_field_idents;
 use super::tokens::lit;
 use super::EmitError;

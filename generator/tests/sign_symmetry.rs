@@ -118,3 +118,18 @@ y*z - e = 0
     let plain = audited(&planned(&format!("{src}option sign_symmetry = no\n")));
     assert!((r.mean_real_solutions - plain.mean_real_solutions).abs() < 1e-9);
 }
+
+#[test]
+fn a_hidden_unknown_of_the_symmetry_is_scaled_but_not_returned() {
+    // `nonzero d[0]` adds u with u d1 = 1: the symmetry flips u with the depths.
+    let p = planned(&format!("{}\nnonzero d[0]\n", p3p()));
+    let folds = p.problem.sign_folds();
+    assert_eq!(folds.len(), 1);
+    assert_eq!((folds[0].pivot, folds[0].scaled.as_slice()), (0, &[1, 2, 3][..]));
+    assert_eq!((p.solution_count(), p.generated.count), (8, 4));
+    let r = audited(&p);
+    assert_eq!(r.failures, 0, "{r}");
+    // The emitted unfolding touches the declared unknowns only.
+    let code = emit_plan_from(&p, "t.mp").unwrap();
+    assert!(code.contains("= [(0, &[1, 2])];"), "{code}");
+}

@@ -125,7 +125,10 @@ fn a_hidden_unknown_of_the_symmetry_is_scaled_but_not_returned() {
     let p = planned(&format!("{}\nnonzero d[0]\n", p3p()));
     let folds = p.problem.sign_folds();
     assert_eq!(folds.len(), 1);
-    assert_eq!((folds[0].pivot, folds[0].scaled.as_slice()), (0, &[1, 2, 3][..]));
+    assert_eq!(
+        (folds[0].pivot, folds[0].scaled.as_slice()),
+        (0, &[1, 2, 3][..])
+    );
     assert_eq!((p.solution_count(), p.generated.count), (8, 4));
     let r = audited(&p);
     assert_eq!(r.failures, 0, "{r}");

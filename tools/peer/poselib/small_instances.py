@@ -13,6 +13,10 @@ PROBLEM (templates/classic/PROBLEM.mp)       PoseLib          peer line (x y z e
   relpose_upright_3pt_elim                    relpose_upright_3pt  x1[3], x2[3] (unit)
              lambda2 x2 = R lambda1 x1 + t, R about y, |t| = 1
   p3ll       l' (R (X + mu V) + t) = 0        p3ll             l[3], X[3], V[3]
+  relpose_6pt_focal  x2' F x1 = 0, F = K^-T [t]x R K^-1, K = diag(f, f, 1)
+                                              relpose_6pt_shared_focal  x1[6], x2[6]
+             (homogeneous image points), then our data: the null-space basis F1, F2, F3
+             of the six epipolar constraints (27 numbers, row-major)
 
 Geometry: camera-frame points with x, y uniform in [-1, 1] and depth in [2, 6] (in front
 of every camera), rotations uniform (a normalised Gaussian quaternion; about the y axis,
@@ -20,7 +24,10 @@ the angle uniform, for the upright problems), translations with entries N(0, 1)
 (N(0, 0.5) between the two views of the relative pose). Solutions: p3p depths along
 (x, y, 1); gp3p distances along unit rays from the origins p; up2p (cos, sin, t);
 relative pose (cos, sin, t / |t|); p3ll the rotation as (b, c, d) = (x, y, z) / w of its
-quaternion and z = 1 / (1 + b^2 + c^2 + d^2).
+quaternion and z = 1 / (1 + b^2 + c^2 + d^2); relpose_6pt_focal (x, y, w) with
+F ∝ x F1 + y F2 + F3 and w = 1 / f^2 (f uniform in [0.5, 2], a rotation near the
+identity, t entries N(0, 0.5)). Our solver's data is the null-space basis: its time does
+not include computing it, PoseLib's does.
 """
 import math
 import random
@@ -139,7 +146,93 @@ def p3ll(rng):
     return ours, peer, [b, c, d, 1 / (1 + b * b + c * c + d * d)]
 
 
-PROBLEMS = {f.__name__: f for f in (p3p, gp3p, up2p_elim, relpose_upright_3pt_elim, p3ll)}
+def solve_linear(a, b):
+    """x with a x = b (square, Gaussian elimination with partial pivoting)."""
+    n = len(a)
+    m = [row[:] + [bi] for row, bi in zip(a, b)]
+    for k in range(n):
+        p = max(range(k, n), key=lambda i: abs(m[i][k]))
+        m[k], m[p] = m[p], m[k]
+        for i in range(k + 1, n):
+            f = m[i][k] / m[k][k]
+            m[i] = [x - f * y for x, y in zip(m[i], m[k])]
+    x = [0.0] * n
+    for k in reversed(range(n)):
+        x[k] = (m[k][n] - sum(m[k][j] * x[j] for j in range(k + 1, n))) / m[k][k]
+    return x
+
+
+def null_space(rows, n):
+    """A basis of the null space of `rows` (each of length n): reduced row echelon form
+    with partial pivoting, one vector per free column (that entry 1, the other free 0)."""
+    m = [r[:] for r in rows]
+    pivots, r = [], 0
+    for c in range(n):
+        if r == len(m):
+            break
+        p = max(range(r, len(m)), key=lambda i: abs(m[i][c]))
+        if abs(m[p][c]) < 1e-12:
+            continue
+        m[r], m[p] = m[p], m[r]
+        m[r] = [x / m[r][c] for x in m[r]]
+        for i in range(len(m)):
+            if i != r:
+                f = m[i][c]
+                m[i] = [x - f * y for x, y in zip(m[i], m[r])]
+        pivots.append(c)
+        r += 1
+    basis = []
+    for free in (c for c in range(n) if c not in pivots):
+        v = [0.0] * n
+        v[free] = 1.0
+        for i, c in enumerate(pivots):
+            v[c] = -m[i][free]
+        basis.append(v)
+    return basis
+
+
+def relpose_6pt_focal(rng):
+    # Both cameras K = diag(f, f, 1); the second at R, t with R near the first.
+    while True:
+        f = rng.uniform(0.5, 2.0)
+        q = unit([1.0] + [rng.gauss(0, 0.2) for _ in range(3)])
+        R, t = rotation(q), [rng.gauss(0, 0.5) for _ in range(3)]
+        pts = [in_front(rng) for _ in range(6)]
+        cam2 = [add(mul(R, p), t) for p in pts]
+        if all(p[2] > 0.5 for p in cam2):
+            break
+    x1 = [[f * p[0] / p[2], f * p[1] / p[2], 1.0] for p in pts]
+    x2 = [[f * p[0] / p[2], f * p[1] / p[2], 1.0] for p in cam2]
+    # F1, F2, F3 span the null space of the epipolar constraints x2' F x1 = 0 (F row-major).
+    rows = [[b[i] * a[j] for i in range(3) for j in range(3)] for a, b in zip(x1, x2)]
+    # An orthonormal basis in a random orientation, as an SVD gives one: the echelon basis
+    # has exact zeros (its free entries) and can be far from orthogonal.
+    echelon = null_space(rows, 9)
+    mix = [[rng.gauss(0, 1) for _ in range(3)] for _ in range(3)]
+    basis = []
+    for a in range(3):
+        v = [sum(mix[a][b] * echelon[b][k] for b in range(3)) for k in range(9)]
+        for u in basis:
+            d = sum(x * y for x, y in zip(u, v))
+            v = [x - d * y for x, y in zip(v, u)]
+        n = math.sqrt(sum(x * x for x in v))
+        basis.append([x / n for x in v])
+    # The truth F = K^-T [t]x R K^-1 in that basis: lambda F - x F1 - y F2 = F3.
+    tx = [[0.0, -t[2], t[1]], [t[2], 0.0, -t[0]], [-t[1], t[0], 0.0]]
+    E = [[sum(tx[i][k] * R[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+    kinv = [1 / f, 1 / f, 1.0]
+    F = [E[i][j] * kinv[i] * kinv[j] for i in range(3) for j in range(3)]
+    cols = [F, [-v for v in basis[0]], [-v for v in basis[1]]]
+    ata = [[sum(a * b for a, b in zip(ci, cj)) for cj in cols] for ci in cols]
+    atb = [sum(a * b for a, b in zip(ci, basis[2])) for ci in cols]
+    _, x, y = solve_linear(ata, atb)
+    ours = basis[0] + basis[1] + basis[2]
+    peer = [v for p in x1 + x2 for v in p] + ours
+    return ours, peer, [x, y, 1 / (f * f)]
+
+
+PROBLEMS = {f.__name__: f for f in (p3p, gp3p, up2p_elim, relpose_upright_3pt_elim, p3ll,
+                                    relpose_6pt_focal)}
 
 
 def main():

@@ -9,9 +9,12 @@
 //   small_solvers PROBLEM PEER SOLUTIONS
 //
 // PROBLEM: p3p, gp3p, up2p_elim (PoseLib's up2p), relpose_upright_3pt_elim (PoseLib's
-// relpose_upright_3pt), p3ll. Work per call: PoseLib's poses (rotation and translation);
-// ours returns what its problem file solves for (depths for p3p and gp3p; the rotation alone
-// for p3ll).
+// relpose_upright_3pt), p3ll, relpose_6pt_focal (PoseLib's relpose_6pt_shared_focal). Work
+// per call: PoseLib's poses (rotation and translation; with the focal length for
+// relpose_6pt_focal); ours returns what its problem file solves for (depths for p3p and
+// gp3p; the rotation alone for p3ll; for relpose_6pt_focal the fundamental matrix in the
+// null-space basis and the focal length, from that basis as data, whose computation
+// PoseLib's time includes and ours does not).
 #include <PoseLib/poselib.h>
 
 #include "rows.h"
@@ -50,7 +53,17 @@ struct Problem {
     std::function<std::vector<double>(const std::vector<double> &, const poselib::CameraPose &)> ours;
     // Unknowns whose joint sign is free (a translation of unit length).
     std::vector<int> sign_free;
+    // Instead of `solve` and `ours`, for a solver that returns image pairs (a pose and
+    // the cameras).
+    std::function<void(const std::vector<double> &, poselib::ImagePairVector *)> solve_pairs;
+    std::function<std::vector<double>(const std::vector<double> &, const poselib::ImagePair &)> ours_pair;
 };
+
+Eigen::Matrix3d skew(const Vec3 &t) {
+    Eigen::Matrix3d m;
+    m << 0, -t(2), t(1), t(2), 0, -t(0), -t(1), t(0), 0;
+    return m;
+}
 
 bool problem(const std::string &name, Problem *p) {
     if (name == "p3p") {
@@ -109,6 +122,28 @@ bool problem(const std::string &name, Problem *p) {
                   return std::vector<double>{b, c, d, 1.0 / (1.0 + b * b + c * c + d * d)};
               },
               {}};
+    } else if (name == "relpose_6pt_focal") {
+        *p = {63, 3, nullptr, nullptr, {},
+              [](const std::vector<double> &r, poselib::ImagePairVector *out) {
+                  poselib::relpose_6pt_shared_focal(block(r, 0, 6), block(r, 1, 6), out);
+              },
+              [](const std::vector<double> &r, const poselib::ImagePair &pair) {
+                  // F = K^-1 [t]x R K^-1 (K diagonal) in our basis: lambda F - x F1 - y F2 = F3
+                  // over the nine entries (row-major, the basis after the 36 point numbers).
+                  double f = pair.camera1.focal();
+                  Eigen::Matrix3d kinv = Vec3(1 / f, 1 / f, 1).asDiagonal();
+                  Eigen::Matrix3d F = kinv * skew(pair.pose.t) * pair.pose.R() * kinv;
+                  Eigen::Matrix<double, 9, 3> a;
+                  Eigen::Matrix<double, 9, 1> b;
+                  for (int k = 0; k < 9; ++k) {
+                      a(k, 0) = F(k / 3, k % 3);
+                      a(k, 1) = -r[36 + k];
+                      a(k, 2) = -r[45 + k];
+                      b(k) = r[54 + k];
+                  }
+                  Vec3 s = a.colPivHouseholderQr().solve(b);
+                  return std::vector<double>{s(1), s(2), 1 / (f * f)};
+              }};
     } else {
         return false;
     }
@@ -120,7 +155,8 @@ bool problem(const std::string &name, Problem *p) {
 int main(int argc, char **argv) {
     Problem p;
     if (argc < 4 || !problem(argv[1], &p)) {
-        std::fprintf(stderr, "usage: %s p3p|gp3p|up2p_elim|relpose_upright_3pt_elim|p3ll PEER SOLUTIONS\n", argv[0]);
+        std::fprintf(stderr, "usage: %s p3p|gp3p|up2p_elim|relpose_upright_3pt_elim|p3ll|relpose_6pt_focal PEER SOLUTIONS\n",
+                     argv[0]);
         return 2;
     }
     auto rows = read_rows(argv[2], p.width);
@@ -133,14 +169,26 @@ int main(int argc, char **argv) {
     std::vector<double> times;
     size_t poses = 0;
     std::vector<poselib::CameraPose> out;
+    poselib::ImagePairVector pairs;
+    // One instance's solutions: the number, and, with `convert`, each in our unknowns.
+    auto solve = [&](const std::vector<double> &r, std::vector<std::vector<double>> *convert) {
+        if (p.solve_pairs) {
+            pairs.clear();
+            p.solve_pairs(r, &pairs);
+            if (convert)
+                for (const auto &pair : pairs) convert->push_back(p.ours_pair(r, pair));
+            return pairs.size();
+        }
+        out.clear();
+        p.solve(r, &out);
+        if (convert)
+            for (const auto &pose : out) convert->push_back(p.ours(r, pose));
+        return out.size();
+    };
     for (int round = 0; round < rounds; ++round) {
         poses = 0;
         auto start = std::chrono::steady_clock::now();
-        for (const auto &r : rows) {
-            out.clear();
-            p.solve(r, &out);
-            poses += out.size();
-        }
+        for (const auto &r : rows) poses += solve(r, nullptr);
         auto end = std::chrono::steady_clock::now();
         times.push_back(std::chrono::duration<double, std::micro>(end - start).count() / rows.size());
     }
@@ -149,16 +197,15 @@ int main(int argc, char **argv) {
                 rows.size(), rounds, times[times.size() / 2], times[0], double(poses) / rows.size());
     std::vector<double> errors;
     for (size_t k = 0; k < rows.size(); ++k) {
-        out.clear();
-        p.solve(rows[k], &out);
+        std::vector<std::vector<double>> candidates;
+        solve(rows[k], &candidates);
         const auto &t = truths[k];
         std::vector<double> flipped = t;
         for (int i : p.sign_free) flipped[i] = -flipped[i];
         double scale = 1.0;
         for (double x : t) scale = std::max(scale, std::abs(x));
         double best = INFINITY;
-        for (const auto &pose : out) {
-            auto s = p.ours(rows[k], pose);
+        for (const auto &s : candidates) {
             for (const std::vector<double> *truth : {&t, static_cast<const std::vector<double> *>(&flipped)}) {
                 double e = 0;
                 for (size_t i = 0; i < s.size(); ++i) e += (s[i] - (*truth)[i]) * (s[i] - (*truth)[i]);

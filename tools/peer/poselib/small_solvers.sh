@@ -6,14 +6,18 @@
 #   tools/peer/poselib/small_solvers.sh POSELIB_CHECKOUT [ROUNDS] [INSTANCES] [PROBLEM...]
 #
 # Builds PoseLib as run.sh does and the driver small_solvers.cc (our code) against it; per
-# problem (default: p3p gp3p up2p_elim relpose_upright_3pt_elim p3ll) writes INSTANCES
-# instances (default 1000; small_instances.py, seed 7) in both forms, builds our solver in
-# a crate of its own (tools/emitted_solver/run.sh, the plan's defaults), alternates the two
-# programs ROUNDS times (default 9), each pinned to one core, and prints a markdown table:
+# problem (default: p3p gp3p up2p_elim relpose_upright_3pt_elim p3ll relpose_6pt_focal)
+# writes INSTANCES instances (default 1000; small_instances.py, seed 7) in both forms,
+# builds our solver in a crate of its own (tools/emitted_solver/run.sh, the plan's
+# defaults), alternates the two programs ROUNDS times (default 9), each pinned to one
+# core, and prints a markdown table:
 # per-call medians, the median of the same-round ratios ours / PoseLib, solutions returned
 # per instance and planted solutions recovered (to 1e-6 relative) on each side. Work per
 # call: PoseLib returns poses; ours what its problem file solves for (p3p and gp3p: the
-# three depths; p3ll: the rotation; the upright problems: rotation and translation).
+# three depths; p3ll: the rotation; the upright problems: rotation and translation;
+# relpose_6pt_focal: the fundamental matrix in the null-space basis of its six epipolar
+# constraints, given as data, and the focal length; PoseLib computes that basis within
+# its call, our time does not include it).
 set -euo pipefail
 poselib="$(cd "${1:?usage: $0 POSELIB_CHECKOUT [ROUNDS] [INSTANCES] [PROBLEM...]}" && pwd)"
 shift
@@ -22,7 +26,7 @@ rounds=${1:-9}
 count=${1:-1000}
 [[ $# -gt 0 ]] && shift
 problems=("$@")
-[[ ${#problems[@]} -eq 0 ]] && problems=(p3p gp3p up2p_elim relpose_upright_3pt_elim p3ll)
+[[ ${#problems[@]} -eq 0 ]] && problems=(p3p gp3p up2p_elim relpose_upright_3pt_elim p3ll relpose_6pt_focal)
 here="$(cd "$(dirname "$0")" && pwd)"
 repo="$(cd "$here/../../.." && pwd)"
 work="$(mktemp -d)"

@@ -263,12 +263,8 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
     let mut tally = Tally::default();
     // Eigenpairs that gave a solution, or a pair of complex ones (a negative square).
     let mut accounted = 0;
-    let signed: Vec<Vec<Vec<f64>>> = solved
-        .solutions
-        .iter()
-        .map(|s| crate::symmetry::unfold_all(&inst.sign_folds, s))
-        .collect();
-    for (w, signs) in solved.solutions.iter().zip(&signed) {
+    for w in &solved.solutions {
+        let signs = crate::symmetry::unfold_all(&inst.sign_folds, w);
         if signs.is_empty() && !inst.sign_folds.is_empty() {
             let negative = |f: &crate::symmetry::SignFold| w.get(f.pivot).is_some_and(|&s| s < 0.0);
             if inst.sign_folds.iter().any(negative) {
@@ -277,7 +273,7 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
             continue;
         }
         let before = tally.real;
-        for s in signs {
+        for s in &signs {
             // A solution whose eliminated unknowns cannot be recovered is missed.
             let _ = tally.add(inst, s);
         }

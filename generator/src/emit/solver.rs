@@ -27,7 +27,7 @@ pub const TABLE_FORM_MIN_SIZE: usize = 2048;
 
 /// The most coefficient statements (`let`s in one function) the inline form may have:
 /// beyond them rustc's debug build overflows its stack (see [`TABLE_FORM_MIN_SIZE`], which
-/// keeps [`CodeForm::Auto`] below this).
+/// keeps [`CodeForm::Auto`](super::CodeForm::Auto) below this).
 pub const MAX_INLINE_STATEMENTS: usize = TABLE_FORM_MIN_SIZE;
 
 /// Everything `solve` needs, validated and indexed.

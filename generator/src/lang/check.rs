@@ -379,33 +379,23 @@ impl Checker {
                         ))
                     }
                 },
-                "auto_eliminate" => match v.as_str() {
-                    "yes" => o.auto_eliminate.replace(true).is_some(),
-                    "no" => o.auto_eliminate.replace(false).is_some(),
-                    _ => {
-                        return bad(&format!(
-                            "option auto_eliminate: expected 'yes' or 'no', found '{v}'"
-                        ))
-                    }
-                },
-                "reduce_equations" => match v.as_str() {
-                    "yes" => o.reduce_equations.replace(true).is_some(),
-                    "no" => o.reduce_equations.replace(false).is_some(),
-                    _ => {
-                        return bad(&format!(
-                            "option reduce_equations: expected 'yes' or 'no', found '{v}'"
-                        ))
-                    }
-                },
-                "sign_symmetry" => match v.as_str() {
-                    "yes" => o.sign_symmetry.replace(true).is_some(),
-                    "no" => o.sign_symmetry.replace(false).is_some(),
-                    _ => {
-                        return bad(&format!(
-                            "option sign_symmetry: expected 'yes' or 'no', found '{v}'"
-                        ))
-                    }
-                },
+                flag @ ("auto_eliminate" | "reduce_equations" | "sign_symmetry") => {
+                    let on = match v.as_str() {
+                        "yes" => true,
+                        "no" => false,
+                        _ => {
+                            return bad(&format!(
+                                "option {flag}: expected 'yes' or 'no', found '{v}'"
+                            ))
+                        }
+                    };
+                    let slot = match flag {
+                        "auto_eliminate" => &mut o.auto_eliminate,
+                        "reduce_equations" => &mut o.reduce_equations,
+                        _ => &mut o.sign_symmetry,
+                    };
+                    slot.replace(on).is_some()
+                }
                 "weighted_orders" => match v.parse::<usize>() {
                     Ok(n) if n <= MAX_WEIGHTED_ORDERS => o.weighted_orders.replace(n).is_some(),
                     _ => {

@@ -38,6 +38,8 @@
 //! - [`shrink`]: removal of rows and columns reducibility does not need;
 //! - `exclude`: greedy exclusion of excess monomials from the candidate pool (a local
 //!   search over the independent sets shrinking chooses among);
+//! - `pools`: the candidate pools basis selection chooses among (total degrees and
+//!   multidegrees);
 //! - [`select`]: quotient bases chosen among a template's columns;
 //! - [`reduction`]: the equations row-reduced on their data, which templates may be built
 //!   from;
@@ -60,6 +62,7 @@ pub mod explore;
 pub mod fold;
 pub(crate) mod linalg;
 mod options;
+mod pools;
 pub mod reduction;
 pub mod search;
 pub mod select;

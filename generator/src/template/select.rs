@@ -2,8 +2,9 @@
 //! monomials of the Gröbner basis, choose the quotient basis B among the columns of a
 //! candidate template by Gaussian elimination with a chosen column order.
 
-use super::candidates::{candidate_bytes, candidates, Blocks, Candidate, ShrinkStep};
+use super::candidates::{Blocks, Candidate, ShrinkStep};
 use super::linalg::gauss_jordan;
+use super::pools::{pools, Pool};
 use super::shrink::{shrink, shrink_quick};
 use super::Action;
 use crate::algebra::{Fp, Monomial, MonomialOrder, Poly};
@@ -175,12 +176,13 @@ pub(crate) struct SelectedTemplate {
     pub(crate) label: String,
 }
 
-/// Basis selection for one action: for the candidate degrees `maxeq + 1 ..= maxeq + 3`
-/// (stopping at the first that succeeds), and each of [`basis_orders`], selects a basis
-/// ([`select_basis`]); each distinct basis that the candidates reduce is screened with
-/// [`shrink_quick`], and the best (fewest rows * cols, ties to the earlier order) is
-/// shrunk with every strategy ([`shrink`]). Deterministic. `None` also once `deadline`
-/// has run out (checked before each degree and each order).
+/// Basis selection for one action: for each candidate pool of [`pools`], and each of
+/// [`basis_orders`], selects a basis ([`select_basis`]); each distinct basis that the
+/// candidates reduce is screened with [`shrink_quick`], and the pool's best (fewest
+/// rows * cols, ties to the earlier order) is shrunk with every strategy ([`shrink`]).
+/// Of the boxes and of the total degrees, the first pool that gives a basis ends that
+/// kind's search; the smallest template over both is returned. Deterministic. `None` also
+/// once `deadline` has run out (checked before each pool and each order).
 pub(crate) fn best_selected<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     nvars: usize,
@@ -192,17 +194,32 @@ pub(crate) fn best_selected<const P: u32>(
 ) -> Option<SelectedTemplate> {
     let orders = basis_orders(nvars);
     let out_of_budget = |bytes| deadline.is_some_and(|dl| dl.check(bytes).is_err());
-    for d in maxeq + 1..=maxeq + 3 {
-        if out_of_budget(candidate_bytes(eqs, d, &[])) {
-            return None;
+    let mut best: Option<SelectedTemplate> = None;
+    // Of each partition of the unknowns (the total degree is one), the first pool that
+    // gives a basis ends its search.
+    let mut found: BTreeSet<Vec<Vec<usize>>> = BTreeSet::new();
+    for pool in pools(eqs, nvars, maxeq) {
+        let partition = match &pool {
+            Pool::TotalDegree(_) => Vec::new(),
+            Pool::Multidegree { groups, .. } => groups.clone(),
+        };
+        if found.contains(&partition) {
+            continue;
         }
-        let cands = candidates(eqs, d, &[]);
+        if out_of_budget(pool.bytes(eqs)) {
+            // A multidegree over the memory budget leaves the total degrees to try.
+            if !pool.is_total_degree() && deadline.is_some_and(|dl| dl.check_time().is_ok()) {
+                continue;
+            }
+            return best;
+        }
+        let cands = pool.candidates(eqs);
         let refs: Vec<&Candidate> = cands.iter().collect();
         let mut seen: BTreeSet<Vec<Monomial>> = BTreeSet::new();
         let mut screened: Option<(usize, Blocks, &BasisOrder)> = None;
         for o in &orders {
             if out_of_budget(0) {
-                return None;
+                return best;
             }
             let Some(b) = select_basis::<P>(&cands, nvars, action, count, o) else {
                 continue;
@@ -222,27 +239,34 @@ pub(crate) fn best_selected<const P: u32>(
                 screened = Some((score, blocks, o));
             }
         }
-        if let Some((_, blocks, o)) = screened {
-            let ne = blocks.excess_of(cands.iter()).len();
-            let mut history = vec![(
-                format!("all multiples up to degree {d}"),
-                cands.len(),
-                ne + blocks.reducible.len() + count,
-            )];
-            let kept = shrink::<P>(&blocks, cands, &mut history, deadline)?;
-            let score =
-                kept.len() * (blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + count);
-            return Some(SelectedTemplate {
+        let Some((_, blocks, o)) = screened else {
+            continue;
+        };
+        found.insert(partition);
+        let ne = blocks.excess_of(cands.iter()).len();
+        let label = pool.describe(names);
+        let mut history = vec![(
+            label.clone(),
+            cands.len(),
+            ne + blocks.reducible.len() + count,
+        )];
+        let Some(kept) = shrink::<P>(&blocks, cands, &mut history, deadline) else {
+            return best;
+        };
+        let score =
+            kept.len() * (blocks.excess_of(kept.iter()).len() + blocks.reducible.len() + count);
+        if best.as_ref().map_or(true, |b| score < b.score) {
+            best = Some(SelectedTemplate {
                 score,
                 blocks,
                 kept,
                 history,
                 label: format!(
-                    "selected by elimination of all multiples up to degree {d}, columns in {}",
+                    "selected by elimination of {label}, columns in {}",
                     o.describe(names)
                 ),
             });
         }
     }
-    None
+    best
 }

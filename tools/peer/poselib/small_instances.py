@@ -17,6 +17,10 @@ PROBLEM (templates/classic/PROBLEM.mp)       PoseLib          peer line (x y z e
                                               relpose_6pt_shared_focal  x1[6], x2[6]
              (homogeneous image points), then our data: the null-space basis F1, F2, F3
              of the six epipolar constraints (27 numbers, row-major)
+  p2p2pl     lambda x = R X + t, 2 points;    p2p2pl           x[2] (unit), X[2],
+             lambda y = R (P + mu V) + t, 2 lines              y[2] (unit), P[2], V[2]
+  p35pf      lambda (u/f, v/f, 1) = R X + t   p35pf            (u v)[4], X[4]: our line
+             (7 of the 8 equations of 4 points)
 
 Geometry: camera-frame points with x, y uniform in [-1, 1] and depth in [2, 6] (in front
 of every camera), rotations uniform (a normalised Gaussian quaternion; about the y axis,
@@ -27,7 +31,15 @@ relative pose (cos, sin, t / |t|); p3ll the rotation as (b, c, d) = (x, y, z) / 
 quaternion and z = 1 / (1 + b^2 + c^2 + d^2); relpose_6pt_focal (x, y, w) with
 F ∝ x F1 + y F2 + F3 and w = 1 / f^2 (f uniform in [0.5, 2], a rotation near the
 identity, t entries N(0, 0.5)). Our solver's data is the null-space basis: its time does
-not include computing it, PoseLib's does.
+not include computing it, PoseLib's does. p2p2pl and p35pf: (b, c, d) = (x, y, z) / w of
+the quaternion (R = Rq / (1 + b^2 + c^2 + d^2)); p2p2pl l = (1 + b^2 + c^2 + d^2) z_0,
+the scaled depth of point 0 (our image points are (u, v) of (u, v, 1)); each line is given
+by a point P = Q - mu V (mu N(0, 1)) on the world line through the seen point Q, and a
+unit direction V uniform on the sphere. p35pf (b, c, d, l, f) with
+l = (1 + b^2 + c^2 + d^2) z_0 / f (the ray of point 0 is (u, v, f)) and f uniform in
+[0.5, 2]; image points (u, v) = f (x, y) / z. Our equations leave out u of point 3,
+PoseLib's v of point 3 (both exact here); PoseLib scales the image points by their mean
+norm within its call.
 """
 import math
 import random
@@ -231,8 +243,41 @@ def relpose_6pt_focal(rng):
     return ours, peer, [x, y, 1 / (f * f)]
 
 
+def p2p2pl(rng):
+    # Two points seen at x_i; two lines, each through a point seen at y_j, given by another
+    # point P_j on it (mu_j along V_j away from the seen one) and its unit direction V_j.
+    q = quaternion(rng)
+    R, t = rotation(q), [rng.gauss(0, 1) for _ in range(3)]
+    xc = [in_front(rng) for _ in range(2)]
+    yc = [in_front(rng) for _ in range(2)]
+    X = [tmul(R, sub(p, t)) for p in xc]
+    V = [unit([rng.gauss(0, 1) for _ in range(3)]) for _ in range(2)]
+    mu = [rng.gauss(0, 1) for _ in range(2)]
+    P = [sub(tmul(R, sub(p, t)), [m * x for x in v]) for p, v, m in zip(yc, V, mu)]
+    b, c, d = q[1] / q[0], q[2] / q[0], q[3] / q[0]
+    s = 1 + b * b + c * c + d * d
+    ours = [v for p in xc for v in (p[0] / p[2], p[1] / p[2])] + [v for p in X for v in p]
+    ours += [v for p in yc for v in (p[0] / p[2], p[1] / p[2])] + [v for p in P for v in p]
+    ours += [v for w in V for v in w]
+    peer = [v for p in xc for v in unit(p)] + [v for p in X for v in p]
+    peer += [v for p in yc for v in unit(p)] + [v for p in P for v in p] + [v for w in V for v in w]
+    return ours, peer, [b, c, d, s * xc[0][2]]
+
+
+def p35pf(rng):
+    f = rng.uniform(0.5, 2.0)
+    q = quaternion(rng)
+    R, t = rotation(q), [rng.gauss(0, 1) for _ in range(3)]
+    xc = [in_front(rng) for _ in range(4)]
+    X = [tmul(R, sub(p, t)) for p in xc]
+    b, c, d = q[1] / q[0], q[2] / q[0], q[3] / q[0]
+    s = 1 + b * b + c * c + d * d
+    ours = [v for p in xc for v in (f * p[0] / p[2], f * p[1] / p[2])] + [v for p in X for v in p]
+    return ours, ours, [b, c, d, s * xc[0][2] / f, f]
+
+
 PROBLEMS = {f.__name__: f for f in (p3p, gp3p, up2p_elim, relpose_upright_3pt_elim, p3ll,
-                                    relpose_6pt_focal)}
+                                    relpose_6pt_focal, p2p2pl, p35pf)}
 
 
 def main():

@@ -1,20 +1,22 @@
 // Runs one of PoseLib's small minimal solvers on the instances small_instances.py writes
-// (its PEER file: PoseLib's inputs, x y z each) and prints the figures
-// tools/emitted_solver/main.rs prints for our emitted solver on the same instances (its
-// OURS file): per-call time, solutions per instance, and how many planted solutions (our
-// unknowns, the SOLUTIONS file) are recovered to 1e-6 relative, PoseLib's poses converted
-// to our unknowns. Our own code, compiled against a PoseLib checkout the user provides
-// (small_solvers.sh).
+// (its PEER file: PoseLib's inputs, x y z each, x y for p35pf's image points) and prints
+// the figures tools/emitted_solver/main.rs prints for our emitted solver on the same
+// instances (its OURS file): per-call time, solutions per instance, and how many planted
+// solutions (our unknowns, the SOLUTIONS file) are recovered to 1e-6 relative, PoseLib's
+// poses converted to our unknowns. Our own code, compiled against a PoseLib checkout the
+// user provides (small_solvers.sh).
 //
 //   small_solvers PROBLEM PEER SOLUTIONS
 //
 // PROBLEM: p3p, gp3p, up2p_elim (PoseLib's up2p), relpose_upright_3pt_elim (PoseLib's
-// relpose_upright_3pt), p3ll, relpose_6pt_focal (PoseLib's relpose_6pt_shared_focal). Work
-// per call: PoseLib's poses (rotation and translation; with the focal length for
-// relpose_6pt_focal); ours returns what its problem file solves for (depths for p3p and
-// gp3p; the rotation alone for p3ll; for relpose_6pt_focal the fundamental matrix in the
-// null-space basis and the focal length, from that basis as data, whose computation
-// PoseLib's time includes and ours does not).
+// relpose_upright_3pt), p3ll, relpose_6pt_focal (PoseLib's relpose_6pt_shared_focal),
+// p2p2pl, p35pf. Work per call: PoseLib's poses (rotation and translation; with the focal
+// length for relpose_6pt_focal and p35pf); ours returns what its problem file solves for
+// (depths for p3p and gp3p; the rotation alone for p3ll; for relpose_6pt_focal the
+// fundamental matrix in the null-space basis and the focal length, from that basis as
+// data, whose computation PoseLib's time includes and ours does not; for p2p2pl the
+// rotation and the scaled depth of point 0; for p35pf those and the focal length, both
+// signs of it, and PoseLib's time includes scaling the image points, ours does not).
 #include <PoseLib/poselib.h>
 
 #include "rows.h"
@@ -45,6 +47,20 @@ Points block(const std::vector<double> &r, int block, int count) {
     return out;
 }
 
+// The first `count` image points of a peer line (x y each).
+std::vector<Eigen::Vector2d> image_points(const std::vector<double> &r, int count) {
+    std::vector<Eigen::Vector2d> out;
+    for (int i = 0; i < count; ++i) out.emplace_back(r[2 * i], r[2 * i + 1]);
+    return out;
+}
+
+// (b, c, d) = (x, y, z) / w of a pose's quaternion and 1 + b^2 + c^2 + d^2, the scale of
+// our unnormalised rotation Rq.
+std::vector<double> quaternion_bcd(const poselib::CameraPose &pose) {
+    double w = pose.q(0), b = pose.q(1) / w, c = pose.q(2) / w, d = pose.q(3) / w;
+    return {b, c, d, 1.0 + b * b + c * c + d * d};
+}
+
 // One problem: the width of a peer line, the call, and a pose's value in our unknowns.
 struct Problem {
     size_t width;
@@ -57,6 +73,10 @@ struct Problem {
     // the cameras).
     std::function<void(const std::vector<double> &, poselib::ImagePairVector *)> solve_pairs;
     std::function<std::vector<double>(const std::vector<double> &, const poselib::ImagePair &)> ours_pair;
+    // Instead of `solve` and `ours`, for a solver that returns poses and focal lengths.
+    std::function<void(const std::vector<double> &, std::vector<poselib::CameraPose> *, std::vector<double> *)>
+        solve_focal;
+    std::function<std::vector<double>(const std::vector<double> &, const poselib::CameraPose &, double)> ours_focal;
 };
 
 Eigen::Matrix3d skew(const Vec3 &t) {
@@ -144,6 +164,32 @@ bool problem(const std::string &name, Problem *p) {
                   Vec3 s = a.colPivHouseholderQr().solve(b);
                   return std::vector<double>{s(1), s(2), 1 / (f * f)};
               }};
+    } else if (name == "p2p2pl") {
+        *p = {30, 4,
+              [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out) {
+                  poselib::p2p2pl(block(r, 0, 2), block(r, 1, 2), block(r, 2, 2), block(r, 3, 2), block(r, 4, 2), out);
+              },
+              [](const std::vector<double> &r, const poselib::CameraPose &pose) {
+                  // l: the depth of point 0 scaled like Rq, (1 + b^2 + c^2 + d^2) z_0.
+                  auto s = quaternion_bcd(pose);
+                  double depth = pose.apply(block(r, 1, 2)[0]).z();
+                  return std::vector<double>{s[0], s[1], s[2], s[3] * depth};
+              },
+              {}};
+    } else if (name == "p35pf") {
+        *p = {20, 5, nullptr, nullptr, {}, nullptr, nullptr,
+              [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out, std::vector<double> *focals) {
+                  Points X;
+                  for (int i = 0; i < 4; ++i) X.emplace_back(r[8 + 3 * i], r[9 + 3 * i], r[10 + 3 * i]);
+                  poselib::p35pf(image_points(r, 4), X, out, focals);
+              },
+              [](const std::vector<double> &r, const poselib::CameraPose &pose, double f) {
+                  // l: the depth of point 0 scaled like Rq and divided by f (its ray is
+                  // (u, v, f)), (1 + b^2 + c^2 + d^2) z_0 / f.
+                  auto s = quaternion_bcd(pose);
+                  double depth = pose.apply(Vec3(r[8], r[9], r[10])).z();
+                  return std::vector<double>{s[0], s[1], s[2], s[3] * depth / f, f};
+              }};
     } else {
         return false;
     }
@@ -155,7 +201,9 @@ bool problem(const std::string &name, Problem *p) {
 int main(int argc, char **argv) {
     Problem p;
     if (argc < 4 || !problem(argv[1], &p)) {
-        std::fprintf(stderr, "usage: %s p3p|gp3p|up2p_elim|relpose_upright_3pt_elim|p3ll|relpose_6pt_focal PEER SOLUTIONS\n",
+        std::fprintf(stderr,
+                     "usage: %s p3p|gp3p|up2p_elim|relpose_upright_3pt_elim|p3ll|relpose_6pt_focal|p2p2pl|p35pf "
+                     "PEER SOLUTIONS\n",
                      argv[0]);
         return 2;
     }
@@ -170,6 +218,7 @@ int main(int argc, char **argv) {
     size_t poses = 0;
     std::vector<poselib::CameraPose> out;
     poselib::ImagePairVector pairs;
+    std::vector<double> focals;
     // One instance's solutions: the number, and, with `convert`, each in our unknowns.
     auto solve = [&](const std::vector<double> &r, std::vector<std::vector<double>> *convert) {
         if (p.solve_pairs) {
@@ -178,6 +227,15 @@ int main(int argc, char **argv) {
             if (convert)
                 for (const auto &pair : pairs) convert->push_back(p.ours_pair(r, pair));
             return pairs.size();
+        }
+        if (p.solve_focal) {
+            // p35pf appends to its outputs: both are cleared first.
+            out.clear();
+            focals.clear();
+            p.solve_focal(r, &out, &focals);
+            if (convert)
+                for (size_t i = 0; i < out.size(); ++i) convert->push_back(p.ours_focal(r, out[i], focals[i]));
+            return out.size();
         }
         out.clear();
         p.solve(r, &out);

@@ -6,18 +6,23 @@
 #   tools/peer/poselib/small_solvers.sh POSELIB_CHECKOUT [ROUNDS] [INSTANCES] [PROBLEM...]
 #
 # Builds PoseLib as run.sh does and the driver small_solvers.cc (our code) against it; per
-# problem (default: p3p gp3p up2p_elim relpose_upright_3pt_elim p3ll relpose_6pt_focal)
-# writes INSTANCES instances (default 1000; small_instances.py, seed 7) in both forms,
-# builds our solver in a crate of its own (tools/emitted_solver/run.sh, the plan's
-# defaults), alternates the two programs ROUNDS times (default 9), each pinned to one
-# core, and prints a markdown table:
+# problem (default: p3p gp3p up2p_elim relpose_upright_3pt_elim p3ll relpose_6pt_focal
+# p2p2pl p35pf) writes INSTANCES instances (default 1000; small_instances.py, seed 7) in
+# both forms, builds our solver in a crate of its own (tools/emitted_solver/run.sh, the
+# plan's defaults; p2p2pl and p35pf plan for a minute or more and compile for minutes),
+# alternates the two programs ROUNDS times (default 9), each pinned to one core, and
+# prints a markdown table:
 # per-call medians, the median of the same-round ratios ours / PoseLib, solutions returned
 # per instance and planted solutions recovered (to 1e-6 relative) on each side. Work per
 # call: PoseLib returns poses; ours what its problem file solves for (p3p and gp3p: the
 # three depths; p3ll: the rotation; the upright problems: rotation and translation;
 # relpose_6pt_focal: the fundamental matrix in the null-space basis of its six epipolar
 # constraints, given as data, and the focal length; PoseLib computes that basis within
-# its call, our time does not include it).
+# its call, our time does not include it; p2p2pl: the rotation and the scaled depth of
+# the first point, which fixes the translation, PoseLib the pose; p35pf: the rotation,
+# the scaled depth of the first point and the focal length, PoseLib the pose and the
+# focal length, after scaling the image points by their mean norm, which ours does not
+# do; both return the positive focal length only, ours by its file's `positive f`).
 set -euo pipefail
 poselib="$(cd "${1:?usage: $0 POSELIB_CHECKOUT [ROUNDS] [INSTANCES] [PROBLEM...]}" && pwd)"
 shift
@@ -26,7 +31,8 @@ rounds=${1:-9}
 count=${1:-1000}
 [[ $# -gt 0 ]] && shift
 problems=("$@")
-[[ ${#problems[@]} -eq 0 ]] && problems=(p3p gp3p up2p_elim relpose_upright_3pt_elim p3ll relpose_6pt_focal)
+[[ ${#problems[@]} -eq 0 ]] && problems=(p3p gp3p up2p_elim relpose_upright_3pt_elim p3ll relpose_6pt_focal
+  p2p2pl p35pf)
 here="$(cd "$(dirname "$0")" && pwd)"
 repo="$(cd "$here/../../.." && pwd)"
 work="$(mktemp -d)"

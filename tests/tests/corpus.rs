@@ -474,7 +474,7 @@ fn solvers_describe_themselves_through_the_trait() {
     );
     assert_eq!(
         <relpose_6pt_focal::Solver as MinimalSolver>::TEMPLATE_SHAPE[..2],
-        [20, 35]
+        [15, 30]
     );
     let flat: Vec<f64> = (0..27).map(f64::from).collect();
     let data = relpose_6pt_focal::Data::from_flat(&flat).expect("27 slots");

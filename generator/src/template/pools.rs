@@ -36,6 +36,16 @@ impl Pool {
         matches!(self, Pool::TotalDegree(_))
     }
 
+    /// The pool's partition of the unknowns (empty for a total degree) and the sum of its
+    /// caps: basis selection tries a partition's pools by increasing sum and stops after
+    /// the first sum that gives a template.
+    pub(crate) fn partition_and_size(&self) -> (Vec<Vec<usize>>, u32) {
+        match self {
+            Pool::TotalDegree(d) => (Vec::new(), *d),
+            Pool::Multidegree { groups, caps } => (groups.clone(), caps.iter().sum()),
+        }
+    }
+
     /// "all multiples up to degree 7", "all multiples within degrees 3 in w, x, y; 6 in z".
     pub(crate) fn describe(&self, names: &[String]) -> String {
         match self {
@@ -162,10 +172,28 @@ fn multipliers(nvars: usize, groups: &[Vec<usize>], room: &[u32]) -> Vec<Monomia
     out
 }
 
+/// The raises of a multidegree's caps above the equations' own degrees, one entry per
+/// group, by increasing sum: none; 1 on one group, on all; 2 on one group, on all.
+fn raises(groups: usize) -> Vec<Vec<u32>> {
+    let mut out: Vec<Vec<u32>> = vec![vec![0; groups]];
+    for k in 1..=2 {
+        for g in 0..groups {
+            let mut r = vec![0; groups];
+            r[g] = k;
+            out.push(r);
+        }
+        out.push(vec![k; groups]);
+    }
+    out.sort_by_key(|r| r.iter().sum::<u32>());
+    out.dedup();
+    out
+}
+
 /// The pools basis selection tries, in order:
-/// 1. the box of the equations' largest exponent of each unknown, raised by 0, 1 and 2;
+/// 1. the box of the equations' largest exponent of each unknown, raised as [`raises`]
+///    lists;
 /// 2. for three unknowns or more, each unknown against the others (two groups), the
-///    equations' largest degrees in each raised by 0, 1 and 2;
+///    equations' largest degrees in each raised the same way;
 /// 3. the total degrees `maxeq + 1 ..= maxeq + 3`.
 ///
 /// A partition is tried only when the multidegree of the equations' own largest degrees
@@ -196,15 +224,14 @@ pub(crate) fn pools<F: Field>(eqs: &[Poly<F>], nvars: usize, maxeq: u32) -> Vec<
         if monomials_within(&groups, &top) >= total_monomials {
             continue;
         }
-        for k in 0..=2 {
+        for raise in raises(groups.len()) {
             let pool = Pool::Multidegree {
                 groups: groups.clone(),
-                caps: top.iter().map(|t| t + k).collect(),
+                caps: top.iter().zip(&raise).map(|(t, k)| t + k).collect(),
             };
-            if pool.rows(eqs) > limit {
-                break;
+            if pool.rows(eqs) <= limit {
+                out.push(pool);
             }
-            out.push(pool);
         }
     }
     out.extend((maxeq + 1..=maxeq + 3).map(Pool::TotalDegree));
@@ -255,6 +282,10 @@ mod tests {
 
     #[test]
     fn boxes_come_first_and_only_while_no_larger_than_a_total_degree() {
+        assert_eq!(
+            raises(2),
+            [[0, 0], [1, 0], [0, 1], [1, 1], [2, 0], [0, 2], [2, 2]].map(Vec::from)
+        );
         // Degrees (6, 3) in (x, y), total 9: the box of the exponents is small.
         let n = 2;
         let x = Poly::<Fp<P1>>::var(n, 0);
@@ -264,9 +295,10 @@ mod tests {
             .mul(&y.mul(&y).mul(&y));
         let eqs = vec![x6y3.add(&y), x6y3.add(&x).add(&one(n))];
         let p = pools(&eqs, n, 9);
-        assert_eq!(p[0], boxed(&[6, 3]));
-        // Rows 2, 8 and 18 against 12 multiples up to degree 11.
-        assert_eq!(p[1], boxed(&[7, 4]));
+        // Rows 2, 4, 4, 8, 6, 6 and 18 against 12 multiples up to degree 11: by
+        // increasing raise, all but the last.
+        let boxes = [[6, 3], [7, 3], [6, 4], [7, 4], [8, 3], [6, 5]].map(|c| boxed(&c));
+        assert_eq!(p[..6], boxes);
         assert!(!p.contains(&boxed(&[8, 5])));
         assert_eq!(p[p.len() - 3..], [10, 11, 12].map(Pool::TotalDegree));
         // A dense quadric in 6 unknowns fills its total degree: no multidegree.

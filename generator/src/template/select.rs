@@ -4,7 +4,7 @@
 
 use super::candidates::{Blocks, Candidate, ShrinkStep};
 use super::linalg::gauss_jordan;
-use super::pools::{pools, Pool};
+use super::pools::pools;
 use super::shrink::{shrink, shrink_quick};
 use super::Action;
 use crate::algebra::{Fp, Monomial, MonomialOrder, Poly};
@@ -180,9 +180,11 @@ pub(crate) struct SelectedTemplate {
 /// [`basis_orders`], selects a basis ([`select_basis`]); each distinct basis that the
 /// candidates reduce is screened with [`shrink_quick`], and the pool's best (fewest
 /// rows * cols, ties to the earlier order) is shrunk with every strategy ([`shrink`]).
-/// Of the boxes and of the total degrees, the first pool that gives a basis ends that
-/// kind's search; the smallest template over both is returned. Deterministic. `None` also
-/// once `deadline` has run out (checked before each pool and each order).
+/// Pools come by partition of the unknowns (a total degree, a box, one unknown against
+/// the others) and, within one, by increasing sum of caps; the pools of the first sum that
+/// gives a basis end their partition's search. The smallest template over all is
+/// returned. Deterministic. `None` also once `deadline` has run out (checked before each
+/// pool and each order).
 pub(crate) fn best_selected<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     nvars: usize,
@@ -195,15 +197,12 @@ pub(crate) fn best_selected<const P: u32>(
     let orders = basis_orders(nvars);
     let out_of_budget = |bytes| deadline.is_some_and(|dl| dl.check(bytes).is_err());
     let mut best: Option<SelectedTemplate> = None;
-    // Of each partition of the unknowns (the total degree is one), the first pool that
-    // gives a basis ends its search.
-    let mut found: BTreeSet<Vec<Vec<usize>>> = BTreeSet::new();
+    // Of each partition of the unknowns (the total degree is one), the pools of the first
+    // cap sum that gives a basis end its search.
+    let mut found: BTreeMap<Vec<Vec<usize>>, u32> = BTreeMap::new();
     for pool in pools(eqs, nvars, maxeq) {
-        let partition = match &pool {
-            Pool::TotalDegree(_) => Vec::new(),
-            Pool::Multidegree { groups, .. } => groups.clone(),
-        };
-        if found.contains(&partition) {
+        let (partition, size) = pool.partition_and_size();
+        if found.get(&partition).is_some_and(|&s| size > s) {
             continue;
         }
         if out_of_budget(pool.bytes(eqs)) {
@@ -242,7 +241,7 @@ pub(crate) fn best_selected<const P: u32>(
         let Some((_, blocks, o)) = screened else {
             continue;
         };
-        found.insert(partition);
+        found.insert(partition, size);
         let ne = blocks.excess_of(cands.iter()).len();
         let label = pool.describe(names);
         let mut history = vec![(

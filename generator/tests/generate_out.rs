@@ -31,7 +31,7 @@ fn out_writes_a_self_contained_module_and_check_compares_it() {
     assert!(!text.contains("crate::") && !text.contains("//!"));
     // Its equations are row-reduced on the data before the template is filled.
     assert!(text.contains("mingen_runtime::reduce_equations(&mut q[..], 30, &EQUATION_PIVOTS)"));
-    assert!(text.contains("mingen_runtime::lu_solve_template_fixed::<20, 35, 20, 14>"));
+    assert!(text.contains("mingen_runtime::lu_solve_template_fixed::<15, 30, 15, 7>"));
     assert!(text.contains("impl mingen_runtime::MinimalSolver for Solver"));
 
     assert!(mingen(&["generate", p, "--out", o, "--check"])

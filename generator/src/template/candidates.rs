@@ -153,6 +153,30 @@ fn multipliers(nvars: usize, d: u32, weights: &[u32]) -> Vec<Monomial> {
     out
 }
 
+/// `C(n, k)`, saturating (it bounds sizes).
+pub(crate) fn binomial(n: u64, k: u64) -> u64 {
+    (1..=k).fold(1u64, |acc, i| acc.saturating_mul(n + 1 - i) / i)
+}
+
+impl Candidate {
+    /// The row `m * f`, `f` the equation `equation`, of the given pool degree.
+    pub(crate) fn multiple<const P: u32>(
+        equation: usize,
+        f: &Poly<Fp<P>>,
+        m: Monomial,
+        degree: u32,
+    ) -> Candidate {
+        Candidate {
+            degree,
+            terms: f.terms().map(|(t, c)| (t.mul(&m), c.0)).collect(),
+            row: TemplateRow {
+                equation,
+                multiplier: m,
+            },
+        }
+    }
+}
+
 /// All multiples `m * f_i` with `wdeg(m * f_i) <= d` ([`weighted_degree`] under `weights`;
 /// the total degree when empty).
 pub(crate) fn candidates<const P: u32>(
@@ -170,15 +194,8 @@ pub(crate) fn candidates<const P: u32>(
         }
         let n = f.nvars();
         for m in multipliers(n, d - df, weights) {
-            let terms = f.terms().map(|(t, c)| (t.mul(&m), c.0)).collect();
-            out.push(Candidate {
-                degree: df + weighted_degree(&m, weights),
-                row: TemplateRow {
-                    equation: i,
-                    multiplier: m,
-                },
-                terms,
-            });
+            let degree = df + weighted_degree(&m, weights);
+            out.push(Candidate::multiple(i, f, m, degree));
         }
     }
     out
@@ -250,14 +267,12 @@ pub(crate) fn candidate_bytes<const P: u32>(eqs: &[Poly<Fp<P>>], d: u32, weights
             .saturating_mul(4)
             .saturating_add(terms.saturating_mul(48 + 2 * n));
     }
-    let binom =
-        |a: u64, b: u64| -> u64 { (1..=b).fold(1u64, |acc, i| acc.saturating_mul(a + 1 - i) / i) };
-    let cols = binom(n + d as u64, n);
+    let cols = binomial(n + d as u64, n);
     let (mut rows, mut terms) = (0u64, 0u64);
     for f in eqs {
         let Some(df) = f.degree() else { continue };
         if df <= d {
-            let r = binom(n + (d - df) as u64, n);
+            let r = binomial(n + (d - df) as u64, n);
             rows = rows.saturating_add(r);
             terms = terms.saturating_add(r.saturating_mul(f.len() as u64));
         }

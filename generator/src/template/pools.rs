@@ -11,8 +11,7 @@
 //! monomials of no use. Their quotient bases are not standard in any order, so only basis
 //! selection ([`super::select`]) finds them.
 
-use super::candidates::{candidate_bytes, candidates, pool_size, Candidate};
-use super::TemplateRow;
+use super::candidates::{binomial, candidate_bytes, candidates, pool_size, Candidate};
 use crate::algebra::{Field, Fp, Monomial, MonomialOrder, Poly};
 
 /// A candidate pool of basis selection.
@@ -31,11 +30,6 @@ pub(crate) enum Pool {
 }
 
 impl Pool {
-    /// Whether the pool is a total degree (else a multidegree).
-    pub(crate) fn is_total_degree(&self) -> bool {
-        matches!(self, Pool::TotalDegree(_))
-    }
-
     /// The pool's partition of the unknowns (empty for a total degree) and the sum of its
     /// caps: basis selection tries a partition's pools by increasing sum and stops after
     /// the first sum that gives a template.
@@ -72,11 +66,7 @@ impl Pool {
             Pool::Multidegree { groups, caps } => eqs
                 .iter()
                 .filter_map(|f| room(f, groups, caps))
-                .map(|room| {
-                    groups.iter().zip(&room).fold(1u64, |a, (g, &r)| {
-                        a.saturating_mul(binomial(g.len() as u64 + r as u64, g.len() as u64))
-                    })
-                })
+                .map(|room| monomials_within(groups, &room))
                 .fold(0u64, u64::saturating_add),
         }
     }
@@ -107,22 +97,12 @@ impl Pool {
             };
             let df = f.degree().unwrap_or(0);
             for m in multipliers(f.nvars(), groups, &room) {
-                out.push(Candidate {
-                    degree: df + m.degree(),
-                    terms: f.terms().map(|(t, c)| (t.mul(&m), c.0)).collect(),
-                    row: TemplateRow {
-                        equation: i,
-                        multiplier: m,
-                    },
-                });
+                let degree = df + m.degree();
+                out.push(Candidate::multiple(i, f, m, degree));
             }
         }
         out
     }
-}
-
-fn binomial(n: u64, k: u64) -> u64 {
-    (1..=k).fold(1u64, |acc, i| acc.saturating_mul(n + 1 - i) / i)
 }
 
 /// The number of monomials of degree at most `caps[g]` in each group g.

@@ -207,7 +207,7 @@ pub(crate) fn best_selected<const P: u32>(
         }
         if out_of_budget(pool.bytes(eqs)) {
             // A multidegree over the memory budget leaves the total degrees to try.
-            if !pool.is_total_degree() && deadline.is_some_and(|dl| dl.check_time().is_ok()) {
+            if !partition.is_empty() && deadline.is_some_and(|dl| dl.check_time().is_ok()) {
                 continue;
             }
             return best;

@@ -15,8 +15,8 @@
 // (depths for p3p and gp3p; the rotation alone for p3ll; for relpose_6pt_focal the
 // fundamental matrix in the null-space basis and the focal length, from that basis as
 // data, whose computation PoseLib's time includes and ours does not; for p2p2pl the
-// rotation and the scaled depth of point 0; for p35pf those and the focal length, both
-// signs of it, and PoseLib's time includes scaling the image points, ours does not).
+// rotation and the scaled depth of point 0; for p35pf those and the positive focal
+// length, and PoseLib's time includes scaling the image points, ours does not).
 #include <PoseLib/poselib.h>
 
 #include "rows.h"

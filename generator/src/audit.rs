@@ -6,7 +6,8 @@
 use crate::algebra::Poly;
 use crate::instance::random_data_f64;
 use crate::interpret::{
-    newton_polish_polys, normalized_residual, recover_eliminated, solve_template,
+    newton_polish_polys, normalized_residual, recover_eliminated, screen_redundant_readout_polys,
+    solve_template,
 };
 use crate::pipeline::SolverPlan;
 use crate::template::EliminationTemplate;
@@ -263,7 +264,20 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
     let mut tally = Tally::default();
     // Eigenpairs that gave a solution, or a pair of complex ones (a negative square).
     let mut accounted = 0;
+    let reject_spurious = template.spurious_eigenvalues > 0;
     for w in &solved.solutions {
+        // A spurious read-out of a redundant basis, told apart on the template's own
+        // equations before the eliminated unknowns are recovered (the emitted solver drops
+        // it there, or by its residual on the original equations).
+        if reject_spurious
+            && worst_residual(&inst.equations, w)
+                .partial_cmp(&mingen_runtime::SPURIOUS_RESCUE)
+                .map_or(true, |o| o.is_gt())
+        {
+            tally.spurious += 1;
+            accounted += 1;
+            continue;
+        }
         let signs = crate::symmetry::unfold_all(&inst.sign_folds, w);
         if signs.is_empty() && !inst.sign_folds.is_empty() {
             let negative = |f: &crate::symmetry::SignFold| w.get(f.pivot).is_some_and(|&s| s < 0.0);
@@ -272,12 +286,12 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
             }
             continue;
         }
-        let before = tally.real;
+        let before = (tally.real, tally.spurious);
         for s in &signs {
             // A solution whose eliminated unknowns cannot be recovered is missed.
-            let _ = tally.add(inst, s);
+            let _ = tally.add(inst, s, reject_spurious);
         }
-        if tally.real > before {
+        if (tally.real, tally.spurious) != before {
             accounted += 1;
         }
     }
@@ -292,7 +306,10 @@ fn run_instance(template: &EliminationTemplate, inst: &AuditInstance) -> Option<
         log10_other: tally.worst_other.map(clamped_log10),
         real: tally.real,
         kept: tally.returned.len(),
-        missed: solved.eigenpairs - accounted,
+        // A redundant basis's spurious eigenvectors may also give no read-out at all (the
+        // entry of 1 zero): as many as its spurious eigenvalues are not missed solutions.
+        missed: (solved.eigenpairs - accounted)
+            .saturating_sub(template.spurious_eigenvalues.saturating_sub(tally.spurious)),
         planted_error: inst
             .planted
             .as_deref()
@@ -311,13 +328,36 @@ struct Tally {
     worst_other: Option<f64>,
     /// Those whose `positive` unknowns are positive.
     returned: Vec<Vec<f64>>,
+    /// Read-outs of a redundant basis dropped as spurious (residual above
+    /// [`mingen_runtime::SPURIOUS_RESIDUAL`] before polishing, or a repeat of a solution
+    /// kept before it), as the emitted solver does.
+    spurious: usize,
+    /// The solutions of a redundant basis kept so far, polished (the emitted solver's
+    /// `mingen_runtime::DistinctSolutions`).
+    distinct: Vec<Vec<f64>>,
 }
 
 impl Tally {
+    /// `false` if `x` repeats a solution kept before ([`mingen_runtime::DUPLICATE_TOLERANCE`]);
+    /// otherwise keeps it.
+    fn distinct(&mut self, x: &[f64]) -> bool {
+        let repeats = self.distinct.iter().any(|y| {
+            let scale = y.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+            x.iter()
+                .zip(y)
+                .all(|(a, b)| (a - b).abs() <= mingen_runtime::DUPLICATE_TOLERANCE * scale)
+        });
+        if !repeats {
+            self.distinct.push(x.to_vec());
+        }
+        !repeats
+    }
+
     /// Adds one real solution `s` of the template's variables (signs unfolded): the
-    /// eliminated unknowns recovered, polished as the emitted solver does, its residual on
-    /// the original equations. `None` when the eliminated unknowns cannot be recovered.
-    fn add(&mut self, inst: &AuditInstance, s: &[f64]) -> Option<()> {
+    /// eliminated unknowns recovered, dropped as spurious when `reject_spurious` and its
+    /// residual says so, polished as the emitted solver does, its residual on the original
+    /// equations. `None` when the eliminated unknowns cannot be recovered.
+    fn add(&mut self, inst: &AuditInstance, s: &[f64], reject_spurious: bool) -> Option<()> {
         let mut full = match &inst.eliminated {
             None => s.to_vec(),
             Some(el) => {
@@ -349,6 +389,10 @@ impl Tally {
                 .iter()
                 .all(|&i| x.get(i).is_some_and(|&v| v > 0.0))
         };
+        if reject_spurious && !screen_redundant_readout_polys(&inst.original, &mut full) {
+            self.spurious += 1;
+            return Some(());
+        }
         // As the emitted solver: a polished solution is returned if it was positive
         // before polishing too.
         let positive_before = positive(&full);
@@ -361,6 +405,10 @@ impl Tally {
             newton_polish_polys(&inst.original, &mut polished, COMPARISON_NEWTON_STEPS);
             residual(&polished)
         };
+        if reject_spurious && positive_before && !self.distinct(&full) {
+            self.spurious += 1;
+            return Some(());
+        }
         self.worst_other = Some(self.worst_other.map_or(other, |w| w.max(other)));
         self.real += 1;
         let r = residual(&full);

@@ -378,23 +378,45 @@ pub fn solve_template_real(
 /// unknowns, possibly with more variables that do not occur) with [`mingen_runtime::newton_polish`], as an emitted solver of a problem
 /// with `option newton = N` does. Returns the steps taken (0 if an exponent exceeds 255).
 pub fn newton_polish_polys(equations: &[Poly<f64>], x: &mut [f64], steps: usize) -> usize {
-    // One coefficient per term, numbered in order; each term's exponents of x's unknowns.
+    with_newton_terms(equations, x.len(), |terms, coefficients| {
+        mingen_runtime::newton_polish(x, terms, coefficients, steps)
+    })
+    .unwrap_or(0)
+}
+
+/// Whether `x`, read off a redundant basis, is a solution of `equations` (as
+/// [`newton_polish_polys`] takes them), by [`mingen_runtime::screen_redundant_readout`] as
+/// an emitted solver decides; a rescued `x` is left polished. `false` if an exponent
+/// exceeds 255.
+pub fn screen_redundant_readout_polys(equations: &[Poly<f64>], x: &mut [f64]) -> bool {
+    with_newton_terms(equations, x.len(), |terms, coefficients| {
+        mingen_runtime::screen_redundant_readout(x, terms, coefficients)
+    })
+    .unwrap_or(false)
+}
+
+/// Calls `f` with `equations` as the runtime's term tables in `n` unknowns: one
+/// coefficient per term, numbered in order, and each term's exponents. `None` if an
+/// exponent exceeds 255 or a variable beyond the first `n` occurs.
+fn with_newton_terms<T>(
+    equations: &[Poly<f64>],
+    n: usize,
+    f: impl FnOnce(&[&[mingen_runtime::NewtonTerm]], &[f64]) -> T,
+) -> Option<T> {
     let mut coefficients = Vec::new();
     let mut exponents: Vec<Vec<(usize, Vec<u8>)>> = Vec::with_capacity(equations.len());
     for p in equations {
         let mut eq = Vec::new();
         for (m, &c) in p.terms() {
             // Variables beyond x's (hidden unknowns) must not occur.
-            let (head, tail) = m.0.split_at(x.len().min(m.0.len()));
-            let Ok(e) = head
+            let (head, tail) = m.0.split_at(n.min(m.0.len()));
+            let e = head
                 .iter()
                 .map(|&d| u8::try_from(d))
                 .collect::<Result<Vec<u8>, _>>()
-            else {
-                return 0;
-            };
+                .ok()?;
             if tail.iter().any(|&d| d != 0) {
-                return 0;
+                return None;
             }
             eq.push((coefficients.len(), e));
             coefficients.push(c);
@@ -406,7 +428,7 @@ pub fn newton_polish_polys(equations: &[Poly<f64>], x: &mut [f64], steps: usize)
         .map(|eq| eq.iter().map(|(c, e)| (*c, e.as_slice())).collect())
         .collect();
     let terms: Vec<&[mingen_runtime::NewtonTerm]> = terms.iter().map(Vec::as_slice).collect();
-    mingen_runtime::newton_polish(x, &terms, &coefficients, steps)
+    Some(f(&terms, &coefficients))
 }
 
 /// Evaluates a real polynomial at a point.
@@ -553,6 +575,7 @@ mod tests {
             sparse: None,
             reduction: None,
             fold: None,
+            spurious_eigenvalues: 0,
         };
         (template, vec![e0, e1])
     }

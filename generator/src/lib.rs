@@ -32,6 +32,7 @@ mod pipeline;
 mod polishing;
 mod problem;
 mod quotient;
+mod redundancy;
 mod report;
 mod rewrite;
 mod symmetry;
@@ -54,6 +55,9 @@ pub use polishing::{
     AUTO_POLISH_MORE_INSTANCES, AUTO_POLISH_P99, AUTO_POLISH_STEPS,
 };
 pub use problem::ProblemOptions;
+pub use redundancy::{
+    RedundantCheck, REDUNDANT_CHECK_INSTANCES, REDUNDANT_EXTRA_FAILURES, REDUNDANT_REAL_TOLERANCE,
+};
 pub use report::{
     report, report_with, to_json, to_markdown, PublishedSizes, ReportError, ReportRow,
 };

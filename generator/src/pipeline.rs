@@ -27,6 +27,7 @@ use crate::expand::EvalError;
 use crate::instance::random_data_fp;
 use crate::polishing::{self, AutoPolishing};
 use crate::quotient::{analyse_within, InstanceRng, InstanceSource};
+use crate::redundancy::{self, RedundantCheck};
 use crate::rewrite;
 use crate::system::{equation_supports, system, ProblemSource, System, SUPPORT_SEED};
 use crate::template::search::best_template_within;
@@ -142,6 +143,9 @@ pub struct SolverPlan {
     /// are in `problem.layout.options.newton`, which the emitter and the audit read.
     /// `None` when they set it, or when the solver cannot polish.
     pub auto_polishing: Option<AutoPolishing>,
+    /// When the search grew a redundant basis: whether the plan kept it, by measuring it
+    /// against the quotient-basis template it grew from (see [`RedundantCheck`]).
+    pub redundant_check: Option<RedundantCheck>,
 }
 
 /// The template options for `problem`: `options` with the problem file's `option` lines
@@ -172,6 +176,9 @@ pub fn resolve_options(problem: &Problem, options: &TemplateOptions) -> Template
     }
     if let Some(r) = o.reduce_equations.or(file.reduce_equations) {
         out.reduce_equations = r;
+    }
+    if let Some(r) = o.redundant_basis.or(file.redundant_basis) {
+        out.redundant_bases = r;
     }
     if let Some(n) = o.weighted_orders.or(file.weighted_orders) {
         out.weighted_orders = n;
@@ -285,7 +292,7 @@ pub fn plan(
     // The equations' generic monomials serve the template search (its fold of constant
     // rows) and the sparse elimination order alike.
     let supports = equation_supports(&problem, options.seed ^ SUPPORT_SEED);
-    let mut generated = find_template_within(
+    let generated = find_template_within(
         &ProblemSource::with_supports(&problem, &supports),
         options,
         deadline,
@@ -301,11 +308,6 @@ pub fn plan(
             other => other,
         },
     })?;
-    let template_supports = match &generated.built.template.reduction {
-        Some(r) => r.reduced_supports(),
-        None => supports.clone(),
-    };
-    order_for_sparse_elimination(&mut generated.built.template, &template_supports);
     let mut plan = SolverPlan {
         problem,
         file: file.to_string(),
@@ -313,7 +315,16 @@ pub fn plan(
         seconds: 0.0,
         supports,
         auto_polishing: None,
+        redundant_check: None,
     };
+    plan.redundant_check = redundancy::choose(&mut plan);
+    plan.generated.built.quotient_basis = None;
+    let template = &mut plan.generated.built.template;
+    let template_supports = match &template.reduction {
+        Some(r) => r.reduced_supports(),
+        None => plan.supports.clone(),
+    };
+    order_for_sparse_elimination(template, &template_supports);
     if plan.problem.layout.options.newton.is_none() {
         plan.auto_polishing = polishing::choose(&plan);
         if let Some(choice) = &plan.auto_polishing {
@@ -455,6 +466,15 @@ impl SolverPlan {
                     "failures": a.failures,
                 })),
             },
+            "redundant_basis": self.redundant_check.as_ref().map(|r| json!({
+                "kept": r.kept,
+                "template": { "rows": r.redundant_size.0, "cols": r.redundant_size.1 },
+                "spurious_eigenvalues": r.spurious_eigenvalues,
+                "instances": r.instances,
+                "mean_real_solutions": [r.mean_real.0, r.mean_real.1],
+                "failures": [r.failures.0, r.failures.1],
+            })),
+            "spurious_eigenvalues": t.spurious_eigenvalues,
             "per_action": self.generated.per_action.iter().map(|(v, s)| json!({
                 "action": v.display_with(&names),
                 "template": s.map(|(r, c)| json!({"rows": r, "cols": c})),
@@ -519,6 +539,7 @@ fn find_template_within<S: InstanceSource>(
     let opts = &TemplateOptions {
         var_names: src.var_names(),
         hidden_vars: src.hidden_vars(),
+        redundant_bases: opts.redundant_bases && src.residual_checkable(),
         ..opts.clone()
     };
     let counted = |source: TemplateError| TemplateError::Counted {
@@ -583,10 +604,12 @@ pub fn emit_plan_in(
     let tracer = Tracer::new();
     let data = tracer.inputs(layout.data_slot_count());
     let (equations, elimination) = plan.equations(&data);
+    let reject_spurious = plan.generated.built.template.spurious_eigenvalues > 0;
     let polish = match layout.options.newton_steps() {
-        0 => None,
+        0 if !reject_spurious => None,
         steps => Some(PolishSpec {
             steps: steps as usize,
+            reject_spurious,
             equations: plan.visible_equations(&data),
             unknowns: plan.visible_unknowns(),
         }),

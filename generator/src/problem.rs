@@ -218,6 +218,10 @@ pub struct ProblemOptions {
     /// `-x` on them), solves the system folded to half the solutions and recovers both
     /// signs (`symmetry.rs`); kept only where the count halves.
     pub sign_symmetry: Option<bool>,
+    /// `option redundant_basis = yes|no` (default no): whether the template's basis may
+    /// have more monomials than solutions when that makes the template smaller and the
+    /// plan measures no lost solution (`template/redundant.rs`, `redundancy.rs`).
+    pub redundant_basis: Option<bool>,
     /// `option weighted_orders = N` (default 32, at most [`MAX_WEIGHTED_ORDERS`]): how many
     /// weighted monomial orders the template search samples for other quotient bases (0:
     /// none); more can find smaller templates at the cost of planning time.

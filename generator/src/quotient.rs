@@ -42,6 +42,12 @@ pub trait InstanceSource {
     fn hidden_vars(&self) -> usize {
         0
     }
+    /// Whether the solver of this family can check a solution by the residual of its
+    /// original equations, which a redundant basis needs to drop its spurious eigenvalues
+    /// (`crate::template::EliminationTemplate::spurious_eigenvalues`); no by default.
+    fn residual_checkable(&self) -> bool {
+        false
+    }
     /// The equations of one random instance over `Z_P`, drawing from `rng`.
     fn instance<const P: u32>(&self, rng: &mut InstanceRng) -> Vec<Poly<Fp<P>>>;
     /// Each equation's terms with the exact coefficient where it is a number, the same on

@@ -66,6 +66,9 @@ pub struct ReportRow {
     pub audit: Option<AuditReport>,
     /// Wall-clock seconds of the generation (the algebra pipeline).
     pub seconds: f64,
+    /// When the plan grew a redundant basis (`--redundant-basis yes`): what it measured
+    /// and whether it kept it ([`crate::RedundantCheck`]); `template` is the size it kept.
+    pub redundant: Option<crate::RedundantCheck>,
     /// Why there is no solver, if there is none.
     pub error: Option<String>,
 }
@@ -208,6 +211,7 @@ pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOpti
         action: None,
         audit: None,
         seconds: 0.0,
+        redundant: None,
         error: None,
     };
     let problem = match Problem::from_file_within(file, options.budget) {
@@ -234,6 +238,7 @@ pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOpti
             row.folded = t.folded_rows();
             row.reduction = t.reduction_size();
             row.action = Some(t.action.display_with(&names));
+            row.redundant = p.redundant_check.clone();
             row.audit = Some(audit_plan(&p, audit));
         }
         Err(e) => {
@@ -292,6 +297,14 @@ impl ReportRow {
                 })),
             })),
             "seconds": self.seconds,
+            "redundant_basis": self.redundant.as_ref().map(|r| json!({
+                "kept": r.kept,
+                "template": { "rows": r.redundant_size.0, "cols": r.redundant_size.1 },
+                "spurious_eigenvalues": r.spurious_eigenvalues,
+                "instances": r.instances,
+                "mean_real_solutions": [r.mean_real.0, r.mean_real.1],
+                "failures": [r.failures.0, r.failures.1],
+            })),
             "error": self.error,
         })
     }
@@ -337,6 +350,20 @@ impl ReportRow {
                     }
                     if self.folded > 0 {
                         text.push_str(&format!(" ({} rows folded)", self.folded));
+                    }
+                    match &self.redundant {
+                        Some(red) if red.kept => text.push_str(&format!(
+                            " (redundant basis: {} spurious eigenvalues)",
+                            red.spurious_eigenvalues
+                        )),
+                        Some(red) => text.push_str(&format!(
+                            " (a redundant basis, {}x{}, lost solutions: {:.3} against {:.3} real)",
+                            red.redundant_size.0,
+                            red.redundant_size.1,
+                            red.mean_real.0,
+                            red.mean_real.1
+                        )),
+                        None => {}
                     }
                     text
                 }

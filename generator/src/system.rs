@@ -54,6 +54,12 @@ impl InstanceSource for ProblemSource<'_> {
     fn hidden_vars(&self) -> usize {
         self.problem.layout.hidden_count()
     }
+    fn residual_checkable(&self) -> bool {
+        // What the emitted residual check evaluates: every original equation (none
+        // defines a hidden unknown), in at most as many unknowns as polishing takes.
+        self.problem.layout.hidden_count() == 0
+            && self.problem.layout.unknown_count() <= mingen_runtime::MAX_NEWTON_UNKNOWNS
+    }
     fn instance<const P: u32>(&self, rng: &mut InstanceRng) -> Vec<Poly<Fp<P>>> {
         let data = random_data_fp::<P>(&self.problem.layout, rng);
         // Elimination was checked structurally by `plan`; an instance where it fails (a

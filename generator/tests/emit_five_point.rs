@@ -141,6 +141,7 @@ fn five_point_template() -> EliminationTemplate {
         sparse: None,
         reduction: None,
         fold: None,
+        spurious_eigenvalues: 0,
     }
 }
 
@@ -460,6 +461,7 @@ fn elimination_emission_parses() {
         sparse: None,
         reduction: None,
         fold: None,
+        spurious_eigenvalues: 0,
     };
     let cst = |c: Traced| Poly::constant(1, c);
     let sv = Poly::<Traced>::var(1, 0);

@@ -58,6 +58,7 @@ fn five_point_template() -> EliminationTemplate {
         sparse: None,
         reduction: None,
         fold: None,
+        spurious_eigenvalues: 0,
     }
 }
 
@@ -282,6 +283,7 @@ fn audit_with_eliminated_unknowns() {
         sparse: None,
         reduction: None,
         fold: None,
+        spurious_eigenvalues: 0,
     };
     let widen = |p: &P| {
         Poly::from_terms(

@@ -62,6 +62,7 @@ pub use nalgebra;
 mod closed_form;
 mod coefficient_table;
 mod constant_fold;
+mod distinct;
 mod dynamic;
 mod eigen;
 mod elim;
@@ -85,13 +86,18 @@ mod triangular_fold;
 
 pub use coefficient_table::{fill_template, zeroed_coefficients};
 pub use constant_fold::{fold_constant_rows, ConstantFold};
+pub use distinct::{DistinctSolutions, DUPLICATE_TOLERANCE};
 pub use dynamic::{real_eigenpairs_dyn, DynEigenpair, MAX_DYNAMIC_BASIS, STURM_MAX_BASIS};
 pub use eigen::{real_eigenpairs, NEAR_REAL_TOL};
 pub use elim::{gauss_jordan, lu_solve_template, lu_solve_template_fixed, PIVOT_TOL};
 pub use equation_reduction::reduce_equations;
 pub use hqr::{real_eigenpairs_hqr, real_eigenpairs_hqr_dyn};
 pub use least_squares::{least_squares_dyn, LeastSquares};
-pub use newton::{newton_polish, NewtonTerm, AT_ROUNDING_LEVEL, MAX_NEWTON_UNKNOWNS};
+pub use newton::{
+    newton_polish, screen_redundant_readout, worst_relative_residual, NewtonTerm,
+    AT_ROUNDING_LEVEL, MAX_NEWTON_UNKNOWNS, RESCUED_RESIDUAL, SPURIOUS_RESCUE,
+    SPURIOUS_RESCUE_STEPS, SPURIOUS_RESIDUAL,
+};
 pub use null::{null_vector3, null_vector3_rows};
 pub use null_general::{dehomogenize, null_vector, null_vector_dyn};
 pub use readout::{read_linear, read_unknowns, MIN_UNIT_ENTRY};

@@ -146,6 +146,88 @@ fn squared_residual<const M: usize>(
     sum.is_finite().then_some((sum, converged))
 }
 
+/// The largest relative residual ([`worst_relative_residual`]) at which a read-out of a
+/// redundant basis is a solution as it is: the action matrix of a redundant basis (more
+/// monomials than solutions) has eigenvalues that are no solution. A solution's residual
+/// is near the rounding level scaled by the template's conditioning; a spurious
+/// read-out's is mostly of the order of the equations' terms themselves.
+pub const SPURIOUS_RESIDUAL: f64 = 1e-4;
+
+/// Up to this relative residual, a read-out above [`SPURIOUS_RESIDUAL`] is given
+/// [`SPURIOUS_RESCUE_STEPS`] Gauss-Newton steps, and kept (polished) if they bring it to
+/// [`RESCUED_RESIDUAL`]: a poorly conditioned solution does, a spurious read-out does not.
+pub const SPURIOUS_RESCUE: f64 = 1e-2;
+
+/// Gauss-Newton steps of [`SPURIOUS_RESCUE`].
+pub const SPURIOUS_RESCUE_STEPS: usize = 3;
+
+/// The relative residual a rescued read-out must reach ([`SPURIOUS_RESCUE`]).
+pub const RESCUED_RESIDUAL: f64 = 1e-9;
+
+/// Whether a read-out `x` of a redundant basis is a solution ([`SPURIOUS_RESIDUAL`],
+/// [`SPURIOUS_RESCUE`]); a rescued one is left polished in `x`.
+pub fn screen_redundant_readout(
+    x: &mut [f64],
+    equations: &[&[NewtonTerm<'_>]],
+    coefficients: &[f64],
+) -> bool {
+    match worst_relative_residual(x, equations, coefficients) {
+        Some(r) if r <= SPURIOUS_RESIDUAL => true,
+        Some(r) if r <= SPURIOUS_RESCUE => {
+            let mut polished = [0.0; MAX_NEWTON_UNKNOWNS];
+            let polished = &mut polished[..x.len()];
+            polished.copy_from_slice(x);
+            newton_polish(polished, equations, coefficients, SPURIOUS_RESCUE_STEPS);
+            let rescued = worst_relative_residual(polished, equations, coefficients)
+                .is_some_and(|r| r <= RESCUED_RESIDUAL);
+            if rescued {
+                x.copy_from_slice(polished);
+            }
+            rescued
+        }
+        _ => false,
+    }
+}
+
+/// The worst relative residual `|f_i(x)| / Σ_terms |c x^e|` over the equations (0 for an
+/// equation whose terms all vanish at `x`), as the audit measures solutions; `None` for a
+/// malformed term, too many unknowns ([`MAX_NEWTON_UNKNOWNS`]) or a non-finite value.
+pub fn worst_relative_residual(
+    x: &[f64],
+    equations: &[&[NewtonTerm<'_>]],
+    coefficients: &[f64],
+) -> Option<f64> {
+    match x.len() {
+        0..=3 => worst_relative::<3>(x, equations, coefficients),
+        4..=6 => worst_relative::<6>(x, equations, coefficients),
+        7..=12 => worst_relative::<12>(x, equations, coefficients),
+        13..=MAX_NEWTON_UNKNOWNS => {
+            worst_relative::<MAX_NEWTON_UNKNOWNS>(x, equations, coefficients)
+        }
+        _ => None,
+    }
+}
+
+/// [`worst_relative_residual`] with working arrays for `M >= x.len()` unknowns.
+fn worst_relative<const M: usize>(
+    x: &[f64],
+    equations: &[&[NewtonTerm<'_>]],
+    coefficients: &[f64],
+) -> Option<f64> {
+    let powers = Powers::<M>::new(x);
+    let mut worst = 0.0f64;
+    for eq in equations {
+        let (f, magnitude) = value(eq, coefficients, &powers)?;
+        if !(f.is_finite() && magnitude.is_finite()) {
+            return None;
+        }
+        if magnitude > 0.0 {
+            worst = worst.max(f.abs() / magnitude);
+        }
+    }
+    Some(worst)
+}
+
 /// Solves `h δ = b` for the symmetric positive semi-definite `n x n` leading block of `h`
 /// (Cholesky with a relative ridge), in place into `b`; `false` if it breaks down.
 #[allow(clippy::needless_range_loop)] // triangular index ranges read clearer than iterators
@@ -347,6 +429,37 @@ mod tests {
         let mut x = [3.0, -2.0];
         newton_polish(&mut x, &eqs, &c, 8);
         assert!(squared_residual::<3>(&eqs, &c, &x).unwrap().0 <= before);
+    }
+
+    #[test]
+    fn relative_residuals_tell_roots_from_other_points() {
+        let (eqs, c) = system();
+        let eqs: Vec<&[NewtonTerm]> = eqs.iter().map(Vec::as_slice).collect();
+        assert_eq!(worst_relative_residual(&[1.0, 1.0], &eqs, &c), Some(0.0));
+        // At (2, 1): x^2 + y^2 - 2 = 3 of terms 4 + 1 + 2; x - y = 1 of 2 + 1; xy - 1 = 1
+        // of 2 + 1.
+        let r = worst_relative_residual(&[2.0, 1.0], &eqs, &c).unwrap();
+        assert!((r - 3.0 / 7.0).abs() < 1e-15, "{r}");
+        assert!(r > SPURIOUS_RESIDUAL);
+        assert!(worst_relative_residual(&[1.0 + 1e-9, 1.0], &eqs, &c).unwrap() < SPURIOUS_RESIDUAL);
+        assert_eq!(worst_relative_residual(&[f64::NAN, 1.0], &eqs, &c), None);
+        assert_eq!(worst_relative_residual(&[1.0, 1.0], &eqs, &c[..2]), None);
+        assert_eq!(worst_relative_residual(&[0.5; 25], &eqs, &c), None);
+        // Screening: a close read-out is kept as it is, a poorer one is rescued by
+        // polishing, a far one dropped.
+        let mut x = [1.0 + 1e-9, 1.0];
+        assert!(screen_redundant_readout(&mut x, &eqs, &c));
+        assert_eq!(x, [1.0 + 1e-9, 1.0]);
+        let mut x = [1.0 + 2e-3, 1.0 - 1e-3];
+        assert!(worst_relative_residual(&x, &eqs, &c).unwrap() > SPURIOUS_RESIDUAL);
+        assert!(screen_redundant_readout(&mut x, &eqs, &c));
+        assert!(
+            (x[0] - 1.0).abs() < 1e-9 && (x[1] - 1.0).abs() < 1e-9,
+            "{x:?}"
+        );
+        let mut x = [2.0, 1.0];
+        assert!(!screen_redundant_readout(&mut x, &eqs, &c));
+        assert_eq!(x, [2.0, 1.0]);
     }
 
     #[test]

@@ -263,6 +263,20 @@ fn print_plan(out: &mut String, plan: &SolverPlan) {
     if let Some(v) = &g.validation {
         outln!(out, "validation: {v:?}");
     }
+    if let Some(r) = &plan.redundant_check {
+        let (rows, cols) = r.redundant_size;
+        outln!(
+            out,
+            "redundant basis: {} ({rows} x {cols} with {} spurious eigenvalues; on {} random instances: {:.3} against {:.3} real solutions, {} against {} failures with the quotient basis)",
+            if r.kept { "kept" } else { "dropped" },
+            r.spurious_eigenvalues,
+            r.instances,
+            r.mean_real.0,
+            r.mean_real.1,
+            r.failures.0,
+            r.failures.1
+        );
+    }
     let steps = plan.problem.layout.options.newton_steps();
     match &plan.auto_polishing {
         Some(a) => outln!(

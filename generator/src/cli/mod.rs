@@ -172,6 +172,12 @@ struct SearchArgs {
     /// count halves), or as written (`no`); default: the file's `option sign_symmetry`.
     #[arg(long, value_name = "yes|no", value_parser = ["yes", "no"])]
     sign_symmetry: Option<String>,
+    /// Let the template's basis have more monomials than solutions when that makes the
+    /// template smaller and loses no solution on the plan's measurement (`yes`), or keep a
+    /// quotient basis (`no`, the default: the larger eigenvalue problem makes the emitted
+    /// solvers slower); default: the file's `option redundant_basis`.
+    #[arg(long, value_name = "yes|no", value_parser = ["yes", "no"])]
+    redundant_basis: Option<String>,
     /// How many weighted monomial orders to sample for other quotient bases (0 to 1024;
     /// default: the file's `option weighted_orders`, else 32); more may find smaller
     /// templates and take longer.
@@ -219,6 +225,7 @@ impl SearchArgs {
                 auto_eliminate: self.auto_eliminate.as_deref().map(|v| v == "yes"),
                 reduce_equations: self.reduce_equations.as_deref().map(|v| v == "yes"),
                 sign_symmetry: self.sign_symmetry.as_deref().map(|v| v == "yes"),
+                redundant_basis: self.redundant_basis.as_deref().map(|v| v == "yes"),
                 weighted_orders: self.weighted_orders.map(|n| n as usize),
             },
             weights: self.weights.iter().map(|w| w.0.clone()).collect(),

@@ -79,11 +79,17 @@ pub struct EliminationSpec {
     pub inhomogeneous: bool,
 }
 
-/// Polishing of every solution by Gauss-Newton steps (`option newton = N`).
+/// Polishing of every solution by Gauss-Newton steps (`option newton = N`), and the
+/// residual check that drops the spurious read-outs of a redundant basis.
 #[derive(Clone, Debug)]
 pub struct PolishSpec {
-    /// Steps per solution (at most; each is kept only if it lowers the residual).
+    /// Steps per solution (at most; each is kept only if it lowers the residual); 0 with
+    /// `reject_spurious` only checks.
     pub steps: usize,
+    /// Drop a solution whose worst relative residual on `equations`, before polishing, is
+    /// above `mingen_runtime::SPURIOUS_RESIDUAL` (the template's basis is redundant:
+    /// [`crate::template::EliminationTemplate::spurious_eigenvalues`]).
+    pub reject_spurious: bool,
     /// The problem's original equations in its declared unknowns (flat numbering; those
     /// involving hidden unknowns left out), with traced coefficients.
     pub equations: Vec<Poly<Traced>>,

@@ -85,16 +85,49 @@ pub(super) fn tokens(
             quote!(&[#(#ts),*])
         })
         .collect();
-    let steps = lit(p.steps);
-    let polish = rt::newton_polish();
+    let (check, seen_setup, seen_check) = if p.reject_spurious {
+        let (screen, distinct) = (rt::screen_redundant_readout(), rt::distinct_solutions());
+        let n = lit(p.unknowns);
+        (
+            quote! {
+                if !#screen(&mut x, &NEWTON_TERMS, &newton_c) {
+                    continue;
+                }
+            },
+            quote! {
+                let mut seen = #distinct::<#n, MAX_SOLUTIONS>::new();
+            },
+            quote! {
+                if !seen.insert(&x) {
+                    continue;
+                }
+            },
+        )
+    } else {
+        (quote!(), quote!(), quote!())
+    };
+    let polish = if p.steps > 0 {
+        let (steps, polish) = (lit(p.steps), rt::newton_polish());
+        quote!(#polish(&mut x, &NEWTON_TERMS, &newton_c, #steps);)
+    } else {
+        quote!()
+    };
+    let binding = if p.steps > 0 || p.reject_spurious {
+        quote!(let mut x)
+    } else {
+        quote!(let x)
+    };
     (
         quote! {
             let newton_c: [f64; #nc] = [#(#coeffs),*];
             const NEWTON_TERMS: [&[(usize, &[u8])]; #neq] = [#(#eqs),*];
+            #seen_setup
         },
         quote! {
-            let mut x = [#(#values),*];
-            #polish(&mut x, &NEWTON_TERMS, &newton_c, #steps);
+            #binding = [#(#values),*];
+            #check
+            #polish
+            #seen_check
         },
     )
 }

@@ -99,6 +99,18 @@ pub(crate) fn newton_polish() -> TokenStream {
     quote!(mingen_runtime::newton_polish)
 }
 
+/// `screen_redundant_readout(x: &mut [f64], equations: &[&[NewtonTerm]], coefficients:
+/// &[f64]) -> bool`: whether a read-out of a redundant basis is a solution.
+pub(crate) fn screen_redundant_readout() -> TokenStream {
+    quote!(mingen_runtime::screen_redundant_readout)
+}
+
+/// `DistinctSolutions<N, CAP>` (`new()`, `insert(&[f64]) -> bool`): the solutions kept
+/// so far, to drop a repeated read-out of a redundant basis.
+pub(crate) fn distinct_solutions() -> TokenStream {
+    quote!(mingen_runtime::DistinctSolutions)
+}
+
 /// The stage-observer trait `Stages` (`filled`, `eliminated`, `action`: `&[f64] -> bool`),
 /// implemented by `()`.
 pub(crate) fn stages() -> TokenStream {

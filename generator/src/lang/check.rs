@@ -379,7 +379,8 @@ impl Checker {
                         ))
                     }
                 },
-                flag @ ("auto_eliminate" | "reduce_equations" | "sign_symmetry") => {
+                flag @ ("auto_eliminate" | "reduce_equations" | "sign_symmetry"
+                | "redundant_basis") => {
                     let on = match v.as_str() {
                         "yes" => true,
                         "no" => false,
@@ -392,6 +393,7 @@ impl Checker {
                     let slot = match flag {
                         "auto_eliminate" => &mut o.auto_eliminate,
                         "reduce_equations" => &mut o.reduce_equations,
+                        "redundant_basis" => &mut o.redundant_basis,
                         _ => &mut o.sign_symmetry,
                     };
                     slot.replace(on).is_some()
@@ -408,7 +410,7 @@ impl Checker {
                     return Err(LangError::new(
                         name.pos,
                         format!(
-                            "unknown option '{other}' (the options are action, extra_degree, basis, newton, auto_eliminate, reduce_equations, sign_symmetry, weighted_orders)"
+                            "unknown option '{other}' (the options are action, extra_degree, basis, newton, auto_eliminate, reduce_equations, sign_symmetry, redundant_basis, weighted_orders)"
                         ),
                     ))
                 }

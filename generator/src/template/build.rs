@@ -35,6 +35,10 @@ pub struct BuiltTemplate {
     /// search knows the equations' constants (0 otherwise): the search compares templates
     /// by their area after the fold ([`BuiltTemplate::folded_area`]).
     pub foldable_rows: usize,
+    /// For a template with a redundant basis
+    /// ([`EliminationTemplate::spurious_eigenvalues`]), the template with a quotient basis
+    /// it was grown from, for the plan to measure one against the other; `None` otherwise.
+    pub quotient_basis: Option<Box<BuiltTemplate>>,
 }
 
 impl BuiltTemplate {
@@ -218,6 +222,7 @@ pub(crate) fn build_template<const P: u32>(
         basis_choice,
         pool_weights: weights.to_vec(),
         foldable_rows: 0,
+        quotient_basis: None,
     })
 }
 
@@ -287,6 +292,7 @@ pub(crate) fn assemble<const P: u32>(
         sparse: None,
         reduction: None,
         fold: None,
+        spurious_eigenvalues: 0,
     }
 }
 

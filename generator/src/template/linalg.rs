@@ -308,15 +308,18 @@ pub(crate) fn poly_gcd<const P: u32>(a: &[u32], b: &[u32]) -> Vec<u32> {
     a
 }
 
-/// Whether a univariate polynomial has no repeated root (gcd with its derivative is 1).
-pub(crate) fn is_squarefree<const P: u32>(p: &[u32]) -> bool {
-    let d: Vec<u32> = p
-        .iter()
+/// The derivative of a univariate polynomial (coefficients from the constant term up).
+pub(crate) fn derivative<const P: u32>(p: &[u32]) -> Vec<u32> {
+    p.iter()
         .enumerate()
         .skip(1)
         .map(|(k, &c)| mulmod::<P>(c, (k as u64 % P as u64) as u32))
-        .collect();
-    poly_gcd::<P>(p, &d).len() == 1
+        .collect()
+}
+
+/// Whether a univariate polynomial has no repeated root (gcd with its derivative is 1).
+pub(crate) fn is_squarefree<const P: u32>(p: &[u32]) -> bool {
+    poly_gcd::<P>(p, &derivative::<P>(p)).len() == 1
 }
 
 #[cfg(test)]

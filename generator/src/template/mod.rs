@@ -64,6 +64,7 @@ pub(crate) mod linalg;
 mod options;
 mod pools;
 pub mod reduction;
+mod redundant;
 pub mod search;
 pub mod select;
 mod shape;
@@ -119,8 +120,15 @@ pub struct EliminationTemplate {
     /// them. Elimination leaves them out (after eliminating the other columns they are zero
     /// in every row that is not a pivot row), so only `rows >= pivot_columns()` is needed.
     pub n_dependent: usize,
-    /// The quotient basis B (the last block of columns, same order).
+    /// The quotient basis B (the last block of columns, same order); with
+    /// [`EliminationTemplate::spurious_eigenvalues`], a redundant solving basis.
     pub basis: Vec<Monomial>,
+    /// How many more monomials B has than the system has solutions (0: B is a quotient
+    /// basis). A redundant B (see `redundant.rs`) spans the quotient without being
+    /// independent in it: the action matrix has this many spurious eigenvalues besides the
+    /// solutions', and the solver drops their read-outs by the residual of the equations
+    /// ([`mingen_runtime::SPURIOUS_RESIDUAL`]).
+    pub spurious_eigenvalues: usize,
     /// Number of hidden variables (those of `nonzero`), the last `n_hidden` variables:
     /// part of the system, not read off the eigenvectors (B need not contain them).
     pub n_hidden: usize,

@@ -54,6 +54,12 @@ pub struct TemplateOptions {
     /// Rebuild the chosen template with the greedy exclusion of candidate rows
     /// (`super::exclude`) and keep it when it has fewer rows. On by default.
     pub exclude_monomials: bool,
+    /// Let the chosen template's basis grow past the solution count when that makes the
+    /// template smaller (see `super::redundant`; the solver then drops the spurious
+    /// eigenvalues by their residual, and the plan keeps the basis only where it measures
+    /// no lost solution). Off by default: the larger eigenvalue problem makes the emitted
+    /// solvers slower than the smaller template makes them faster.
+    pub redundant_bases: bool,
     /// Also build templates from the equations row-reduced on their data (see
     /// [`super::reduction`]; every action and basis again) and keep the smaller. On by
     /// default.
@@ -86,6 +92,7 @@ impl Default for TemplateOptions {
             weighted_orders: 32,
             weights: Vec::new(),
             exclude_monomials: true,
+            redundant_bases: false,
             reduce_equations: true,
             seed: 2024,
             hidden_vars: 0,

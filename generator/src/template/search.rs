@@ -9,14 +9,18 @@
 //!
 //! [`crate::pipeline::find_template`] runs it between the analysis and the validation.
 
+use super::build::assemble;
 use super::build::{build_template, BuiltTemplate, DegreeSearch};
-use super::candidates::start_degree;
+use super::candidates::{start_degree, Blocks, Candidate};
 use super::fold::{fold_constant_rows, foldable_rows, EquationConstants};
-use super::linalg::is_squarefree;
+use super::linalg::{charpoly_within, derivative, is_squarefree, poly_gcd};
+use super::redundant::grow_basis;
 use super::select::{basis_orders, BasisOrder};
-use super::validate::nf_action_charpoly;
+use super::validate::{nf_action_charpoly, template_action_matrix};
 use super::weight_sample::{narrow_weights, neighbours, ones_and_twos, sampled_weights};
-use super::{Action, ActionChoice, EquationReduction, TemplateError, TemplateOptions};
+use super::{
+    Action, ActionChoice, EliminationTemplate, EquationReduction, TemplateError, TemplateOptions,
+};
 use crate::algebra::MonomialOrder;
 use crate::algebra::{Fp, Monomial, Poly, P1};
 use crate::budget::Deadline;
@@ -186,13 +190,29 @@ pub(crate) fn best_template_within(
     if let Some(b) = choose(&all, opts) {
         // The equations as given may have rows to fold (`fold.rs`): every template was
         // compared by its area after the fold, counted in Z_p; the chosen one is folded.
-        let mut b = refine(eqs, Some(constants), b, visible, opts, deadline);
+        let b = refine(eqs, Some(constants), b, visible, opts, deadline);
+        let mut b = with_redundant_basis(
+            eqs,
+            Some(constants),
+            b,
+            visible,
+            basis.len(),
+            opts,
+            deadline,
+        );
         fold_constant_rows(&mut b.template, constants);
+        if let Some(q) = &mut b.quotient_basis {
+            fold_constant_rows(&mut q.template, constants);
+        }
         finalists.push(b);
     }
     if let (Some((red, reduced)), Some(b)) = (&reduction, choose(&reduced_all, opts)) {
-        let mut r = refine(reduced, None, b, visible, opts, deadline);
+        let r = refine(reduced, None, b, visible, opts, deadline);
+        let mut r = with_redundant_basis(reduced, None, r, visible, basis.len(), opts, deadline);
         r.template.reduction = Some(red.clone());
+        if let Some(q) = &mut r.quotient_basis {
+            q.template.reduction = Some(red.clone());
+        }
         finalists.push(r);
     }
     merge_per_action(&mut all, reduced_all);
@@ -841,6 +861,91 @@ fn refine<const P: u32>(
     );
     match with_fold_count(r, constants) {
         Ok(r) if area(&r) < area(&best) => r,
+        _ => best,
+    }
+}
+
+/// The chosen template with a redundant basis ([`super::redundant`]) when that is
+/// smaller; otherwise the template itself.
+fn with_redundant_basis<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    constants: Constants<'_>,
+    best: BuiltTemplate,
+    visible: usize,
+    count: usize,
+    opts: &TemplateOptions,
+    deadline: &Deadline,
+) -> BuiltTemplate {
+    if !opts.redundant_bases {
+        return best;
+    }
+    let t = &best.template;
+    let rows: Vec<Candidate> = t
+        .rows
+        .iter()
+        .map(|r| {
+            let f = &eqs[r.equation];
+            let degree = f.degree().unwrap_or(0) + r.multiplier.degree();
+            Candidate::multiple(r.equation, f, r.multiplier.clone(), degree)
+        })
+        .collect();
+    let blocks = Blocks::new(&t.basis, &t.action, visible);
+    let Some((grown, kept)) =
+        grow_basis::<P>(&blocks, &rows, &t.action, visible, count, Some(deadline))
+    else {
+        return best;
+    };
+    let mut template = assemble::<P>(t.nvars, &grown, &kept, &t.action, t.n_hidden);
+    template
+        .basis
+        .sort_by(|x, y| MonomialOrder::Grevlex.cmp(y, x));
+    let nb = template.basis.len();
+    template.spurious_eigenvalues = nb - count;
+    let n = template.columns.len();
+    template.columns[n - nb..].clone_from_slice(&template.basis);
+    if template.check_emittable(&opts.var_names).is_err() {
+        return best;
+    }
+    // A spurious eigenvalue equal to a solution's would make the eigenvectors of both
+    // undefined: where the quotient's eigenvalues are distinct, no root of its
+    // characteristic polynomial may be a repeated root of the template's (spurious ones
+    // may repeat among themselves).
+    if best.distinct_eigenvalues {
+        let charpoly = |t: &EliminationTemplate| {
+            template_action_matrix::<P>(t, eqs, &opts.var_names)
+                .ok()
+                .and_then(|m| charpoly_within::<P>(&m, Some(deadline)).ok())
+        };
+        let separate = match (charpoly(&template), charpoly(&best.template)) {
+            (Some(grown), Some(quotient)) => {
+                let repeated = poly_gcd::<P>(&grown, &derivative::<P>(&grown));
+                poly_gcd::<P>(&repeated, &quotient).len() == 1
+            }
+            _ => false,
+        };
+        if !separate {
+            return best;
+        }
+    }
+    let mut history = best.history.clone();
+    let (r, c) = template.size();
+    history.push((
+        format!("redundant basis: {nb} monomials for {count} solutions"),
+        r,
+        c,
+    ));
+    let grown = with_fold_count(
+        Ok(BuiltTemplate {
+            template,
+            history,
+            basis_choice: format!("{}, redundant basis", best.basis_choice),
+            quotient_basis: Some(Box::new(best.clone())),
+            ..best.clone()
+        }),
+        constants,
+    );
+    match grown {
+        Ok(g) if area(&g) < area(&best) => g,
         _ => best,
     }
 }

@@ -253,6 +253,7 @@ mod tests {
             sparse: None,
             reduction: None,
             fold: None,
+            spurious_eigenvalues: 0,
         }
     }
 

@@ -1,0 +1,90 @@
+//! The plan's check of a redundant basis (`crate::template`'s `redundant.rs`) against the
+//! template with a quotient basis it was grown from.
+//!
+//! A redundant basis makes the template smaller, and its action matrix larger by its
+//! spurious eigenvalues, which the solver drops by the residual of each read-out
+//! ([`mingen_runtime::screen_redundant_readout`]). That screen can only be as good as the
+//! read-outs are accurate: where a spurious eigenvalue comes close to a solution's, the
+//! solution's read-out loses accuracy, and one the screen cannot tell from a spurious
+//! read-out is lost. The algebra does not see this, so the plan measures it: both
+//! templates solve the same [`REDUNDANT_CHECK_INSTANCES`] seeded uniform random instances
+//! as the emitted solvers do (polished by [`AUTO_POLISH_STEPS`] unless the problem sets
+//! `option newton`), and the redundant basis is kept only when it returns, on average, as
+//! many real solutions as the other within [`REDUNDANT_REAL_TOLERANCE`] (fewer: solutions
+//! lost; more: spurious read-outs kept) and fails on at most [`REDUNDANT_EXTRA_FAILURES`]
+//! more instances.
+
+use crate::audit::{audit_plan, AuditOptions};
+use crate::pipeline::SolverPlan;
+use crate::polishing::AUTO_POLISH_STEPS;
+
+/// Instances each template solves.
+pub const REDUNDANT_CHECK_INSTANCES: usize = 200;
+/// How far, relative to the quotient-basis template's, the redundant one's mean number of
+/// real solutions may be: fewer is a solution lost, more a spurious read-out kept.
+pub const REDUNDANT_REAL_TOLERANCE: f64 = 0.002;
+/// How many more failing instances the redundant basis may have.
+pub const REDUNDANT_EXTRA_FAILURES: usize = 1;
+/// Seed of the check's instances, apart from the audit's and the polishing choice's.
+const REDUNDANT_CHECK_SEED: u64 = 0x5e1f_ba5e;
+
+/// What the plan measured to keep or drop a redundant basis
+/// ([`SolverPlan::redundant_check`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RedundantCheck {
+    /// Whether the redundant basis was kept.
+    pub kept: bool,
+    /// Instances solved by each template.
+    pub instances: usize,
+    /// Real solutions per solved instance: the redundant basis's, the quotient basis's.
+    pub mean_real: (f64, f64),
+    /// Failing instances (audit's definition, polished as in the module documentation):
+    /// redundant, quotient basis.
+    pub failures: (usize, usize),
+    /// The redundant template's size (rows, columns), eliminated.
+    pub redundant_size: (usize, usize),
+    /// Its spurious eigenvalues (basis monomials beyond the solution count).
+    pub spurious_eigenvalues: usize,
+}
+
+/// Measures a plan whose template has a redundant basis against its quotient-basis
+/// alternative and keeps the better (module documentation); nothing for other plans.
+pub(crate) fn choose(plan: &mut SolverPlan) -> Option<RedundantCheck> {
+    let built = &plan.generated.built;
+    if built.template.spurious_eigenvalues == 0 {
+        return None;
+    }
+    let alternative = built.quotient_basis.as_deref()?.clone();
+    let options = AuditOptions {
+        instances: REDUNDANT_CHECK_INSTANCES,
+        seed: REDUNDANT_CHECK_SEED,
+        time_limit: None,
+    };
+    // Failures are compared as the solver would run, polished unless the problem file or
+    // the command line sets the steps: the screen's decisions come before polishing, and
+    // an unpolished residual that polishing repairs is no lost solution.
+    let set_steps = plan.problem.layout.options.newton;
+    if set_steps.is_none() {
+        plan.problem.layout.options.newton = Some(AUTO_POLISH_STEPS);
+    }
+    let redundant = audit_plan(plan, &options);
+    let redundant_size = plan.generated.built.template.eliminated_size();
+    let spurious_eigenvalues = plan.generated.built.template.spurious_eigenvalues;
+    let grown = std::mem::replace(&mut plan.generated.built, alternative);
+    let quotient = audit_plan(plan, &options);
+    plan.problem.layout.options.newton = set_steps;
+    let kept = (redundant.mean_real_solutions - quotient.mean_real_solutions).abs()
+        <= REDUNDANT_REAL_TOLERANCE * quotient.mean_real_solutions
+        && redundant.failures <= quotient.failures + REDUNDANT_EXTRA_FAILURES;
+    if kept {
+        plan.generated.built = grown;
+    }
+    Some(RedundantCheck {
+        kept,
+        instances: REDUNDANT_CHECK_INSTANCES,
+        mean_real: (redundant.mean_real_solutions, quotient.mean_real_solutions),
+        failures: (redundant.failures, quotient.failures),
+        redundant_size,
+        spurious_eigenvalues,
+    })
+}

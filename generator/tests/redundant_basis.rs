@@ -1,0 +1,123 @@
+//! Redundant solving bases (`option redundant_basis`, `--redundant-basis`): the search
+//! grows the basis past the solution count where that shrinks the template, the
+//! validation accepts the spurious eigenvalues it adds (the quotient's characteristic
+//! polynomial divides the template's), the solvers drop their read-outs by the residual
+//! (interpreted: the audit; emitted: `mingen_runtime::screen_redundant_readout`), and the
+//! plan keeps the basis only where it measures no lost solution.
+
+use mingen::{
+    audit_plan, emit_plan_from, plan_file, plan_source, AuditOptions, SolverPlan, TemplateOptions,
+};
+use std::path::{Path, PathBuf};
+
+fn benchmark(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../templates/benchmark/{name}.mp"))
+}
+
+fn planned(name: &str, redundant: bool) -> SolverPlan {
+    let options = TemplateOptions {
+        redundant_bases: redundant,
+        ..TemplateOptions::default()
+    };
+    plan_file(&benchmark(name), &options).expect("plans")
+}
+
+fn area(p: &SolverPlan) -> usize {
+    p.generated.built.template.elimination_area()
+}
+
+#[test]
+fn a_redundant_basis_makes_a_smaller_template_that_finds_every_solution() {
+    let quotient = planned("8ptF_radial_1s", false);
+    let redundant = planned("8ptF_radial_1s", true);
+    let (q, r) = (&quotient.generated, &redundant.generated);
+    assert_eq!(q.built.template.spurious_eigenvalues, 0);
+    assert!(quotient.redundant_check.is_none());
+    let t = &r.built.template;
+    assert!(t.spurious_eigenvalues > 0, "no redundant basis was grown");
+    assert_eq!(t.basis.len(), r.count + t.spurious_eigenvalues);
+    assert!(
+        area(&redundant) < area(&quotient),
+        "{:?}",
+        t.eliminated_size()
+    );
+    let check = redundant.redundant_check.as_ref().expect("measured");
+    assert!(check.kept, "{check:?}");
+    // Validated mod p: the quotient's characteristic polynomial divides the template's.
+    assert!(r.validation.as_ref().is_some_and(|v| v.instances >= 2));
+    // The same instances (seed) through both solvers: the same real solutions on
+    // average, within a solution in 500, and no more failures.
+    let options = AuditOptions {
+        instances: 500,
+        seed: 7,
+        time_limit: None,
+    };
+    let (aq, ar) = (
+        audit_plan(&quotient, &options),
+        audit_plan(&redundant, &options),
+    );
+    assert!(
+        (ar.mean_real_solutions - aq.mean_real_solutions).abs() <= 0.002 * aq.mean_real_solutions,
+        "{} real solutions against {}",
+        ar.mean_real_solutions,
+        aq.mean_real_solutions
+    );
+    assert!(
+        ar.failures <= aq.failures + 1,
+        "{} failures against {}",
+        ar.failures,
+        aq.failures
+    );
+    assert_eq!(ar.missed_solutions, 0);
+    assert!(
+        ar.median_log10_residual < -12.0,
+        "{}",
+        ar.median_log10_residual
+    );
+    // The emitted solver screens the read-outs; a quotient basis's does not.
+    let screen = "screen_redundant_readout";
+    assert!(emit_plan_from(&redundant, "p.mp").unwrap().contains(screen));
+    assert!(!emit_plan_from(&quotient, "p.mp").unwrap().contains(screen));
+}
+
+#[test]
+fn the_plan_drops_a_redundant_basis_that_loses_solutions() {
+    // focal6p_1s: one spurious eigenvalue shrinks the template by a row, but the screen
+    // loses some of the solutions' read-outs with it.
+    let quotient = planned("focal6p_1s", false);
+    let redundant = planned("focal6p_1s", true);
+    let check = redundant.redundant_check.as_ref().expect("measured");
+    assert!(!check.kept, "{check:?}");
+    assert!(check.mean_real.0 < check.mean_real.1, "{check:?}");
+    let t = &redundant.generated.built.template;
+    assert_eq!(t.spurious_eigenvalues, 0);
+    assert_eq!(
+        t.eliminated_size(),
+        quotient.generated.built.template.eliminated_size()
+    );
+    let (rows, cols) = check.redundant_size;
+    assert!(rows * cols < area(&quotient));
+}
+
+#[test]
+fn the_problem_file_option_turns_it_on() {
+    let text = std::fs::read_to_string(benchmark("8ptF_radial_1s")).unwrap();
+    let on = plan_source(
+        &format!("{text}\noption redundant_basis = yes\n"),
+        "on.mp",
+        &TemplateOptions::default(),
+    )
+    .expect("plans");
+    assert!(on.generated.built.template.spurious_eigenvalues > 0);
+    // The command line's `no` (an override) wins over the file's `yes`.
+    let mut options = TemplateOptions::default();
+    options.overrides.redundant_basis = Some(false);
+    let off = plan_source(
+        &format!("{text}\noption redundant_basis = yes\n"),
+        "off.mp",
+        &options,
+    )
+    .expect("plans");
+    assert_eq!(off.generated.built.template.spurious_eigenvalues, 0);
+    assert!(off.redundant_check.is_none());
+}

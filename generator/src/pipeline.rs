@@ -442,7 +442,10 @@ impl SolverPlan {
     /// (`{"newton_steps", "chosen"}`, `chosen` null when the file or the command line set
     /// the steps, else `{"instances", "median_log10_residual", "p99_log10_residual",
     /// "failures"}`, what
-    /// the plan measured, see [`AutoPolishing`]).
+    /// the plan measured, see [`AutoPolishing`]), `spurious_eigenvalues` (0 but for a
+    /// redundant basis) and `redundant_basis` (null, or what the plan measured of a grown
+    /// basis, see [`RedundantCheck`]: `kept`, `template`, `spurious_eigenvalues`,
+    /// `instances`, `mean_real_solutions` and `failures` as `[redundant, quotient basis]`).
     pub fn summary_json(&self) -> Value {
         let names = self.variable_names();
         let t = &self.generated.built.template;
@@ -466,14 +469,7 @@ impl SolverPlan {
                     "failures": a.failures,
                 })),
             },
-            "redundant_basis": self.redundant_check.as_ref().map(|r| json!({
-                "kept": r.kept,
-                "template": { "rows": r.redundant_size.0, "cols": r.redundant_size.1 },
-                "spurious_eigenvalues": r.spurious_eigenvalues,
-                "instances": r.instances,
-                "mean_real_solutions": [r.mean_real.0, r.mean_real.1],
-                "failures": [r.failures.0, r.failures.1],
-            })),
+            "redundant_basis": self.redundant_check.as_ref().map(RedundantCheck::to_json),
             "spurious_eigenvalues": t.spurious_eigenvalues,
             "per_action": self.generated.per_action.iter().map(|(v, s)| json!({
                 "action": v.display_with(&names),

@@ -47,6 +47,22 @@ pub struct RedundantCheck {
     pub spurious_eigenvalues: usize,
 }
 
+impl RedundantCheck {
+    /// The check as JSON (`inspect --json` and `report --json` key `redundant_basis`):
+    /// `kept`, `template` `{rows, cols}`, `spurious_eigenvalues`, `instances`, and
+    /// `mean_real_solutions` and `failures` as `[redundant, quotient basis]`.
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "kept": self.kept,
+            "template": { "rows": self.redundant_size.0, "cols": self.redundant_size.1 },
+            "spurious_eigenvalues": self.spurious_eigenvalues,
+            "instances": self.instances,
+            "mean_real_solutions": [self.mean_real.0, self.mean_real.1],
+            "failures": [self.failures.0, self.failures.1],
+        })
+    }
+}
+
 /// Measures a plan whose template has a redundant basis against its quotient-basis
 /// alternative and keeps the better (module documentation); nothing for other plans.
 pub(crate) fn choose(plan: &mut SolverPlan) -> Option<RedundantCheck> {

@@ -297,14 +297,7 @@ impl ReportRow {
                 })),
             })),
             "seconds": self.seconds,
-            "redundant_basis": self.redundant.as_ref().map(|r| json!({
-                "kept": r.kept,
-                "template": { "rows": r.redundant_size.0, "cols": r.redundant_size.1 },
-                "spurious_eigenvalues": r.spurious_eigenvalues,
-                "instances": r.instances,
-                "mean_real_solutions": [r.mean_real.0, r.mean_real.1],
-                "failures": [r.failures.0, r.failures.1],
-            })),
+            "redundant_basis": self.redundant.as_ref().map(crate::RedundantCheck::to_json),
             "error": self.error,
         })
     }
@@ -357,11 +350,13 @@ impl ReportRow {
                             red.spurious_eigenvalues
                         )),
                         Some(red) => text.push_str(&format!(
-                            " (a redundant basis, {}x{}, lost solutions: {:.3} against {:.3} real)",
+                            " (a redundant basis, {}x{}, dropped: {:.3} against {:.3} real solutions, {} against {} failures)",
                             red.redundant_size.0,
                             red.redundant_size.1,
                             red.mean_real.0,
-                            red.mean_real.1
+                            red.mean_real.1,
+                            red.failures.0,
+                            red.failures.1
                         )),
                         None => {}
                     }

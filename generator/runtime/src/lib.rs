@@ -49,6 +49,11 @@
 //! - [`null_vector3`]: unit null vector of an n x 3 matrix (recovery of eliminated
 //!   unknowns such as a translation direction).
 //! - [`read_unknowns`]: the unknowns read off an eigenvector of the action matrix.
+//! - [`newton_polish`]: Gauss-Newton polishing of a solution on the original equations
+//!   (`option newton`); [`worst_relative_residual`] and [`screen_redundant_readout`]: a
+//!   read-out's residual, and whether a read-out of a redundant basis is a solution (its
+//!   action matrix has spurious eigenvalues); [`DistinctSolutions`]: drops a solution that
+//!   repeats one kept before it.
 //! - [`real_eigenpairs_dyn`], [`lu_solve_template`], [`null_vector3_rows`]: the same
 //!   code at sizes known only at run time, for `mingen`'s interpreter (`mingen audit`),
 //!   so that it measures exactly what the emitted solvers compute.

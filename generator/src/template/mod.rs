@@ -49,6 +49,8 @@
 //! - [`explore`]: size tables over orders for developers (not used by the pipeline);
 //! - [`validate`](mod@validate): the template against Gröbner normal forms on fresh instances;
 //! - [`build`]: the template of one action;
+//! - `redundant`: a chosen template's basis grown past the solution count (redundant
+//!   solving bases), when that makes it smaller;
 //! - [`search`]: the search over actions and candidate degrees.
 
 use crate::algebra::Monomial;

@@ -15,10 +15,14 @@
 //! and the growth stops when no column makes the template smaller or B has
 //! [`max_redundant_basis`] monomials.
 
+use super::build::{assemble, BuiltTemplate};
 use super::candidates::{Blocks, Candidate};
+use super::fold::{foldable_rows, EquationConstants};
+use super::linalg::{charpoly_within, derivative, poly_gcd};
 use super::shrink::shrink_quick;
-use super::Action;
-use crate::algebra::Monomial;
+use super::validate::template_action_matrix;
+use super::{Action, EliminationTemplate, TemplateOptions};
+use crate::algebra::{Fp, Monomial, MonomialOrder, Poly};
 use crate::budget::Deadline;
 use std::collections::BTreeSet;
 
@@ -93,4 +97,89 @@ pub(crate) fn grow_basis<const P: u32>(
         best = Some((grown, kept));
     }
     best
+}
+
+/// The chosen template with a redundant basis ([`super::redundant`]) when that is
+/// smaller; otherwise the template itself.
+pub(super) fn with_redundant_basis<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    constants: Option<&[EquationConstants]>,
+    best: BuiltTemplate,
+    visible: usize,
+    count: usize,
+    opts: &TemplateOptions,
+    deadline: &Deadline,
+) -> BuiltTemplate {
+    if !opts.redundant_bases {
+        return best;
+    }
+    let t = &best.template;
+    let rows: Vec<Candidate> = t
+        .rows
+        .iter()
+        .map(|r| {
+            let f = &eqs[r.equation];
+            let degree = f.degree().unwrap_or(0) + r.multiplier.degree();
+            Candidate::multiple(r.equation, f, r.multiplier.clone(), degree)
+        })
+        .collect();
+    let blocks = Blocks::new(&t.basis, &t.action, visible);
+    let Some((grown, kept)) =
+        grow_basis::<P>(&blocks, &rows, &t.action, visible, count, Some(deadline))
+    else {
+        return best;
+    };
+    let mut template = assemble::<P>(t.nvars, &grown, &kept, &t.action, t.n_hidden);
+    template
+        .basis
+        .sort_by(|x, y| MonomialOrder::Grevlex.cmp(y, x));
+    let nb = template.basis.len();
+    template.spurious_eigenvalues = nb - count;
+    let n = template.columns.len();
+    template.columns[n - nb..].clone_from_slice(&template.basis);
+    if template.check_emittable(&opts.var_names).is_err() {
+        return best;
+    }
+    // A spurious eigenvalue equal to a solution's would make the eigenvectors of both
+    // undefined: where the quotient's eigenvalues are distinct, no root of its
+    // characteristic polynomial may be a repeated root of the template's (spurious ones
+    // may repeat among themselves).
+    if best.distinct_eigenvalues {
+        let charpoly = |t: &EliminationTemplate| {
+            template_action_matrix::<P>(t, eqs, &opts.var_names)
+                .ok()
+                .and_then(|m| charpoly_within::<P>(&m, Some(deadline)).ok())
+        };
+        let separate = match (charpoly(&template), charpoly(&best.template)) {
+            (Some(grown), Some(quotient)) => {
+                let repeated = poly_gcd::<P>(&grown, &derivative::<P>(&grown));
+                poly_gcd::<P>(&repeated, &quotient).len() == 1
+            }
+            _ => false,
+        };
+        if !separate {
+            return best;
+        }
+    }
+    let mut history = best.history.clone();
+    let (r, c) = template.size();
+    history.push((
+        format!("redundant basis: {nb} monomials for {count} solutions"),
+        r,
+        c,
+    ));
+    let foldable_rows = constants.map_or(0, |c| foldable_rows(&template, c));
+    let grown = BuiltTemplate {
+        template,
+        history,
+        basis_choice: format!("{}, redundant basis", best.basis_choice),
+        foldable_rows,
+        quotient_basis: Some(Box::new(best.clone())),
+        ..best.clone()
+    };
+    if grown.folded_area() < best.folded_area() {
+        grown
+    } else {
+        best
+    }
 }

@@ -56,7 +56,8 @@ pub use polishing::{
 };
 pub use problem::ProblemOptions;
 pub use redundancy::{
-    RedundantCheck, REDUNDANT_CHECK_INSTANCES, REDUNDANT_EXTRA_FAILURES, REDUNDANT_REAL_TOLERANCE,
+    RedundantCheck, REDUNDANT_CHECK_INSTANCES, REDUNDANT_EXTRA_FAILURES,
+    REDUNDANT_MIN_REAL_SOLUTIONS, REDUNDANT_REAL_TOLERANCE,
 };
 pub use report::{
     report, report_with, to_json, to_markdown, PublishedSizes, ReportError, ReportRow,

@@ -12,7 +12,9 @@
 //! `option newton`), and the redundant basis is kept only when it returns, on average, as
 //! many real solutions as the other within [`REDUNDANT_REAL_TOLERANCE`] (fewer: solutions
 //! lost; more: spurious read-outs kept) and fails on at most [`REDUNDANT_EXTRA_FAILURES`]
-//! more instances.
+//! more instances. Where the quotient basis finds fewer than
+//! [`REDUNDANT_MIN_REAL_SOLUTIONS`] real solutions in all, nothing is measured and the
+//! redundant basis is dropped.
 
 use crate::audit::{audit_plan, AuditOptions};
 use crate::pipeline::SolverPlan;
@@ -23,6 +25,10 @@ pub const REDUNDANT_CHECK_INSTANCES: usize = 200;
 /// How far, relative to the quotient-basis template's, the redundant one's mean number of
 /// real solutions may be: fewer is a solution lost, more a spurious read-out kept.
 pub const REDUNDANT_REAL_TOLERANCE: f64 = 0.002;
+/// The fewest real solutions the quotient-basis template must return over the instances
+/// for the comparison to tell anything (uniform data of some problems has real solutions
+/// rarely); with fewer, the redundant basis is dropped.
+pub const REDUNDANT_MIN_REAL_SOLUTIONS: f64 = 200.0;
 /// How many more failing instances the redundant basis may have.
 pub const REDUNDANT_EXTRA_FAILURES: usize = 1;
 /// Seed of the check's instances, apart from the audit's and the polishing choice's.
@@ -89,8 +95,12 @@ pub(crate) fn choose(plan: &mut SolverPlan) -> Option<RedundantCheck> {
     let grown = std::mem::replace(&mut plan.generated.built, alternative);
     let quotient = audit_plan(plan, &options);
     plan.problem.layout.options.newton = set_steps;
-    let kept = (redundant.mean_real_solutions - quotient.mean_real_solutions).abs()
-        <= REDUNDANT_REAL_TOLERANCE * quotient.mean_real_solutions
+    let solved = |a: &crate::AuditReport| a.instances - a.solve_errors;
+    let measurable =
+        quotient.mean_real_solutions * solved(&quotient) as f64 >= REDUNDANT_MIN_REAL_SOLUTIONS;
+    let kept = measurable
+        && (redundant.mean_real_solutions - quotient.mean_real_solutions).abs()
+            <= REDUNDANT_REAL_TOLERANCE * quotient.mean_real_solutions
         && redundant.failures <= quotient.failures + REDUNDANT_EXTRA_FAILURES;
     if kept {
         plan.generated.built = grown;

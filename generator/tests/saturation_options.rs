@@ -131,6 +131,11 @@ fn options_choose_the_action_and_are_checked() {
         ("option newton = 9", "option newton"),
         ("option newton = fast", "option newton"),
         ("option auto_eliminate = maybe", "option auto_eliminate"),
+        ("option redundant_basis = maybe", "option redundant_basis"),
+        (
+            "option redundant_basis = yes\noption redundant_basis = no",
+            "option redundant_basis is given twice",
+        ),
         ("option speed = 3", "unknown option 'speed'"),
     ] {
         let e = Problem::parse(&format!("{src}{line}\n"), "c.mp").unwrap_err();

@@ -1,4 +1,4 @@
-//! Quotient bases of weighted monomial orders (`template/search/orders.rs`, `groebner.rs`'s
+//! Quotient bases of weighted monomial orders (`template/search/orders.rs`, `groebner/`'s
 //! weights): on the benchmark's `p4p_fr` (P4P with unknown focal length and radial
 //! distortion), whose standard-basis template of Martyushev et al. comes from the weighted
 //! order with weights (5, 6, 3, 4), the search reaches at most their size (52x68), where

@@ -338,19 +338,14 @@ struct Tally {
 }
 
 impl Tally {
-    /// `false` if `x` repeats a solution kept before ([`mingen_runtime::DUPLICATE_TOLERANCE`]);
+    /// `false` if `x` repeats a solution kept before ([`mingen_runtime::repeats`]);
     /// otherwise keeps it.
     fn distinct(&mut self, x: &[f64]) -> bool {
-        let repeats = self.distinct.iter().any(|y| {
-            let scale = y.iter().fold(1.0f64, |m, v| m.max(v.abs()));
-            x.iter()
-                .zip(y)
-                .all(|(a, b)| (a - b).abs() <= mingen_runtime::DUPLICATE_TOLERANCE * scale)
-        });
-        if !repeats {
+        let repeat = self.distinct.iter().any(|y| mingen_runtime::repeats(x, y));
+        if !repeat {
             self.distinct.push(x.to_vec());
         }
-        !repeats
+        !repeat
     }
 
     /// Adds one real solution `s` of the template's variables (signs unfolded): the

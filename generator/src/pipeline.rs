@@ -318,7 +318,6 @@ pub fn plan(
         redundant_check: None,
     };
     plan.redundant_check = redundancy::choose(&mut plan);
-    plan.generated.built.quotient_basis = None;
     let template = &mut plan.generated.built.template;
     let template_supports = match &template.reduction {
         Some(r) => r.reduced_supports(),

@@ -72,11 +72,10 @@ impl RedundantCheck {
 /// Measures a plan whose template has a redundant basis against its quotient-basis
 /// alternative and keeps the better (module documentation); nothing for other plans.
 pub(crate) fn choose(plan: &mut SolverPlan) -> Option<RedundantCheck> {
-    let built = &plan.generated.built;
-    if built.template.spurious_eigenvalues == 0 {
+    if plan.generated.built.template.spurious_eigenvalues == 0 {
         return None;
     }
-    let alternative = built.quotient_basis.as_deref()?.clone();
+    let alternative = *plan.generated.built.quotient_basis.take()?;
     let options = AuditOptions {
         instances: REDUNDANT_CHECK_INSTANCES,
         seed: REDUNDANT_CHECK_SEED,

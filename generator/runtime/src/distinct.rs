@@ -6,6 +6,17 @@
 /// are one.
 pub const DUPLICATE_TOLERANCE: f64 = 1e-7;
 
+/// Whether `x` repeats `y`: every unknown within [`DUPLICATE_TOLERANCE`] times
+/// `max(1, max_i |y_i|)` (over the unknowns `x` has).
+pub fn repeats(x: &[f64], y: &[f64]) -> bool {
+    let scale = y[..x.len().min(y.len())]
+        .iter()
+        .fold(1.0f64, |m, v| m.max(v.abs()));
+    x.iter()
+        .zip(y)
+        .all(|(a, b)| (a - b).abs() <= DUPLICATE_TOLERANCE * scale)
+}
+
 /// The solutions kept so far (at most `CAP` of `N` unknowns), to drop a read-out that
 /// repeats one ([`DistinctSolutions::insert`]).
 #[derive(Clone, Debug)]
@@ -36,13 +47,7 @@ impl<const N: usize, const CAP: usize> DistinctSolutions<N, CAP> {
         if x.len() > N {
             return true;
         }
-        let repeats = self.kept[..self.len].iter().any(|y| {
-            let scale = y[..x.len()].iter().fold(1.0f64, |m, v| m.max(v.abs()));
-            x.iter()
-                .zip(y)
-                .all(|(a, b)| (a - b).abs() <= DUPLICATE_TOLERANCE * scale)
-        });
-        if repeats {
+        if self.kept[..self.len].iter().any(|y| repeats(x, y)) {
             return false;
         }
         if self.len < CAP {

@@ -91,7 +91,7 @@ mod triangular_fold;
 
 pub use coefficient_table::{fill_template, zeroed_coefficients};
 pub use constant_fold::{fold_constant_rows, ConstantFold};
-pub use distinct::{DistinctSolutions, DUPLICATE_TOLERANCE};
+pub use distinct::{repeats, DistinctSolutions, DUPLICATE_TOLERANCE};
 pub use dynamic::{real_eigenpairs_dyn, DynEigenpair, MAX_DYNAMIC_BASIS, STURM_MAX_BASIS};
 pub use eigen::{real_eigenpairs, NEAR_REAL_TOL};
 pub use elim::{gauss_jordan, lu_solve_template, lu_solve_template_fixed, PIVOT_TOL};

@@ -129,14 +129,13 @@ pub(super) fn with_redundant_basis<const P: u32>(
     else {
         return best;
     };
+    // The basis in descending grevlex, as every other template's.
+    let mut basis = grown.basis;
+    basis.sort_by(|x, y| MonomialOrder::Grevlex.cmp(y, x));
+    let grown = Blocks::new(&basis, &t.action, visible);
     let mut template = assemble::<P>(t.nvars, &grown, &kept, &t.action, t.n_hidden);
-    template
-        .basis
-        .sort_by(|x, y| MonomialOrder::Grevlex.cmp(y, x));
     let nb = template.basis.len();
     template.spurious_eigenvalues = nb - count;
-    let n = template.columns.len();
-    template.columns[n - nb..].clone_from_slice(&template.basis);
     if template.check_emittable(&opts.var_names).is_err() {
         return best;
     }

@@ -19,7 +19,7 @@
 
 use crate::algebra::{Monomial, Poly, Ring};
 use crate::budget::{Deadline, Exhausted};
-use crate::eliminate::EliminateError;
+use crate::eliminate::{block_reduction, EliminateError};
 use crate::emit::{
     emit_solver, CodeForm, EliminationSpec, EmitError, PolishSpec, SolverSpec, Tracer,
 };
@@ -249,6 +249,15 @@ pub fn plan(
         }
     }
     if !problem.layout.eliminate.is_empty() {
+        // The block of equations linear in the eliminated unknowns is reduced by its data
+        // where its minors would be wrong (see `crate::eliminate::block_reduction`).
+        let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(options.seed ^ 0xb10c);
+        let data = random_data_fp::<{ crate::algebra::P1 }>(&problem.layout, &mut rng);
+        if let Some(reduction) =
+            block_reduction(&problem.evaluate(&data), &problem.layout.eliminate)
+        {
+            problem = problem.with_block_reduction(reduction);
+        }
         // Check the elimination once on an exact instance so that a structural problem is a
         // clear error here rather than an empty system later.
         let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(options.seed);

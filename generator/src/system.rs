@@ -5,7 +5,9 @@
 //! here, so neither needs the other.
 
 use crate::algebra::{Fp, Monomial, Poly, Ring};
-use crate::eliminate::{eliminate_linear_selected, substitute_linear, EliminateError, Eliminated};
+use crate::eliminate::{
+    eliminate_linear_selected, reduce_block, substitute_linear, EliminateError, Eliminated,
+};
 use crate::emit::traced::{TracedValue, Tracer};
 use crate::instance::random_data_fp;
 use crate::quotient::{InstanceRng, InstanceSource};
@@ -161,6 +163,15 @@ pub(crate) fn system_and_factors<C: Ring>(
     let kept = problem.independent();
     let (mut equations, mut elimination) = if problem.layout.eliminate.is_empty() {
         (select(equations, kept), None)
+    } else if let Some(reduction) = problem.block_reduction() {
+        let mut e = reduce_block(
+            &equations,
+            problem.layout.unknown_count(),
+            &problem.layout.eliminate,
+            reduction,
+        )?;
+        e.equations = select(std::mem::take(&mut e.equations), kept);
+        (e.equations.clone(), Some(e))
     } else if let Some(affine) = problem.substitution() {
         let mut e = substitute_linear(
             &equations,

@@ -98,12 +98,24 @@ pub(super) fn inspect(
     outln!(out, "unknowns ({}): {}", names.len(), names.join(" "));
     if !p.layout.eliminate.is_empty() {
         let el = plan.eliminated_names();
-        let how = if !parsed.layout.eliminate.is_empty() {
-            ""
+        let how = if let Some(b) = p.block_reduction() {
+            let outside = b.pivot_rows.len();
+            match b.mode {
+                mingen::__internal::eliminate::BlockMode::Minors => format!(
+                    " (row-reduced on the data: the rows that cancel their {} columns, then the minors of {outside} rows)",
+                    b.columns.len()
+                ),
+                mingen::__internal::eliminate::BlockMode::Substitute => format!(
+                    " (row-reduced on the data: {outside} rows solved for their {} columns and substituted)",
+                    b.columns.len()
+                ),
+            }
+        } else if !parsed.layout.eliminate.is_empty() {
+            String::new()
         } else if p.substitution().is_some() {
-            " (automatic: solved from the affine equations and substituted into the others; `option auto_eliminate = no` keeps them)"
+            " (automatic: solved from the affine equations and substituted into the others; `option auto_eliminate = no` keeps them)".to_string()
         } else {
-            " (automatic: they appear only linearly, with data coefficients; `option auto_eliminate = no` keeps them)"
+            " (automatic: they appear only linearly, with data coefficients; `option auto_eliminate = no` keeps them)".to_string()
         };
         outln!(out, "eliminate: {}{how}", el.join(" "));
     }

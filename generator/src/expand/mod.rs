@@ -46,6 +46,9 @@ pub struct Problem {
     /// The affine equations whose unknowns `layout.eliminate` are substituted into the
     /// others (see [`Problem::with_substitution`]); `None`: `eliminate` takes minors.
     substitution: Option<(Vec<usize>, Vec<usize>)>,
+    /// The data row reduction that `eliminate` uses instead of the block's maximal minors
+    /// (see [`Problem::with_block_reduction`]); `None`: the minors.
+    block_reduction: Option<crate::eliminate::BlockReduction>,
     /// Sign folds applied to the system, in order (see [`Problem::with_sign_fold`]).
     sign_folds: Vec<crate::symmetry::SignFold>,
     /// Laurent equations (`x^-1`, `e / x`): see [`Laurent`]; empty when there are none.
@@ -211,6 +214,7 @@ impl Problem {
             divisions,
             independent: None,
             substitution: None,
+            block_reduction: None,
             sign_folds: Vec::new(),
             laurent: Laurent::default(),
         }
@@ -290,6 +294,14 @@ impl Problem {
         p.laurent.shifts.truncate(keep);
         p.layout = self.layout.clone();
         p.layout.unknowns.retain(|u| !u.hidden);
+        // Hidden unknowns come last and never enter the block of an elimination.
+        let n = p.layout.unknown_count();
+        p.block_reduction = self.block_reduction.clone().map(|mut b| {
+            for m in &mut b.columns {
+                m.0.truncate(n);
+            }
+            b
+        });
         p
     }
 
@@ -335,6 +347,22 @@ impl Problem {
         p.layout.eliminate = pivots;
         p.substitution = Some((linear, implied));
         p
+    }
+
+    /// The same problem with `eliminate` reducing the block of equations linear in the
+    /// eliminated unknowns by `reduction` (a pivot block of its data coefficient matrix,
+    /// [`crate::eliminate::reduce_block`]) instead of taking the block's maximal minors.
+    /// Planning chooses it where those minors have a spurious component or the eliminated
+    /// unknowns enter other equations non-linearly.
+    pub fn with_block_reduction(&self, reduction: crate::eliminate::BlockReduction) -> Problem {
+        let mut p = self.clone();
+        p.block_reduction = Some(reduction);
+        p
+    }
+
+    /// See [`Problem::with_block_reduction`].
+    pub fn block_reduction(&self) -> Option<&crate::eliminate::BlockReduction> {
+        self.block_reduction.as_ref()
     }
 
     /// The same problem with its system folded by `fold` after the folds it has

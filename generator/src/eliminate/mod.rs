@@ -19,6 +19,9 @@ use crate::algebra::{Monomial, Poly, Ring};
 use std::collections::HashMap;
 use thiserror::Error;
 
+mod block;
+pub use block::{block_reduction, reduce_block, BlockMode, BlockReduction};
+
 /// Why a set of unknowns cannot be eliminated linearly.
 #[derive(Debug, Error, Clone, PartialEq, Eq)]
 pub enum EliminateError {
@@ -53,6 +56,13 @@ pub enum EliminateError {
     /// No unknown is left after elimination.
     #[error("eliminating every unknown leaves nothing to solve for")]
     NothingLeft,
+    /// A row of the block has a monomial with an eliminated unknown that the plan's
+    /// coefficient matrix has no column for (the instance is not of the planned family).
+    #[error("equation {equation} has a term in the eliminated unknowns outside the planned block reduction")]
+    BlockColumn {
+        /// Index of the equation.
+        equation: usize,
+    },
 }
 
 /// The result of eliminating unknowns from a system.
@@ -112,19 +122,12 @@ pub fn eliminate_linear_selected<C: Ring>(
     let mut elim: Vec<usize> = eliminated.to_vec();
     elim.sort_unstable();
     elim.dedup();
-    let remaining: Vec<usize> = (0..nvars).filter(|i| !elim.contains(i)).collect();
-    if remaining.is_empty() {
-        return Err(EliminateError::NothingLeft);
-    }
+    let remaining = remaining_unknowns(nvars, &elim)?;
     let k = elim.len();
     let nrem = remaining.len();
     // Maps a monomial in all unknowns to one in the remaining unknowns.
     let project = |m: &Monomial| Monomial(remaining.iter().map(|&i| m.0[i]).collect());
-    let names = elim
-        .iter()
-        .map(|i| format!("#{i}"))
-        .collect::<Vec<_>>()
-        .join(", ");
+    let names = numbered(&elim);
 
     let mut kept = Vec::new();
     // Rows of [A b]: k columns for the eliminated unknowns, then the free terms.
@@ -245,10 +248,7 @@ pub fn substitute_linear<C: Ring>(
             needed: k,
         });
     }
-    let remaining: Vec<usize> = (0..nvars).filter(|i| !pivots.contains(i)).collect();
-    if remaining.is_empty() {
-        return Err(EliminateError::NothingLeft);
-    }
+    let remaining = remaining_unknowns(nvars, pivots)?;
     let nrem = remaining.len();
     let project = |m: &Monomial| Monomial(remaining.iter().map(|&i| m.0[i]).collect());
     let mut matrix: Vec<Vec<Poly<C>>> = Vec::with_capacity(k);
@@ -284,22 +284,8 @@ pub fn substitute_linear<C: Ring>(
         if linear.contains(&idx) || implied.contains(&idx) {
             continue;
         }
-        let pivot_degree = |m: &Monomial| pivots.iter().map(|&p| u32::from(m.0[p])).sum::<u32>();
-        let top = eq.terms().map(|(m, _)| pivot_degree(m)).max().unwrap_or(0);
-        let mut acc = Poly::zero(nrem);
-        for (m, c) in eq.terms() {
-            let mut term = Poly::from_terms(nrem, [(project(m), c.clone())]);
-            for (i, &p) in pivots.iter().enumerate() {
-                if m.0[p] > 0 {
-                    term = term.mul(&g[i].pow(u32::from(m.0[p])));
-                }
-            }
-            let rest = top - pivot_degree(m);
-            if rest > 0 {
-                term = term.mul(&d.pow(rest));
-            }
-            acc = acc.add(&term);
-        }
+        let images: Vec<&Poly<C>> = g.iter().collect();
+        let acc = substitute_quotients(eq, pivots, &images, &d, &remaining);
         out.push(acc);
     }
     Ok(Eliminated {
@@ -379,6 +365,57 @@ pub fn purely_linear_unknowns<C: Ring>(
             appears && only_linear
         })
         .collect()
+}
+
+/// The remaining unknowns (flat indices) when `eliminated` are eliminated from `nvars`;
+/// an error if none is left.
+fn remaining_unknowns(nvars: usize, eliminated: &[usize]) -> Result<Vec<usize>, EliminateError> {
+    let remaining: Vec<usize> = (0..nvars).filter(|i| !eliminated.contains(i)).collect();
+    if remaining.is_empty() {
+        return Err(EliminateError::NothingLeft);
+    }
+    Ok(remaining)
+}
+
+/// The eliminated unknowns as the library's errors name them (`#i`, flat indices; the
+/// command line puts their names in).
+fn numbered(eliminated: &[usize]) -> String {
+    eliminated
+        .iter()
+        .map(|i| format!("#{i}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// `d^top f(g / d, u)` without division: `f` (`eq`, in all unknowns) with each unknown
+/// `solved[i]` replaced by `images[i] / d`, multiplied through by `d` to the highest
+/// degree `top` of `f` in them; a polynomial in the `remaining` unknowns.
+fn substitute_quotients<C: Ring>(
+    eq: &Poly<C>,
+    solved: &[usize],
+    images: &[&Poly<C>],
+    d: &Poly<C>,
+    remaining: &[usize],
+) -> Poly<C> {
+    let nrem = remaining.len();
+    let project = |m: &Monomial| Monomial(remaining.iter().map(|&i| m.0[i]).collect());
+    let degree = |m: &Monomial| solved.iter().map(|&p| u32::from(m.0[p])).sum::<u32>();
+    let top = eq.terms().map(|(m, _)| degree(m)).max().unwrap_or(0);
+    let mut acc = Poly::zero(nrem);
+    for (m, c) in eq.terms() {
+        let mut term = Poly::from_terms(nrem, [(project(m), c.clone())]);
+        for (i, &p) in solved.iter().enumerate() {
+            if m.0[p] > 0 {
+                term = term.mul(&images[i].pow(u32::from(m.0[p])));
+            }
+        }
+        let rest = top - degree(m);
+        if rest > 0 {
+            term = term.mul(&d.pow(rest));
+        }
+        acc = acc.add(&term);
+    }
+    acc
 }
 
 /// All `k`-subsets of `0..n` in lexicographic order.

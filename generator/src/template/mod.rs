@@ -63,6 +63,7 @@ mod exclude;
 pub mod explore;
 pub mod fold;
 pub(crate) mod linalg;
+mod newton_polytope;
 mod options;
 mod pools;
 pub mod reduction;

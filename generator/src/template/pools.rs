@@ -1,5 +1,6 @@
 //! Candidate pools of basis selection: all multiples of the equations up to a total
-//! degree, or within a *multidegree*.
+//! degree, within a *multidegree*, or within a dilate of their Newton polytope
+//! ([`super::newton_polytope`]).
 //!
 //! A multidegree partitions the unknowns into groups and caps each group's degree: every
 //! monomial of every multiple keeps the degree of each group within its cap. One group is
@@ -12,6 +13,7 @@
 //! selection ([`super::select`]) finds them.
 
 use super::candidates::{binomial, candidate_bytes, candidates, pool_size, Candidate};
+use super::newton_polytope::{monomials_inside, multipliers_inside, newton_facets, Facet};
 use crate::algebra::{Field, Fp, Monomial, MonomialOrder, Poly};
 
 /// A candidate pool of basis selection.
@@ -27,17 +29,57 @@ pub(crate) enum Pool {
         /// Each group's largest degree.
         caps: Vec<u32>,
     },
+    /// All multiples whose every monomial `a` has `facet.normal . a <= bound` for the
+    /// facets of the equations' Newton polytope, each raised above its support, and total
+    /// degree at most `degree` (a guard: the facets found may not bound).
+    Polytope {
+        /// The facets ([`newton_facets`]).
+        facets: Vec<Facet>,
+        /// How far each facet is raised above its support.
+        raise: Vec<u32>,
+        /// The total degree guard.
+        degree: u32,
+    },
+}
+
+/// The families of pools that basis selection searches one after the other (each until
+/// a pool of it gives a basis): the total degree, each partition of the unknowns, the
+/// Newton polytope.
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) enum PoolFamily {
+    /// [`Pool::TotalDegree`].
+    TotalDegree,
+    /// [`Pool::Multidegree`] with this partition.
+    Partition(Vec<Vec<usize>>),
+    /// [`Pool::Polytope`].
+    Polytope,
 }
 
 impl Pool {
-    /// The pool's partition of the unknowns (empty for a total degree) and the sum of its
-    /// caps: basis selection tries a partition's pools by increasing sum and stops after
-    /// the first sum that gives a template.
-    pub(crate) fn partition_and_size(&self) -> (Vec<Vec<usize>>, u32) {
+    /// The pool's family and size (the total degree, the sum of the caps or of the
+    /// raises): basis selection tries a family's pools by increasing size and stops after
+    /// the first size that gives a template.
+    pub(crate) fn family_and_size(&self) -> (PoolFamily, u32) {
         match self {
-            Pool::TotalDegree(d) => (Vec::new(), *d),
-            Pool::Multidegree { groups, caps } => (groups.clone(), caps.iter().sum()),
+            Pool::TotalDegree(d) => (PoolFamily::TotalDegree, *d),
+            Pool::Multidegree { groups, caps } => {
+                (PoolFamily::Partition(groups.clone()), caps.iter().sum())
+            }
+            Pool::Polytope { raise, .. } => (PoolFamily::Polytope, raise.iter().sum()),
         }
+    }
+
+    /// The facets' raised bounds of a [`Pool::Polytope`], each at least large enough to
+    /// hold 1 and the unknowns (a selected basis contains them, `super::select`).
+    fn bounds(facets: &[Facet], raise: &[u32]) -> Vec<i64> {
+        facets
+            .iter()
+            .zip(raise)
+            .map(|(f, &r)| {
+                let unit = f.normal.iter().map(|&n| i64::from(n)).max().unwrap_or(0);
+                (f.support + i64::from(r)).max(unit).max(0)
+            })
+            .collect()
     }
 
     /// "all multiples up to degree 7", "all multiples within degrees 3 in w, x, y; 6 in z".
@@ -56,6 +98,13 @@ impl Pool {
                     .collect();
                 format!("all multiples within degrees {}", parts.join("; "))
             }
+            Pool::Polytope { raise, .. } => {
+                let r: Vec<String> = raise.iter().map(|r| r.to_string()).collect();
+                format!(
+                    "all multiples within the Newton polytope, facets raised by {}",
+                    r.join(", ")
+                )
+            }
         }
     }
 
@@ -68,6 +117,16 @@ impl Pool {
                 .filter_map(|f| room(f, groups, caps))
                 .map(|room| monomials_within(groups, &room))
                 .fold(0u64, u64::saturating_add),
+            Pool::Polytope {
+                facets,
+                raise,
+                degree,
+            } => {
+                let bounds = Pool::bounds(facets, raise);
+                eqs.iter()
+                    .map(|f| multipliers_inside(f, facets, &bounds, *degree).len() as u64)
+                    .fold(0u64, u64::saturating_add)
+            }
         }
     }
 
@@ -75,12 +134,26 @@ impl Pool {
     pub(crate) fn bytes<const P: u32>(&self, eqs: &[Poly<Fp<P>>]) -> u64 {
         match self {
             Pool::TotalDegree(d) => candidate_bytes(eqs, *d, &[]),
-            Pool::Multidegree { groups, caps } => {
-                let cols = monomials_within(groups, caps);
+            Pool::Multidegree { .. } | Pool::Polytope { .. } => {
+                let cols = self.columns(eqs);
                 let terms = eqs.iter().map(|f| f.len() as u64).max().unwrap_or(0);
                 self.rows(eqs)
                     .saturating_mul(cols.saturating_mul(4).saturating_add(terms * 48))
             }
+        }
+    }
+
+    /// Number of columns (the monomials a multiple may have).
+    fn columns<F: Field>(&self, eqs: &[Poly<F>]) -> u64 {
+        let n = eqs.first().map_or(0, |f| f.nvars());
+        match self {
+            Pool::TotalDegree(d) => binomial(n as u64 + u64::from(*d), n as u64),
+            Pool::Multidegree { groups, caps } => monomials_within(groups, caps),
+            Pool::Polytope {
+                facets,
+                raise,
+                degree,
+            } => monomials_inside(n, facets, &Pool::bounds(facets, raise), *degree).len() as u64,
         }
     }
 
@@ -89,6 +162,22 @@ impl Pool {
         let (groups, caps) = match self {
             Pool::TotalDegree(d) => return candidates(eqs, *d, &[]),
             Pool::Multidegree { groups, caps } => (groups, caps),
+            Pool::Polytope {
+                facets,
+                raise,
+                degree,
+            } => {
+                let bounds = Pool::bounds(facets, raise);
+                let mut out = Vec::new();
+                for (i, f) in eqs.iter().enumerate() {
+                    let df = f.degree().unwrap_or(0);
+                    for m in multipliers_inside(f, facets, &bounds, *degree) {
+                        let d = df + m.degree();
+                        out.push(Candidate::multiple(i, f, m, d));
+                    }
+                }
+                return out;
+            }
         };
         let mut out = Vec::new();
         for (i, f) in eqs.iter().enumerate() {
@@ -214,8 +303,50 @@ pub(crate) fn pools<F: Field>(eqs: &[Poly<F>], nvars: usize, maxeq: u32) -> Vec<
             }
         }
     }
+    out.extend(polytope_pools(eqs, nvars, maxeq));
     out.extend((maxeq + 1..=maxeq + 3).map(Pool::TotalDegree));
     out
+}
+
+/// The pools of the equations' Newton polytope ([`newton_facets`]) with its facets raised
+/// as [`raises`] lists, when the polytope has fewer monomials than both the box of the
+/// equations' exponents and their total degree (the equations are sparse beyond a
+/// multidegree), each only while its candidate matrix is no larger than that of the total
+/// degree `maxeq + 3`.
+fn polytope_pools<F: Field>(eqs: &[Poly<F>], nvars: usize, maxeq: u32) -> Vec<Pool> {
+    let Some(facets) = newton_facets(eqs) else {
+        return Vec::new();
+    };
+    let singletons: Vec<Vec<usize>> = (0..nvars).map(|i| vec![i]).collect();
+    let exponents: Vec<u32> = singletons
+        .iter()
+        .map(|g| {
+            eqs.iter()
+                .flat_map(|f| f.terms().map(|(m, _)| group_degree(m, g)))
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    // A guard on the total degree well past any raise of the facets.
+    let degree = 2 * (maxeq + 2);
+    let supports: Vec<i64> = facets.iter().map(|f| f.support).collect();
+    let inside = monomials_inside(nvars, &facets, &supports, degree).len() as u64;
+    let total = binomial(nvars as u64 + u64::from(maxeq), nvars as u64);
+    if inside >= monomials_within(&singletons, &exponents) || inside >= total {
+        return Vec::new();
+    }
+    // The candidate matrix of the largest total degree tried.
+    let limit = pool_size(eqs, maxeq + 3, &[])
+        .saturating_mul(binomial(nvars as u64 + u64::from(maxeq) + 3, nvars as u64));
+    raises(facets.len())
+        .into_iter()
+        .map(|raise| Pool::Polytope {
+            facets: facets.clone(),
+            raise,
+            degree,
+        })
+        .filter(|p| p.rows(eqs).saturating_mul(p.columns(eqs)) <= limit)
+        .collect()
 }
 
 #[cfg(test)]
@@ -290,6 +421,56 @@ mod tests {
             });
         let p = pools(&[q.clone(), q], n, 2);
         assert_eq!(p, [3, 4, 5].map(Pool::TotalDegree));
+    }
+
+    #[test]
+    fn a_newton_polytope_pool_holds_the_multiples_inside_its_raised_facets() {
+        // x^a y^b with b <= 3, a <= 2 b (the stitching problem's support): 16 monomials of
+        // a box of 28 and of a total degree 9 of 55.
+        let n = 2;
+        let mut f = Poly::<Fp<P1>>::zero(n);
+        let mut g = Poly::<Fp<P1>>::zero(n);
+        for b in 0..=3u16 {
+            for a in 0..=2 * b {
+                f.add_term(Monomial(vec![a, b]), Fp::new(i64::from(3 * a + b + 1)));
+                g.add_term(Monomial(vec![a, b]), Fp::new(i64::from(a + 5 * b + 2)));
+            }
+        }
+        let eqs = vec![f, g];
+        let polytopes: Vec<Pool> = pools(&eqs, n, 9)
+            .into_iter()
+            .filter(|p| matches!(p, Pool::Polytope { .. }))
+            .collect();
+        let raised = polytopes
+            .iter()
+            .find(|p| matches!(p, Pool::Polytope { raise, .. } if raise == &[0, 2, 0]))
+            .expect("y <= 3 raised by two");
+        let cands = raised.candidates(&eqs);
+        assert_eq!(cands.len() as u64, raised.rows(&eqs));
+        // Multipliers x^a y^b with b <= 2 and a <= 2 b + 1 (the facet a <= 2 b moved to
+        // hold the unknown x): 12 of each equation.
+        assert_eq!(cands.len(), 24);
+        for c in &cands {
+            let (a, b) = (c.row.multiplier.0[0], c.row.multiplier.0[1]);
+            assert!(b <= 2 && a <= 2 * b + 1, "{:?}", c.row.multiplier);
+            assert!(c.terms.iter().all(|(m, _)| m.0[1] <= 5 && m.0[0] <= 2 * m.0[1] + 1));
+        }
+        assert_eq!(
+            raised.family_and_size(),
+            (PoolFamily::Polytope, 2),
+            "sized by its raises"
+        );
+        // A dense quadric's polytope is its total degree: no polytope pool.
+        let n = 3;
+        let q = (0..n)
+            .flat_map(|i| (i..n).map(move |j| (i, j)))
+            .fold(one(n), |p, (i, j)| {
+                p.add(&Poly::var(n, i).mul(&Poly::var(n, j)))
+            })
+            .add(&Poly::var(n, 0));
+        assert!(!pools(&[q.clone(), q], n, 2)
+            .iter()
+            .any(|p| matches!(p, Pool::Polytope { .. })));
     }
 
     #[test]

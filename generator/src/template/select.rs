@@ -4,7 +4,7 @@
 
 use super::candidates::{Blocks, Candidate, ShrinkStep};
 use super::linalg::gauss_jordan;
-use super::pools::pools;
+use super::pools::{pools, PoolFamily};
 use super::shrink::{shrink, shrink_quick};
 use super::Action;
 use crate::algebra::{Fp, Monomial, MonomialOrder, Poly};
@@ -199,15 +199,18 @@ pub(crate) fn best_selected<const P: u32>(
     let mut best: Option<SelectedTemplate> = None;
     // Of each partition of the unknowns (the total degree is one), the pools of the first
     // cap sum that gives a basis end its search.
-    let mut found: BTreeMap<Vec<Vec<usize>>, u32> = BTreeMap::new();
+    let mut found: BTreeMap<PoolFamily, u32> = BTreeMap::new();
     for pool in pools(eqs, nvars, maxeq) {
-        let (partition, size) = pool.partition_and_size();
-        if found.get(&partition).is_some_and(|&s| size > s) {
+        let (family, size) = pool.family_and_size();
+        if found.get(&family).is_some_and(|&s| size > s) {
             continue;
         }
         if out_of_budget(pool.bytes(eqs)) {
-            // A multidegree over the memory budget leaves the total degrees to try.
-            if !partition.is_empty() && deadline.is_some_and(|dl| dl.check_time().is_ok()) {
+            // A multidegree or a polytope over the memory budget leaves the total degrees
+            // to try.
+            if family != PoolFamily::TotalDegree
+                && deadline.is_some_and(|dl| dl.check_time().is_ok())
+            {
                 continue;
             }
             return best;
@@ -241,7 +244,7 @@ pub(crate) fn best_selected<const P: u32>(
         let Some((_, blocks, o)) = screened else {
             continue;
         };
-        found.insert(partition, size);
+        found.insert(family, size);
         let ne = blocks.excess_of(cands.iter()).len();
         let label = pool.describe(names);
         let mut history = vec![(

@@ -108,12 +108,11 @@ fn affine_rank(points: &[Monomial]) -> usize {
     let mut basis = EchelonBasis::<P1>::new(n);
     let mut rank = 0;
     for p in &points[1..] {
-        let row: Vec<u32> = p
-            .0
-            .iter()
-            .zip(&first.0)
-            .map(|(&a, &b)| Fp::<P1>::new(i64::from(a) - i64::from(b)).value())
-            .collect();
+        let row: Vec<u32> =
+            p.0.iter()
+                .zip(&first.0)
+                .map(|(&a, &b)| Fp::<P1>::new(i64::from(a) - i64::from(b)).value())
+                .collect();
         if basis.insert(row) {
             rank += 1;
         }
@@ -131,7 +130,12 @@ pub(crate) fn monomials_inside(
 ) -> Vec<Monomial> {
     Monomial::all_up_to_degree(nvars, degree, MonomialOrder::Grevlex)
         .into_iter()
-        .filter(|m| facets.iter().zip(bounds).all(|(f, &b)| dot(&f.normal, m) <= b))
+        .filter(|m| {
+            facets
+                .iter()
+                .zip(bounds)
+                .all(|(f, &b)| dot(&f.normal, m) <= b)
+        })
         .collect()
 }
 
@@ -152,7 +156,13 @@ pub(crate) fn multipliers_inside<F: Field>(
     let shifted: Vec<i64> = facets
         .iter()
         .zip(bounds)
-        .map(|(facet, &b)| b - f.terms().map(|(m, _)| dot(&facet.normal, m)).max().unwrap_or(0))
+        .map(|(facet, &b)| {
+            b - f
+                .terms()
+                .map(|(m, _)| dot(&facet.normal, m))
+                .max()
+                .unwrap_or(0)
+        })
         .collect();
     monomials_inside(f.nvars(), facets, &shifted, room)
 }
@@ -178,9 +188,14 @@ mod tests {
     #[test]
     fn a_triangle_has_three_facets() {
         let facets = newton_facets(&triangle()).unwrap();
-        let found: Vec<(Vec<i32>, i64)> =
-            facets.iter().map(|f| (f.normal.clone(), f.support)).collect();
-        assert_eq!(found, vec![(vec![-1, 0], 0), (vec![0, 1], 3), (vec![1, -2], 0)]);
+        let found: Vec<(Vec<i32>, i64)> = facets
+            .iter()
+            .map(|f| (f.normal.clone(), f.support))
+            .collect();
+        assert_eq!(
+            found,
+            vec![(vec![-1, 0], 0), (vec![0, 1], 3), (vec![1, -2], 0)]
+        );
         let bounds: Vec<i64> = facets.iter().map(|f| f.support).collect();
         assert_eq!(monomials_inside(2, &facets, &bounds, 20).len(), 16);
         // Raised by two on y <= 3: nine multipliers of each equation, 36 monomials.

@@ -453,7 +453,10 @@ mod tests {
         for c in &cands {
             let (a, b) = (c.row.multiplier.0[0], c.row.multiplier.0[1]);
             assert!(b <= 2 && a <= 2 * b + 1, "{:?}", c.row.multiplier);
-            assert!(c.terms.iter().all(|(m, _)| m.0[1] <= 5 && m.0[0] <= 2 * m.0[1] + 1));
+            assert!(c
+                .terms
+                .iter()
+                .all(|(m, _)| m.0[1] <= 5 && m.0[0] <= 2 * m.0[1] + 1));
         }
         assert_eq!(
             raised.family_and_size(),

@@ -52,7 +52,7 @@ pub use pipeline::{
 };
 pub use polishing::{
     AutoPolishing, AUTO_POLISH_FAILURE_RATE, AUTO_POLISH_INSTANCES, AUTO_POLISH_MEDIAN,
-    AUTO_POLISH_MORE_INSTANCES, AUTO_POLISH_P99, AUTO_POLISH_STEPS,
+    AUTO_POLISH_MORE_INSTANCES, AUTO_POLISH_P99, AUTO_POLISH_STEPS, AUTO_POLISH_STEP_CHOICES,
 };
 pub use problem::ProblemOptions;
 pub use redundancy::{

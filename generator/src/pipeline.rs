@@ -334,7 +334,7 @@ pub fn plan(
     };
     order_for_sparse_elimination(template, &template_supports);
     if plan.problem.layout.options.newton.is_none() {
-        plan.auto_polishing = polishing::choose(&plan);
+        plan.auto_polishing = polishing::choose(&mut plan);
         if let Some(choice) = &plan.auto_polishing {
             plan.problem.layout.options.newton = Some(choice.steps);
         }

@@ -16,8 +16,13 @@
 //! within two orders of magnitude of the failure residual: the sample's worst instances
 //! are that close to failing, so failures at a rate it cannot resolve are to be expected.
 //! Otherwise it does not polish, since polishing costs a few evaluations of the equations
-//! and their gradients per solution, up to several times a small template's solve. The
-//! instances are seeded, so the choice, like the template, is the same on every run.
+//! and their gradients per solution, up to several times a small template's solve.
+//! Where it polishes, the same instances are solved again polished: if two steps leave
+//! the sample failing by the same tests (the failure rate or the 99th percentile), four
+//! and then eight are tried ([`AUTO_POLISH_STEP_CHOICES`]; a solution at rounding level
+//! takes no step, so only the poor ones pay for them), and the fewest steps that pass, or
+//! else that fail the fewest instances, are chosen. The instances are seeded, so the
+//! choice, like the template, is the same on every run.
 
 use crate::audit::{audit_plan, AuditOptions};
 use crate::emit::polish::check_polishable;
@@ -37,16 +42,20 @@ pub const AUTO_POLISH_MEDIAN: f64 = -11.0;
 /// Polishing is chosen when the 99th percentile of the log10 residual (of the first
 /// [`AUTO_POLISH_INSTANCES`]) is above this.
 pub const AUTO_POLISH_P99: f64 = -8.0;
-/// The Gauss-Newton steps chosen (polishing converges in one or two from an eliminated
-/// solution; a step that does not lower the residual is not kept).
+/// The Gauss-Newton steps chosen first (polishing converges in one or two from an
+/// eliminated solution; a step that does not lower the residual is not kept).
 pub const AUTO_POLISH_STEPS: u32 = 2;
+
+/// The steps tried in turn while the polished sample still fails (see the module
+/// documentation).
+pub const AUTO_POLISH_STEP_CHOICES: [u32; 3] = [AUTO_POLISH_STEPS, 4, 8];
 /// Seed of the choice's instances, apart from `mingen audit`'s default ones.
 const AUTO_POLISH_SEED: u64 = 0x9011_5A17;
 
 /// What the plan measured to choose its polishing ([`SolverPlan::auto_polishing`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct AutoPolishing {
-    /// The Gauss-Newton steps chosen: 0 or [`AUTO_POLISH_STEPS`].
+    /// The Gauss-Newton steps chosen: 0 or one of [`AUTO_POLISH_STEP_CHOICES`].
     pub steps: u32,
     /// Instances solved.
     pub instances: usize,
@@ -59,11 +68,62 @@ pub struct AutoPolishing {
 }
 
 /// Measures `plan`'s template unpolished and chooses the steps (see the module
-/// documentation). `None` when the solver cannot polish (what `option newton` refuses).
-pub(crate) fn choose(plan: &SolverPlan) -> Option<AutoPolishing> {
+/// documentation); `plan`'s own polishing is as it was on return. `None` when the solver
+/// cannot polish (what `option newton` refuses).
+pub(crate) fn choose(plan: &mut SolverPlan) -> Option<AutoPolishing> {
     if !can_polish(plan) {
         return None;
     }
+    let given = plan.problem.layout.options.newton;
+    plan.problem.layout.options.newton = Some(0);
+    let unpolished = measure(plan);
+    let mut steps = 0;
+    if unpolished.median_log10_residual > AUTO_POLISH_MEDIAN || unpolished.fails() {
+        // The fewest steps that pass, else those that fail the fewest instances.
+        let mut best: Option<(usize, u32)> = None;
+        for k in AUTO_POLISH_STEP_CHOICES {
+            plan.problem.layout.options.newton = Some(k);
+            let polished = measure(plan);
+            if best.map_or(true, |(f, _)| polished.failures < f) {
+                best = Some((polished.failures, k));
+            }
+            if !polished.fails() {
+                best = Some((polished.failures, k));
+                break;
+            }
+        }
+        steps = best.map_or(AUTO_POLISH_STEPS, |(_, k)| k);
+    }
+    plan.problem.layout.options.newton = given;
+    Some(AutoPolishing {
+        steps,
+        instances: unpolished.instances,
+        median_log10_residual: unpolished.median_log10_residual,
+        p99_log10_residual: unpolished.p99_log10_residual,
+        failures: unpolished.failures,
+    })
+}
+
+/// The plan's sample as its solver solves it (polished as its layout says).
+struct Sample {
+    instances: usize,
+    median_log10_residual: f64,
+    p99_log10_residual: f64,
+    failures: usize,
+}
+
+impl Sample {
+    /// The tests beside the median: the 99th percentile, the failure rate.
+    fn fails(&self) -> bool {
+        self.p99_log10_residual > AUTO_POLISH_P99
+            || self.failures as f64 >= AUTO_POLISH_FAILURE_RATE * self.instances as f64
+    }
+}
+
+/// Solves the plan's [`AUTO_POLISH_INSTANCES`] seeded instances, and when exactly one
+/// fails [`AUTO_POLISH_MORE_INSTANCES`] more (one failure in 100 tells a rate above the
+/// threshold from one below it no better than none does).
+fn measure(plan: &SolverPlan) -> Sample {
     let run = |instances, seed| {
         audit_plan(
             plan,
@@ -76,23 +136,17 @@ pub(crate) fn choose(plan: &SolverPlan) -> Option<AutoPolishing> {
     };
     let report = run(AUTO_POLISH_INSTANCES, AUTO_POLISH_SEED);
     let (mut instances, mut failures) = (report.instances, report.failures);
-    // One failure in 100 tells a rate above the threshold from one below it no better
-    // than none does: 400 more.
     if failures == 1 {
         let more = run(AUTO_POLISH_MORE_INSTANCES, AUTO_POLISH_SEED + 1);
         instances += more.instances;
         failures += more.failures;
     }
-    let poor = report.median_log10_residual > AUTO_POLISH_MEDIAN
-        || report.p99_log10_residual > AUTO_POLISH_P99
-        || failures as f64 >= AUTO_POLISH_FAILURE_RATE * instances as f64;
-    Some(AutoPolishing {
-        steps: if poor { AUTO_POLISH_STEPS } else { 0 },
+    Sample {
         instances,
         median_log10_residual: report.median_log10_residual,
         p99_log10_residual: report.p99_log10_residual,
         failures,
-    })
+    }
 }
 
 /// Whether the emitted solver can polish `plan`'s solutions (what `option newton` needs,

@@ -200,7 +200,7 @@ pub struct ProblemOptions {
     /// `option newton = N` (0 to 8): Gauss-Newton steps polishing every solution on the
     /// problem's original equations (eliminated unknowns included), each step kept only if
     /// it lowers their squared residual, none once the residual is at rounding level. Not
-    /// set, the plan chooses 0 or 2 by solving its template on random instances
+    /// set, the plan chooses 0, 2, 4 or 8 by solving its template on random instances
     /// ([`crate::AutoPolishing`]). Read it through [`ProblemOptions::newton_steps`].
     pub newton: Option<u32>,
     /// `option auto_eliminate = yes|no` (default yes): whether planning, when the file

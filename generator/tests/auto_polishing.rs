@@ -6,7 +6,7 @@
 use mingen::{
     audit_plan, emit_plan_from, plan_file, plan_source, AuditOptions, ProblemOptions, SolverPlan,
     TemplateOptions, AUTO_POLISH_FAILURE_RATE, AUTO_POLISH_INSTANCES, AUTO_POLISH_MEDIAN,
-    AUTO_POLISH_MORE_INSTANCES, AUTO_POLISH_P99, AUTO_POLISH_STEPS,
+    AUTO_POLISH_MORE_INSTANCES, AUTO_POLISH_P99, AUTO_POLISH_STEPS, AUTO_POLISH_STEP_CHOICES,
 };
 use std::path::Path;
 
@@ -31,7 +31,11 @@ fn assert_consistent(plan: &SolverPlan) {
     let poor = a.median_log10_residual > AUTO_POLISH_MEDIAN
         || a.p99_log10_residual > AUTO_POLISH_P99
         || a.failures as f64 >= AUTO_POLISH_FAILURE_RATE * a.instances as f64;
-    assert_eq!(a.steps, if poor { AUTO_POLISH_STEPS } else { 0 }, "{a:?}");
+    if poor {
+        assert!(AUTO_POLISH_STEP_CHOICES.contains(&a.steps), "{a:?}");
+    } else {
+        assert_eq!(a.steps, 0, "{a:?}");
+    }
     assert_eq!(plan.problem.layout.options.newton, Some(a.steps));
     let source = emit_plan_from(plan, "t.mp").unwrap();
     assert_eq!(
@@ -122,4 +126,32 @@ fn a_poorly_conditioned_template_is_polished_and_the_audit_shows_both() {
         "{report}"
     );
     assert!(report.failures < unpolished.failures, "{report}");
+}
+
+/// Where two steps leave the plan's sample failing, more are chosen: the unsynchronised
+/// relative pose (its unknowns `t, u, v` eliminated by Cramer's rule on the data) converges
+/// from further away than two steps reach.
+#[test]
+fn more_steps_are_chosen_where_two_leave_failures() {
+    let mut plan = plan_file(
+        &repo("templates/benchmark/unsynch_relpose.mp"),
+        &TemplateOptions::default(),
+    )
+    .unwrap();
+    assert_consistent(&plan);
+    let chosen = plan.auto_polishing.clone().unwrap();
+    assert!(chosen.steps > AUTO_POLISH_STEPS, "{chosen:?}");
+    let options = AuditOptions {
+        instances: 200,
+        seed: 9,
+        time_limit: None,
+    };
+    let with_chosen = audit_plan(&plan, &options);
+    plan.problem.layout.options.newton = Some(AUTO_POLISH_STEPS);
+    let with_two = audit_plan(&plan, &options);
+    assert!(
+        with_chosen.failures < with_two.failures,
+        "{} steps: {with_chosen}\n{AUTO_POLISH_STEPS} steps: {with_two}",
+        chosen.steps
+    );
 }

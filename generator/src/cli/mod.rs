@@ -152,7 +152,7 @@ struct SearchArgs {
     #[arg(long, value_name = "standard|selected", value_parser = ["standard", "selected"])]
     basis: Option<String>,
     /// Gauss-Newton steps polishing every solution on the original equations (0 to 8;
-    /// default: the file's `option newton`, else 0 or 2 as the plan measures its
+    /// default: the file's `option newton`, else 0, 2, 4 or 8 as the plan measures its
     /// template, see `inspect`'s `polishing:` line).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=8))]
     newton: Option<u32>,

@@ -87,10 +87,15 @@ fn role<C: Ring>(eq: &Poly<C>, elim: &[usize]) -> Role {
     }
 }
 
+/// Largest pivot block a block reduction takes: its determinants are expanded by Laplace
+/// over every column subset (`2^r` minors), so a larger block falls back to the minors.
+pub const MAX_BLOCK_PIVOTS: usize = 12;
+
 /// Chooses the block reduction for eliminating `eliminated` (flat indices, increasing)
 /// from `equations` (one instance mod p), or `None` where the maximal minors of the block
 /// (`super::eliminate_linear`) are the right equations: the block's `C` has independent
-/// rows or independent columns, and no other equation involves the eliminated unknowns.
+/// rows or independent columns, and no other equation involves the eliminated unknowns;
+/// also where the pivot block would exceed [`MAX_BLOCK_PIVOTS`].
 pub fn block_reduction<const P: u32>(
     equations: &[Poly<Fp<P>>],
     eliminated: &[usize],
@@ -131,6 +136,9 @@ pub fn block_reduction<const P: u32>(
         .collect();
     pivot_columns.sort_unstable();
     let rank = pivot_rows.len();
+    if rank > MAX_BLOCK_PIVOTS {
+        return None;
+    }
     let inhomogeneous = block
         .iter()
         .any(|e| e.terms().any(|(m, _)| !has_eliminated(m)));

@@ -20,7 +20,7 @@ use std::collections::HashMap;
 use thiserror::Error;
 
 mod block;
-pub use block::{block_reduction, reduce_block, BlockMode, BlockReduction};
+pub use block::{block_reduction, reduce_block, BlockMode, BlockReduction, MAX_BLOCK_PIVOTS};
 
 /// Why a set of unknowns cannot be eliminated linearly.
 #[derive(Debug, Error, Clone, PartialEq, Eq)]

@@ -84,11 +84,11 @@ pub(crate) fn choose(plan: &mut SolverPlan) -> Option<AutoPolishing> {
         for k in AUTO_POLISH_STEP_CHOICES {
             plan.problem.layout.options.newton = Some(k);
             let polished = measure(plan);
-            if best.map_or(true, |(f, _)| polished.failures < f) {
+            let passes = !polished.fails();
+            if passes || best.map_or(true, |(f, _)| polished.failures < f) {
                 best = Some((polished.failures, k));
             }
-            if !polished.fails() {
-                best = Some((polished.failures, k));
+            if passes {
                 break;
             }
         }

@@ -163,31 +163,21 @@ pub(crate) fn system_and_factors<C: Ring>(
     let kept = problem.independent();
     let (mut equations, mut elimination) = if problem.layout.eliminate.is_empty() {
         (select(equations, kept), None)
-    } else if let Some(reduction) = problem.block_reduction() {
-        let mut e = reduce_block(
-            &equations,
-            problem.layout.unknown_count(),
-            &problem.layout.eliminate,
-            reduction,
-        )?;
-        e.equations = select(std::mem::take(&mut e.equations), kept);
-        (e.equations.clone(), Some(e))
-    } else if let Some(affine) = problem.substitution() {
-        let mut e = substitute_linear(
-            &equations,
-            problem.layout.unknown_count(),
-            &problem.layout.eliminate,
-            affine,
-        )?;
-        e.equations = select(std::mem::take(&mut e.equations), kept);
-        (e.equations.clone(), Some(e))
     } else {
-        let e = eliminate_linear_selected(
-            &equations,
-            problem.layout.unknown_count(),
-            &problem.layout.eliminate,
-            kept,
-        )?;
+        let (n, eliminate) = (problem.layout.unknown_count(), &problem.layout.eliminate);
+        // The minors compute only the kept equations; the other forms select afterwards.
+        let reduced = match (problem.block_reduction(), problem.substitution()) {
+            (Some(reduction), _) => Some(reduce_block(&equations, n, eliminate, reduction)?),
+            (None, Some(affine)) => Some(substitute_linear(&equations, n, eliminate, affine)?),
+            (None, None) => None,
+        };
+        let e = match reduced {
+            Some(mut e) => {
+                e.equations = select(std::mem::take(&mut e.equations), kept);
+                e
+            }
+            None => eliminate_linear_selected(&equations, n, eliminate, kept)?,
+        };
         (e.equations.clone(), Some(e))
     };
     let factors = system_variables(problem, &expressions);

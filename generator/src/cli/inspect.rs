@@ -99,14 +99,14 @@ pub(super) fn inspect(
     if !p.layout.eliminate.is_empty() {
         let el = plan.eliminated_names();
         let how = if let Some(b) = p.block_reduction() {
-            let outside = b.pivot_rows.len();
+            let pivots = b.pivot_rows.len();
             match b.mode {
                 mingen::__internal::eliminate::BlockMode::Minors => format!(
-                    " (row-reduced on the data: the rows that cancel their {} columns, then the minors of {outside} rows)",
+                    " (row-reduced on the data: the rows that cancel their {} columns, then the minors of {pivots} rows)",
                     b.columns.len()
                 ),
                 mingen::__internal::eliminate::BlockMode::Substitute => format!(
-                    " (row-reduced on the data: {outside} rows solved for their {} columns and substituted)",
+                    " (row-reduced on the data: {pivots} rows solved for their {} columns and substituted)",
                     b.columns.len()
                 ),
             }

@@ -27,8 +27,8 @@
 //! The solver recovers `t` as before, from the null vector of the block's `[A(u) b(u)]`.
 
 use super::{
-    combinations, determinant, numbered, remaining_unknowns, substitute_quotients, EliminateError,
-    Eliminated,
+    combinations, determinant, numbered, pivots_from_last, remaining_unknowns,
+    substitute_quotients, EliminateError, Eliminated,
 };
 use crate::algebra::{Fp, Monomial, Poly, Ring};
 
@@ -100,7 +100,6 @@ pub fn block_reduction<const P: u32>(
     equations: &[Poly<Fp<P>>],
     eliminated: &[usize],
 ) -> Option<BlockReduction> {
-    use crate::template::linalg::EchelonBasis;
     let block: Vec<&Poly<Fp<P>>> = equations
         .iter()
         .filter(|e| matches!(role(e, eliminated), Role::Block))
@@ -117,24 +116,14 @@ pub fn block_reduction<const P: u32>(
     columns.sort();
     columns.dedup();
     let c = columns.len();
-    // Rows in reverse column order, so that the echelon basis prefers pivots on the
-    // last columns; any nonsingular block serves.
-    let mut basis = EchelonBasis::<P>::new(c);
-    let mut pivot_rows = Vec::new();
-    for (r, e) in block.iter().enumerate() {
-        let row: Vec<u32> = (0..c)
-            .map(|j| e.coeff(&columns[c - 1 - j]).value())
-            .collect();
-        if basis.insert(row) {
-            pivot_rows.push(r);
-        }
-    }
-    let mut pivot_columns: Vec<usize> = basis
-        .pivot_columns()
-        .into_iter()
-        .map(|j| c - 1 - j)
-        .collect();
-    pivot_columns.sort_unstable();
+    let rows = block.iter().map(|e| {
+        columns
+            .iter()
+            .map(|m| e.coeff(m).value())
+            .collect::<Vec<u32>>()
+    });
+    let (independent, pivot_columns) = pivots_from_last::<P>(rows, c);
+    let pivot_rows: Vec<usize> = (0..block.len()).filter(|&r| independent[r]).collect();
     let rank = pivot_rows.len();
     if rank > MAX_BLOCK_PIVOTS {
         return None;

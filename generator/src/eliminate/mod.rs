@@ -309,35 +309,58 @@ pub fn linear_pivots<const P: u32>(
     nvars: usize,
     linear: &[usize],
 ) -> Option<(Vec<usize>, Vec<usize>, Vec<usize>)> {
-    use crate::template::linalg::EchelonBasis;
-    // Each affine equation's coefficients of x_{n-1} .. x_0 (reversed, so that the echelon
-    // basis takes its pivots from the last unknown backwards); the rows that enlarge the
+    // Each affine equation's coefficients of x_0 .. x_{n-1}; the rows that enlarge the
     // basis are the independent ones, its pivot columns the pivot unknowns.
-    let mut basis = EchelonBasis::<P>::new(nvars);
-    let (mut used, mut implied) = (Vec::new(), Vec::new());
-    for &r in linear {
+    let rows = linear.iter().map(|&r| {
         let mut row = vec![0u32; nvars];
         for (m, c) in equations[r].terms() {
             if let Some(j) = m.0.iter().position(|&e| e == 1) {
-                row[nvars - 1 - j] = c.value();
+                row[j] = c.value();
             }
         }
-        if basis.insert(row) {
+        row
+    });
+    let (independent, pivots) = pivots_from_last::<P>(rows, nvars);
+    let (mut used, mut implied) = (Vec::new(), Vec::new());
+    for (&r, independent) in linear.iter().zip(independent) {
+        if independent {
             used.push(r);
         } else {
             implied.push(r);
         }
     }
-    let mut pivots: Vec<usize> = basis
-        .pivot_columns()
-        .into_iter()
-        .map(|c| nvars - 1 - c)
-        .collect();
     if pivots.is_empty() || pivots.len() >= nvars {
         return None;
     }
-    pivots.sort_unstable();
     Some((pivots, used, implied))
+}
+
+/// Echelon pivots of `rows` (`ncols` entries mod P each, in order), preferring pivots on
+/// the last columns: whether each row is independent of those before it, and the pivot
+/// columns, increasing. Any nonsingular pivot block serves the callers; the last columns
+/// keep the first unknowns (or monomials) out of it.
+fn pivots_from_last<const P: u32>(
+    rows: impl IntoIterator<Item = Vec<u32>>,
+    ncols: usize,
+) -> (Vec<bool>, Vec<usize>) {
+    use crate::template::linalg::EchelonBasis;
+    // Reversed columns, so that the echelon basis takes its pivots from the last one
+    // backwards.
+    let mut basis = EchelonBasis::<P>::new(ncols);
+    let independent = rows
+        .into_iter()
+        .map(|mut row| {
+            row.reverse();
+            basis.insert(row)
+        })
+        .collect();
+    let mut pivots: Vec<usize> = basis
+        .pivot_columns()
+        .into_iter()
+        .map(|c| ncols - 1 - c)
+        .collect();
+    pivots.sort_unstable();
+    (independent, pivots)
 }
 
 /// The unknowns among `candidates` (flat indices) that every equation has only in terms of

@@ -205,6 +205,19 @@ fn group_degree(m: &Monomial, group: &[usize]) -> u32 {
     group.iter().map(|&i| m.0[i] as u32).sum()
 }
 
+/// The equations' largest degree in each group of unknowns.
+fn largest_degrees<F: Field>(eqs: &[Poly<F>], groups: &[Vec<usize>]) -> Vec<u32> {
+    groups
+        .iter()
+        .map(|g| {
+            eqs.iter()
+                .flat_map(|f| f.terms().map(|(m, _)| group_degree(m, g)))
+                .max()
+                .unwrap_or(0)
+        })
+        .collect()
+}
+
 /// The largest degree of each group a multiplier of `f` may have within `caps` (`None` if
 /// `f` itself does not fit).
 fn room<F: Field>(f: &Poly<F>, groups: &[Vec<usize>], caps: &[u32]) -> Option<Vec<u32>> {
@@ -281,15 +294,7 @@ pub(crate) fn pools<F: Field>(eqs: &[Poly<F>], nvars: usize, maxeq: u32) -> Vec<
     }
     let mut out = Vec::new();
     for groups in partitions {
-        let top: Vec<u32> = groups
-            .iter()
-            .map(|g| {
-                eqs.iter()
-                    .flat_map(|f| f.terms().map(|(m, _)| group_degree(m, g)))
-                    .max()
-                    .unwrap_or(0)
-            })
-            .collect();
+        let top = largest_degrees(eqs, &groups);
         if monomials_within(&groups, &top) >= total_monomials {
             continue;
         }
@@ -318,15 +323,7 @@ fn polytope_pools<F: Field>(eqs: &[Poly<F>], nvars: usize, maxeq: u32) -> Vec<Po
         return Vec::new();
     };
     let singletons: Vec<Vec<usize>> = (0..nvars).map(|i| vec![i]).collect();
-    let exponents: Vec<u32> = singletons
-        .iter()
-        .map(|g| {
-            eqs.iter()
-                .flat_map(|f| f.terms().map(|(m, _)| group_degree(m, g)))
-                .max()
-                .unwrap_or(0)
-        })
-        .collect();
+    let exponents = largest_degrees(eqs, &singletons);
     // A guard on the total degree well past any raise of the facets.
     let degree = 2 * (maxeq + 2);
     let supports: Vec<i64> = facets.iter().map(|f| f.support).collect();

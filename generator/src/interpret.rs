@@ -287,11 +287,12 @@ pub fn readout_pairs(
             .position(|b| b == m)
             .ok_or_else(|| InterpretError::MissingReadout(format!("{m:?}")))
     };
-    let one = find(&Monomial::one(n))?;
+    let unit = template.unit();
+    let one = find(&unit)?;
     (0..template.visible_vars())
         .map(|i| {
             let x = Monomial::var(n, i);
-            let Some(xk) = template.basis.iter().position(|b| *b == x) else {
+            let Some(xk) = template.basis.iter().position(|b| *b == x.mul(&unit)) else {
                 return Ok(Vec::new());
             };
             let mut pairs = vec![(one, xk)];
@@ -329,10 +330,11 @@ pub fn solve_template(
     check_template(template)?;
     let pairs = readout_pairs(template)?;
     let pairs: Vec<&[(usize, usize)]> = pairs.iter().map(Vec::as_slice).collect();
+    let unit = template.unit();
     let one = template
         .basis
         .iter()
-        .position(|b| *b == Monomial::one(template.nvars))
+        .position(|b| *b == unit)
         .ok_or_else(|| InterpretError::MissingReadout("1".into()))?;
     let (a, readouts) = action_matrix_and_readouts(template, equations)?;
     let linear: Vec<usize> = (0..pairs.len()).filter(|&i| pairs[i].is_empty()).collect();
@@ -344,9 +346,11 @@ pub fn solve_template(
         },
     )?;
     let mut solutions = Vec::with_capacity(eigenpairs.len());
-    for (_, v) in &eigenpairs {
+    let action = template.action.single();
+    for (lambda, v) in &eigenpairs {
         let mut u = vec![0.0; pairs.len()];
-        if !mingen_runtime::read_unknowns(v, one, &pairs, &mut u) {
+        let action = action.map(|i| (i, *lambda));
+        if !mingen_runtime::read_unknowns_with_eigenvalue(v, one, &pairs, action, &mut u) {
             continue;
         }
         let read = linear.iter().zip(&readouts).all(|(&i, row)| {

@@ -105,7 +105,7 @@ pub use newton::{
 };
 pub use null::{null_vector3, null_vector3_rows};
 pub use null_general::{dehomogenize, null_vector, null_vector_dyn};
-pub use readout::{read_linear, read_unknowns, MIN_UNIT_ENTRY};
+pub use readout::{read_linear, read_unknowns, read_unknowns_with_eigenvalue, MIN_UNIT_ENTRY};
 pub use sign_symmetry::{flip_sign, unfold_sign, unfold_signs, SignFold};
 pub use solution_set::SolutionSet;
 pub use solver::{FlatValues, MinimalSolver};

@@ -26,40 +26,65 @@ pub const MIN_UNIT_ENTRY: f64 = 1e-12;
 /// with the template's. Never panics: out-of-range indices make it return `false`.
 #[inline]
 pub fn read_unknowns(v: &[f64], one: usize, pairs: &[&[(usize, usize)]], out: &mut [f64]) -> bool {
+    read_unknowns_with_eigenvalue(v, one, pairs, None, out)
+}
+
+/// [`read_unknowns`], except that the unknown `action.0`, whose eigenvalue `action.1` the
+/// eigenvector belongs to (the action is that unknown alone), is the eigenvalue where its
+/// pairs cannot be read (their denominators at most [`MIN_UNIT_ENTRY`]: a basis shifted by
+/// a monomial that is large at this solution, or a solution far from the origin). `None`:
+/// exactly [`read_unknowns`]. Never panics.
+#[inline]
+pub fn read_unknowns_with_eigenvalue(
+    v: &[f64],
+    one: usize,
+    pairs: &[&[(usize, usize)]],
+    action: Option<(usize, f64)>,
+    out: &mut [f64],
+) -> bool {
     let Some(&w) = v.get(one) else {
         return false;
     };
     if !w.is_finite() || out.len() != pairs.len() {
         return false;
     }
-    for (x, p) in out.iter_mut().zip(pairs) {
-        let value = match **p {
-            [] => continue,
-            [(j, k)] => match (v.get(j), v.get(k)) {
-                (Some(a), Some(b)) if a.abs() > MIN_UNIT_ENTRY => b / a,
-                _ => return false,
-            },
-            _ => {
-                let (mut num, mut den) = (0.0, 0.0);
-                for &(j, k) in p.iter() {
-                    let (Some(a), Some(b)) = (v.get(j), v.get(k)) else {
-                        return false;
-                    };
-                    num += a * b;
-                    den += a * a;
-                }
-                if den <= MIN_UNIT_ENTRY * MIN_UNIT_ENTRY {
-                    return false;
-                }
-                num / den
-            }
-        };
-        if !value.is_finite() {
-            return false;
+    for (i, (x, p)) in out.iter_mut().zip(pairs).enumerate() {
+        if p.is_empty() {
+            continue;
         }
+        let value = match (read_pairs(v, p), action) {
+            (Some(value), _) => value,
+            (None, Some((a, lambda))) if a == i && lambda.is_finite() => lambda,
+            (None, _) => return false,
+        };
         *x = value;
     }
     true
+}
+
+/// One unknown from its pairs (see [`read_unknowns`]); `None` for a denominator at most
+/// [`MIN_UNIT_ENTRY`], an index out of range or a non-finite value.
+#[inline]
+fn read_pairs(v: &[f64], p: &[(usize, usize)]) -> Option<f64> {
+    let value = match *p {
+        [(j, k)] => match (v.get(j), v.get(k)) {
+            (Some(a), Some(b)) if a.abs() > MIN_UNIT_ENTRY => b / a,
+            _ => return None,
+        },
+        _ => {
+            let (mut num, mut den) = (0.0, 0.0);
+            for &(j, k) in p {
+                let (a, b) = (v.get(j)?, v.get(k)?);
+                num += a * b;
+                den += a * a;
+            }
+            if den <= MIN_UNIT_ENTRY * MIN_UNIT_ENTRY {
+                return None;
+            }
+            num / den
+        }
+    };
+    value.is_finite().then_some(value)
 }
 
 /// Reads an unknown `x` that is not in the basis off the unit eigenvector `v ∝ (b_0(s),
@@ -81,6 +106,33 @@ pub fn read_linear(v: &[f64], one: usize, row: &[f64]) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_action_unknown_falls_back_to_its_eigenvalue() {
+        // A basis (p^3, p, a p) shifted by p (its unit at 1), at p = 1e8 and a = 0.5: the only
+        // pair of a, (p, a p), has a denominator below MIN_UNIT_ENTRY.
+        let (p, a) = (1e8f64, 0.5);
+        let n = (p.powi(6) + p * p + a * a * p * p).sqrt();
+        let v = [p.powi(3) / n, p / n, a * p / n];
+        let pairs: [&[(usize, usize)]; 1] = [&[(1, 2)]];
+        let mut out = [0.0];
+        assert!(!read_unknowns(&v, 1, &pairs, &mut out));
+        assert!(!read_unknowns_with_eigenvalue(
+            &v,
+            1,
+            &pairs,
+            Some((1, 0.5)),
+            &mut out
+        ));
+        assert!(read_unknowns_with_eigenvalue(
+            &v,
+            1,
+            &pairs,
+            Some((0, a)),
+            &mut out
+        ));
+        assert_eq!(out, [a]);
+    }
 
     #[test]
     fn uses_the_large_entries() {

@@ -57,6 +57,16 @@ impl Monomial {
             None
         }
     }
+    /// The greatest common divisor.
+    pub fn gcd(&self, other: &Monomial) -> Monomial {
+        Monomial(
+            self.0
+                .iter()
+                .zip(&other.0)
+                .map(|(a, b)| *a.min(b))
+                .collect(),
+        )
+    }
     /// The least common multiple.
     pub fn lcm(&self, other: &Monomial) -> Monomial {
         Monomial(

@@ -87,6 +87,13 @@ pub(crate) fn read_unknowns() -> TokenStream {
     quote!(mingen_runtime::read_unknowns)
 }
 
+/// `read_unknowns_with_eigenvalue(v: &[f64], one: usize, pairs: &[&[(usize, usize)]],
+/// action: Option<(usize, f64)>, out: &mut [f64]) -> bool`: [`read_unknowns`], the action's
+/// unknown the eigenvalue where its pairs cannot be read.
+pub(crate) fn read_unknowns_with_eigenvalue() -> TokenStream {
+    quote!(mingen_runtime::read_unknowns_with_eigenvalue)
+}
+
 /// `read_linear(v: &[f64], one: usize, row: &[f64]) -> Option<f64>`: an unknown outside the
 /// basis from its reduced template row.
 pub(crate) fn read_linear() -> TokenStream {

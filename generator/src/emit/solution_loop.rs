@@ -36,12 +36,29 @@ pub(super) fn solution_loop(
         unknown_idents,
         linear_reads,
     } = &readout;
-    let read = rt::read_unknowns();
+    // An action that is one unknown: that unknown is the eigenvalue where its pairs cannot
+    // be read (`read_unknowns_with_eigenvalue`).
+    let (lambda, read_call) = match spec.template.action.single() {
+        Some(i) => {
+            let (read, il) = (rt::read_unknowns_with_eigenvalue(), lit(i));
+            (
+                quote!(lambda),
+                quote!(#read(v.as_slice(), #one_l, &READOUT, Some((#il, *lambda)), &mut u)),
+            )
+        }
+        None => {
+            let read = rt::read_unknowns();
+            (
+                quote!(_),
+                quote!(#read(v.as_slice(), #one_l, &READOUT, &mut u)),
+            )
+        }
+    };
     let solution_loop = if spec.sign_folds.is_empty() {
         quote! {
-            for (_, v) in pairs.iter() {
+            for (#lambda, v) in pairs.iter() {
                 let mut u = [0.0f64; #nvars_l];
-                if !#read(v.as_slice(), #one_l, &READOUT, &mut u) {
+                if !#read_call {
                     continue;
                 }
                 #(#linear_reads)*
@@ -71,9 +88,9 @@ pub(super) fn solution_loop(
         let (unfold, fold_type) = (rt::unfold_signs(), rt::sign_fold());
         quote! {
             const SIGN_FOLDS: [#fold_type<'static>; #kl] = [#(#folds),*];
-            'pairs: for (_, v) in pairs.iter() {
+            'pairs: for (#lambda, v) in pairs.iter() {
                 let mut u = [0.0f64; #nvars_l];
-                if !#read(v.as_slice(), #one_l, &READOUT, &mut u) {
+                if !#read_call {
                     continue;
                 }
                 #(#linear_reads)*
@@ -101,7 +118,8 @@ pub(super) fn solution_loop(
 
 /// The read-out of the template variables from an eigenvector `v`.
 struct Readout {
-    /// The position of the monomial 1 in the basis.
+    /// The position of the basis's unit (the monomial 1, or the shift of a saturated
+    /// template) in the basis.
     one_l: Literal,
     /// The number of template variables.
     nvars_l: Literal,
@@ -133,9 +151,9 @@ impl Readout {
         let unknown_idents: Vec<Ident> = (0..plan.readout.len())
             .map(|k| format_ident!("u{}", k))
             .collect();
-        // Unknowns outside the basis: `x_i = -T[x_i, :] v / v[1]` from the reduced row of
-        // their (reducible) column, which starts at `c * cols + pivots` as the action rows
-        // do.
+        // Unknowns outside the basis: `x_i = -T[s x_i, :] v / v[s]` from the reduced row of
+        // their (reducible) column `s x_i` (`s` the basis's unit, usually 1), which starts
+        // at `c * cols + pivots` as the action rows do.
         let read_linear = rt::read_linear();
         let linear_reads: Vec<TokenStream> = plan
             .readout
@@ -144,7 +162,7 @@ impl Readout {
             .filter(|(_, pairs)| pairs.is_empty())
             .map(|(i, _)| {
                 let c = t
-                    .eliminated_column(plan.column_of[&Monomial::var(t.nvars, i)])
+                    .eliminated_column(plan.column_of[&Monomial::var(t.nvars, i).mul(&t.unit())])
                     .expect("an unknown outside the basis is a reducible column");
                 let (il, start, end) =
                     (lit(i), lit(c * cols + pivots), lit(c * cols + pivots + nb));

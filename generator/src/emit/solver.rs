@@ -190,7 +190,7 @@ impl<'a> Plan<'a> {
             }
         }
         let basis_pos = |m: &Monomial| t.basis.iter().position(|b| b == m);
-        let basis_one = basis_pos(&Monomial::one(t.nvars)).ok_or_else(|| {
+        let basis_one = basis_pos(&t.unit()).ok_or_else(|| {
             EmitError::Unsupported("the basis does not contain the monomial 1".into())
         })?;
         Ok(Plan {

@@ -155,15 +155,26 @@ pub struct EliminationTemplate {
     pub fold: Option<ConstantFold>,
 }
 
-/// The unknowns (the first `visible` variables) that are not in `basis`, in variable
-/// order: read off the eigenvectors through their reduced template rows (the linear
-/// read-out of the module documentation), so they are reducible columns too.
+/// The unit of a basis: the greatest common divisor of its monomials, `1` for a quotient
+/// basis (which contains 1), `s` for a basis `s B` shifted by a monomial `s` that is
+/// non-zero on every solution (saturation inside the template, `search/saturated.rs`).
+/// The eigenvector entry of the unit is the one every unknown is read relative to: with
+/// `v ∝ (s b_k)(x)`, `v[s x_i] / v[s] = x_i`.
+pub fn basis_unit(basis: &[Monomial]) -> Option<Monomial> {
+    let first = basis.first()?;
+    Some(basis.iter().fold(first.clone(), |g, b| g.gcd(b)))
+}
+
+/// The unknowns (the first `visible` variables) whose multiple by the basis's unit
+/// ([`basis_unit`]) is not in `basis`, as those multiples, in variable order: read off the
+/// eigenvectors through their reduced template rows (the linear read-out of the module
+/// documentation), so they are reducible columns too.
 pub fn unknowns_outside_basis(basis: &[Monomial], visible: usize) -> Vec<Monomial> {
-    let Some(nvars) = basis.first().map(Monomial::nvars) else {
+    let Some(unit) = basis_unit(basis) else {
         return Vec::new();
     };
-    (0..visible.min(nvars))
-        .map(|v| Monomial::var(nvars, v))
+    (0..visible.min(unit.nvars()))
+        .map(|v| Monomial::var(unit.nvars(), v).mul(&unit))
         .filter(|m| !basis.contains(m))
         .collect()
 }
@@ -172,6 +183,10 @@ impl EliminationTemplate {
     /// The unknowns read off their reduced rows ([`unknowns_outside_basis`]).
     pub fn linear_readouts(&self) -> Vec<Monomial> {
         unknowns_outside_basis(&self.basis, self.visible_vars())
+    }
+    /// The basis's unit ([`basis_unit`]): `1`, or the monomial the basis is shifted by.
+    pub fn unit(&self) -> Monomial {
+        basis_unit(&self.basis).unwrap_or_else(|| Monomial::one(self.nvars))
     }
     /// Number of variables read off the eigenvectors (all but the hidden ones).
     pub fn visible_vars(&self) -> usize {

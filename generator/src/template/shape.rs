@@ -168,7 +168,7 @@ impl EliminationTemplate {
                 return bad(format!("column {} appears twice", show(m)));
             }
         }
-        if !self.basis.contains(&Monomial::one(self.nvars)) {
+        if !self.basis.contains(&self.unit()) {
             return Err(ShapeError::BasisLacks("1".into()));
         }
         let mut needed = BTreeSet::new();

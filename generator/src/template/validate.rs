@@ -32,7 +32,7 @@ pub struct ValidationReport {
 /// eigenvectors. `names` renders the unknowns in the message (template variables in order).
 pub fn check_readoff(t: &EliminationTemplate, names: &[String]) -> Result<(), TemplateError> {
     let mut missing = Vec::new();
-    if !t.basis.contains(&Monomial::one(t.nvars)) {
+    if !t.basis.contains(&t.unit()) {
         missing.push("1".to_string());
     }
     let reducible = t

@@ -1546,9 +1546,15 @@ pub fn solve_staged<S: mingen_runtime::Stages>(
         &[(19, 17), (8, 1), (15, 10)],
         &[(19, 18), (8, 2), (14, 11), (15, 12)],
     ];
-    for (_, v) in pairs.iter() {
+    for (lambda, v) in pairs.iter() {
         let mut u = [0.0f64; 6];
-        if !mingen_runtime::read_unknowns(v.as_slice(), 19, &READOUT, &mut u) {
+        if !mingen_runtime::read_unknowns_with_eigenvalue(
+            v.as_slice(),
+            19,
+            &READOUT,
+            Some((3, *lambda)),
+            &mut u,
+        ) {
             continue;
         }
         let [u0, u1, u2, u3, u4, u5] = u;

@@ -1123,9 +1123,15 @@ pub fn solve_staged<S: mingen_runtime::Stages>(
         &[(9, 7), (6, 1), (7, 2), (8, 4)],
         &[(9, 8), (6, 3), (7, 4), (8, 5)],
     ];
-    for (_, v) in pairs.iter() {
+    for (lambda, v) in pairs.iter() {
         let mut u = [0.0f64; 3];
-        if !mingen_runtime::read_unknowns(v.as_slice(), 9, &READOUT, &mut u) {
+        if !mingen_runtime::read_unknowns_with_eigenvalue(
+            v.as_slice(),
+            9,
+            &READOUT,
+            Some((0, *lambda)),
+            &mut u,
+        ) {
             continue;
         }
         let [u0, u1, u2] = u;

@@ -1069,9 +1069,15 @@ pub fn solve_staged<S: mingen_runtime::Stages>(
         &[(11, 9), (7, 3)],
         &[(11, 10), (6, 4), (7, 5)],
     ];
-    for (_, v) in pairs.iter() {
+    for (lambda, v) in pairs.iter() {
         let mut u = [0.0f64; 5];
-        if !mingen_runtime::read_unknowns(v.as_slice(), 11, &READOUT, &mut u) {
+        if !mingen_runtime::read_unknowns_with_eigenvalue(
+            v.as_slice(),
+            11,
+            &READOUT,
+            Some((2, *lambda)),
+            &mut u,
+        ) {
             continue;
         }
         let [u0, u1, u2, u3, u4] = u;

@@ -494,9 +494,15 @@ pub fn solve_staged<S: mingen_runtime::Stages>(
         &[(5, 3), (1, 0), (3, 1), (4, 2)],
         &[(5, 4), (3, 2)],
     ];
-    for (_, v) in pairs.iter() {
+    for (lambda, v) in pairs.iter() {
         let mut u = [0.0f64; 2];
-        if !mingen_runtime::read_unknowns(v.as_slice(), 5, &READOUT, &mut u) {
+        if !mingen_runtime::read_unknowns_with_eigenvalue(
+            v.as_slice(),
+            5,
+            &READOUT,
+            Some((0, *lambda)),
+            &mut u,
+        ) {
             continue;
         }
         let [u0, u1] = u;

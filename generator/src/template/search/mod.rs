@@ -10,6 +10,7 @@
 //! [`crate::pipeline::find_template`] runs it between the analysis and the validation.
 
 mod orders;
+mod saturated;
 
 use super::build::{build_template, BuiltTemplate, DegreeSearch};
 use super::candidates::start_degree;
@@ -176,7 +177,22 @@ pub(crate) fn best_template_within(
         );
         all
     };
+    // A monomial `nonzero`: the saturation inside the template (`saturated.rs`), first,
+    // while the budget is whole.
+    let saturated =
+        saturated::saturated_templates(eqs, Some(constants), basis, gb, opts, deadline, &first);
+    let mut finalists = Vec::new();
+    if let (Some(b), Some(sat)) = (
+        choose(&saturated, opts),
+        saturated::monomial_saturation(eqs, opts.hidden_vars),
+    ) {
+        let written = &eqs[..sat.equations];
+        let mut b = refine(written, Some(constants), b, visible, opts, deadline);
+        fold_constant_rows(&mut b.template, constants);
+        finalists.push(b);
+    }
     let mut all = search_all(eqs, Some(constants));
+    merge_per_action(&mut all, saturated);
     let mut reduced_all: PerAction = Vec::new();
     if let Some((red, reduced)) = &reduction {
         reduced_all = search_all(reduced, None);
@@ -188,8 +204,7 @@ pub(crate) fn best_template_within(
         }
     }
     // The best of each equation set is refined, then the smaller kept (ties: the
-    // equations as given): refinement can reorder them.
-    let mut finalists = Vec::new();
+    // saturated template, then the equations as given): refinement can reorder them.
     if let Some(b) = choose(&all, opts) {
         // The equations as given may have rows to fold (`fold.rs`): every template was
         // compared by its area after the fold, counted in Z_p; the chosen one is folded.

@@ -1,0 +1,308 @@
+//! Saturation by a monomial inside the template.
+//!
+//! A `nonzero s` whose expression is a monomial (`nonzero x*y`, `nonzero w`; the divisions
+//! of a Laurent equation) asks for the solutions of the saturation `I : s^∞`. Planning
+//! states it with a hidden unknown `u` and `u s - 1 = 0`, which the template must then
+//! carry as a variable. Here the template is built without it, in the declared unknowns
+//! only: for a basis `B` of `C[x] / (I : s^∞)` and the reducible monomials `R` of the
+//! action, the template reduces the shifted monomials `s^k R` onto `s^k B` with multiples
+//! of the equations as written. A relation `s^k (r - sum_j c_j b_j) ∈ I` is
+//! `r - sum_j c_j b_j ∈ I : s^∞`, so the action matrix is the one of the saturated
+//! quotient, as in the saturated templates of Larsson, Åström and Oskarsson (ICCV 2017)
+//! for a monomial, or the Laurent templates of Martyushev et al. (arXiv 2307.00320) moved
+//! to polynomials by a common monomial factor. The template's basis is `s^k B`, whose
+//! unit ([`crate::template::basis_unit`]) is `s^k`: the solver reads every unknown
+//! relative to that entry of the eigenvector.
+//!
+//! `B` must be free of the hidden unknowns: the standard monomials of an order in which
+//! `u` is heavier than every monomial of its normal form (then `u` is a leading
+//! monomial, and the standard monomials of `I + (u s - 1)` are those of `I : s^∞`).
+//! Weighted orders with the hidden unknowns' weight doubled from 2 are tried until one
+//! gives such a basis.
+
+use super::{with_fold_count, Constants, PerAction};
+use crate::algebra::{Fp, Monomial, Poly};
+use crate::budget::Deadline;
+use crate::groebner::{groebner_with, weights_fit, GroebnerBasis, GroebnerOptions};
+use crate::quotient::standard_monomials;
+use crate::template::build::{build_template, BuiltTemplate, DegreeSearch};
+use crate::template::candidates::start_degree;
+use crate::template::linalg::is_squarefree;
+use crate::template::validate::nf_action_charpoly;
+use crate::template::{Action, TemplateError, TemplateOptions};
+
+/// The largest power `k` of the shift `s^k` tried.
+pub(crate) const MAX_SHIFT_POWER: u16 = 3;
+
+/// The share of the template search's budget the saturated templates may take (the
+/// search with the hidden unknowns has the rest).
+pub(crate) const SATURATED_BUDGET_SHARE: f64 = 0.5;
+
+/// The largest weight of the hidden unknowns tried for a basis free of them.
+const MAX_HIDDEN_WEIGHT: u32 = 64;
+
+/// The monomial saturation of a system, where every hidden equation (those with a hidden
+/// unknown, the last ones) is `c u s + d` for one hidden unknown `u`, a monomial `s` in the
+/// visible unknowns and non-zero numbers `c`, `d`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct MonomialSaturation {
+    /// How many equations come before the hidden ones.
+    pub(crate) equations: usize,
+    /// The product of the saturated monomials `s`.
+    pub(crate) shift: Monomial,
+}
+
+/// The monomial saturation of `eqs` with `hidden` hidden unknowns (the last variables),
+/// `None` if there is none or some hidden equation is not of that form.
+pub(crate) fn monomial_saturation<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    hidden: usize,
+) -> Option<MonomialSaturation> {
+    let nvars = eqs.first()?.nvars();
+    if hidden == 0 || hidden > nvars {
+        return None;
+    }
+    let visible = nvars - hidden;
+    let has_hidden = |f: &Poly<Fp<P>>| {
+        f.terms()
+            .any(|(m, _)| m.0[visible..].iter().any(|&e| e > 0))
+    };
+    let equations = eqs.iter().position(has_hidden)?;
+    if eqs[equations..].len() != hidden || !eqs[equations..].iter().all(has_hidden) {
+        return None;
+    }
+    let mut shift = Monomial::one(nvars);
+    for f in &eqs[equations..] {
+        let terms: Vec<&Monomial> = f.terms().map(|(m, _)| m).collect();
+        let [a, b] = terms[..] else {
+            return None;
+        };
+        let (product, constant) = if a.is_one() { (b, a) } else { (a, b) };
+        let hidden_part = &product.0[visible..];
+        let single_hidden = hidden_part.iter().filter(|&&e| e == 1).count() == 1
+            && hidden_part.iter().all(|&e| e <= 1);
+        if !constant.is_one() || !single_hidden {
+            return None;
+        }
+        let mut s = product.clone();
+        s.0[visible..].iter_mut().for_each(|e| *e = 0);
+        if s.is_one() {
+            return None;
+        }
+        shift = shift.mul(&s);
+    }
+    Some(MonomialSaturation { equations, shift })
+}
+
+/// A basis of the saturated quotient free of the hidden unknowns: `basis` itself if it
+/// is, else the standard monomials of the first weighted order (weight 1 on the visible
+/// unknowns, `w` on the hidden ones, `w` doubled from 2) that gives one, in descending
+/// grevlex order. `None` if none does within [`MAX_HIDDEN_WEIGHT`] or the budget.
+fn basis_without_hidden<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    basis: &[Monomial],
+    hidden: usize,
+    deadline: &Deadline,
+) -> Option<(Vec<Monomial>, Vec<u32>)> {
+    let nvars = basis.first()?.nvars();
+    let visible = nvars - hidden;
+    let free = |b: &[Monomial]| b.iter().all(|m| m.0[visible..].iter().all(|&e| e == 0));
+    if free(basis) {
+        return Some((basis.to_vec(), Vec::new()));
+    }
+    let mut w = 2;
+    while w <= MAX_HIDDEN_WEIGHT {
+        let weights: Vec<u32> = (0..nvars)
+            .map(|v| if v < visible { 1 } else { w })
+            .collect();
+        if !weights_fit(&weights, nvars) || deadline.check_time().is_err() {
+            return None;
+        }
+        let gopts = GroebnerOptions {
+            deadline: Some(*deadline),
+            weights: weights.clone(),
+            ..GroebnerOptions::default()
+        };
+        let b = groebner_with(nvars, eqs, &gopts)
+            .ok()
+            .and_then(|gb| standard_monomials(&gb).ok())?;
+        if b.len() == basis.len() && free(&b) {
+            return Some((super::sorted(b), weights));
+        }
+        w *= 2;
+    }
+    None
+}
+
+/// The templates of `actions` with the saturation built in (see the module
+/// documentation), each action's smallest over the shifts `s^k`, `k` from 1 to
+/// [`MAX_SHIFT_POWER`], within `opts.max_extra_degree` degrees of its start; where none
+/// reduces there, the degree is raised for every action with the shift `s` until one
+/// does, within [`SATURATED_BUDGET_SHARE`] of the budget. Empty where the system has no
+/// monomial saturation or no basis free of the hidden unknowns is found. `basis` and
+/// `gb`: the analysis's, for the actions' distinct eigenvalues (the saturated quotient's
+/// are the same).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn saturated_templates<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    constants: Constants<'_>,
+    basis: &[Monomial],
+    gb: &GroebnerBasis<P>,
+    opts: &TemplateOptions,
+    deadline: &Deadline,
+    actions: &[Action],
+) -> PerAction {
+    let Some(sat) = monomial_saturation(eqs, opts.hidden_vars) else {
+        return Vec::new();
+    };
+    let deadline = &deadline.portion(SATURATED_BUDGET_SHARE);
+    let Some((base, weights)) = basis_without_hidden(eqs, basis, opts.hidden_vars, deadline) else {
+        return Vec::new();
+    };
+    let written = &eqs[..sat.equations];
+    let nvars = sat.shift.nvars();
+    let visible = nvars - opts.hidden_vars;
+    let order = if weights.is_empty() {
+        "grevlex".to_string()
+    } else {
+        format!("weighted order, weights {weights:?}")
+    };
+    let shifted = |k: u16| {
+        let shift = (0..k).fold(Monomial::one(nvars), |m, _| m.mul(&sat.shift));
+        let label = format!(
+            "standard monomials ({order}) of the saturation, shifted by {} (saturated inside the template)",
+            shift.display_with(&opts.var_names)
+        );
+        let b: Vec<Monomial> = base.iter().map(|b| b.mul(&shift)).collect();
+        (b, label)
+    };
+    let build = |basis: &[Monomial], label: &str, action: &Action, degrees, distinct| {
+        let search = DegreeSearch {
+            degrees,
+            basis_selection: false,
+            deadline: Some(deadline),
+            exclude: false,
+            weights: &[],
+            max_pool: None,
+        };
+        let r = build_template(written, basis, label, action, &search, distinct, opts);
+        with_fold_count(r, constants)
+    };
+    let distinct: Vec<bool> = actions
+        .iter()
+        .map(|a| {
+            nf_action_charpoly::<P>(gb, basis, a, Some(deadline))
+                .is_ok_and(|c| is_squarefree::<P>(&c))
+        })
+        .collect();
+    let mut all: PerAction = Vec::new();
+    for (action, &distinct) in actions.iter().zip(&distinct) {
+        let mut best: Option<Result<BuiltTemplate, TemplateError>> = None;
+        for k in 1..=MAX_SHIFT_POWER {
+            let (b, label) = shifted(k);
+            let start = start_degree(written, &b, action, visible, &[]);
+            let r = build(
+                &b,
+                &label,
+                action,
+                start..=start + opts.max_extra_degree,
+                distinct,
+            );
+            let better = match (&r, &best) {
+                (Ok(new), Some(Ok(old))) => super::area(new) < super::area(old),
+                (Ok(_), _) | (Err(_), None) => true,
+                (Err(_), Some(_)) => false,
+            };
+            if better {
+                best = Some(r);
+            }
+            if deadline.check_time().is_err() {
+                break;
+            }
+        }
+        if let Some(r) = best {
+            all.push((action.clone(), r));
+        }
+    }
+    // No action reduces within its window: raise the degree, shift `s`, all actions.
+    let raisable = |r: &Result<BuiltTemplate, TemplateError>| {
+        matches!(
+            r,
+            Err(TemplateError::NotReducible {
+                exhausted: None,
+                ..
+            })
+        )
+    };
+    if all.is_empty() || !all.iter().all(|(_, r)| raisable(r)) {
+        return all;
+    }
+    let (b, label) = shifted(1);
+    let starts: Vec<u32> = actions
+        .iter()
+        .map(|a| start_degree(written, &b, a, visible, &[]) + opts.max_extra_degree + 1)
+        .collect();
+    let first = starts.iter().copied().min().unwrap_or(0);
+    for d in first.. {
+        let mut any = false;
+        for (k, action) in actions.iter().enumerate() {
+            if d < starts[k] || !raisable(&all[k].1) {
+                continue;
+            }
+            let r = build(&b, &label, action, d..=d, distinct[k]);
+            any |= r.is_ok();
+            let stop = r
+                .as_ref()
+                .err()
+                .and_then(TemplateError::exhausted)
+                .is_some();
+            all[k].1 = r;
+            if stop {
+                return all;
+            }
+        }
+        if any || !all.iter().any(|(_, r)| raisable(r)) {
+            return all;
+        }
+    }
+    all
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::P1;
+
+    fn poly(terms: &[(&[u16], u32)]) -> Poly<Fp<P1>> {
+        Poly::from_terms(
+            terms[0].0.len(),
+            terms
+                .iter()
+                .map(|(e, c)| (Monomial(e.to_vec()), Fp::<P1>::new(*c as i64))),
+        )
+    }
+
+    #[test]
+    fn a_monomial_nonzero_is_found_and_a_polynomial_one_is_not() {
+        // x^2 + y - 3, x y - 2, u x y - 1 (nonzero x*y).
+        let f = poly(&[(&[2, 0, 0], 1), (&[0, 1, 0], 1), (&[0, 0, 0], P1 - 3)]);
+        let g = poly(&[(&[1, 1, 0], 1), (&[0, 0, 0], P1 - 2)]);
+        let sat = poly(&[(&[1, 1, 1], 1), (&[0, 0, 0], P1 - 1)]);
+        let found = monomial_saturation(&[f.clone(), g.clone(), sat], 1);
+        assert_eq!(
+            found,
+            Some(MonomialSaturation {
+                equations: 2,
+                shift: Monomial(vec![1, 1, 0]),
+            })
+        );
+        // u (x + y) - 1 (nonzero x + y) is not a monomial saturation.
+        let poly_sat = poly(&[(&[1, 0, 1], 1), (&[0, 1, 1], 1), (&[0, 0, 0], P1 - 1)]);
+        assert_eq!(
+            monomial_saturation(&[f.clone(), g.clone(), poly_sat], 1),
+            None
+        );
+        // No hidden unknown, nothing to saturate.
+        assert_eq!(monomial_saturation(&[f, g], 0), None);
+    }
+}

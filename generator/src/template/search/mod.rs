@@ -92,6 +92,20 @@ pub(crate) fn best_template_within(
         ActionChoice::Unknowns(vs) => vs.iter().map(|&v| Action::var(nvars, v)).collect(),
         ActionChoice::Random => random(),
     };
+    // A monomial `nonzero`: the saturation inside the template (`saturated.rs`), in the
+    // unknowns as declared. Where it gives a template, the search with the hidden unknown
+    // (one variable more in every pool and basis) is not run.
+    let saturated =
+        saturated::saturated_templates(eqs, Some(constants), basis, gb, opts, deadline, &first);
+    if let (Some(b), Some(sat)) = (
+        choose(&saturated, opts),
+        saturated::monomial_saturation(eqs, opts.hidden_vars),
+    ) {
+        let written = &eqs[..sat.equations];
+        let mut b = refine(written, Some(constants), b, visible, opts, deadline);
+        fold_constant_rows(&mut b.template, constants);
+        return Ok((b, saturated));
+    }
     // The equations as given, then (when it changes their monomials) their row reduction
     // on the instance's data: the same ideal, so the same bases and Gröbner basis.
     let reduction = opts
@@ -177,22 +191,7 @@ pub(crate) fn best_template_within(
         );
         all
     };
-    // A monomial `nonzero`: the saturation inside the template (`saturated.rs`), first,
-    // while the budget is whole.
-    let saturated =
-        saturated::saturated_templates(eqs, Some(constants), basis, gb, opts, deadline, &first);
-    let mut finalists = Vec::new();
-    if let (Some(b), Some(sat)) = (
-        choose(&saturated, opts),
-        saturated::monomial_saturation(eqs, opts.hidden_vars),
-    ) {
-        let written = &eqs[..sat.equations];
-        let mut b = refine(written, Some(constants), b, visible, opts, deadline);
-        fold_constant_rows(&mut b.template, constants);
-        finalists.push(b);
-    }
     let mut all = search_all(eqs, Some(constants));
-    merge_per_action(&mut all, saturated);
     let mut reduced_all: PerAction = Vec::new();
     if let Some((red, reduced)) = &reduction {
         reduced_all = search_all(reduced, None);
@@ -204,7 +203,8 @@ pub(crate) fn best_template_within(
         }
     }
     // The best of each equation set is refined, then the smaller kept (ties: the
-    // saturated template, then the equations as given): refinement can reorder them.
+    // equations as given): refinement can reorder them.
+    let mut finalists = Vec::new();
     if let Some(b) = choose(&all, opts) {
         // The equations as given may have rows to fold (`fold.rs`): every template was
         // compared by its area after the fold, counted in Z_p; the chosen one is folded.

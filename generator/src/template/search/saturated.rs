@@ -34,8 +34,8 @@ use crate::template::{Action, TemplateError, TemplateOptions};
 /// The largest power `k` of the shift `s^k` tried.
 pub(crate) const MAX_SHIFT_POWER: u16 = 3;
 
-/// The share of the template search's budget the saturated templates may take (the
-/// search with the hidden unknowns has the rest).
+/// The share of the template search's budget the saturated templates may take (where
+/// they give none, the search with the hidden unknowns has the rest).
 pub(crate) const SATURATED_BUDGET_SHARE: f64 = 0.5;
 
 /// The largest weight of the hidden unknowns tried for a basis free of them.

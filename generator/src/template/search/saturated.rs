@@ -29,6 +29,7 @@ use crate::template::build::{build_template, BuiltTemplate, DegreeSearch};
 use crate::template::candidates::start_degree;
 use crate::template::linalg::is_squarefree;
 use crate::template::validate::nf_action_charpoly;
+use crate::template::weight_sample::ones_and_twos;
 use crate::template::{Action, TemplateError, TemplateOptions};
 
 /// The largest power `k` of the shift `s^k` tried.
@@ -37,6 +38,9 @@ pub(crate) const MAX_SHIFT_POWER: u16 = 3;
 /// The share of the template search's budget the saturated templates may take (where
 /// they give none, the search with the hidden unknowns has the rest).
 pub(crate) const SATURATED_BUDGET_SHARE: f64 = 0.5;
+
+/// The most weight vectors of 1s and 2s tried for other bases of the saturated quotient.
+const MAX_ALTERNATIVE_BASES: usize = 30;
 
 /// The largest weight of the hidden unknowns tried for a basis free of them.
 const MAX_HIDDEN_WEIGHT: u32 = 64;
@@ -94,26 +98,52 @@ pub(crate) fn monomial_saturation<const P: u32>(
     Some(MonomialSaturation { equations, shift })
 }
 
-/// A basis of the saturated quotient free of the hidden unknowns: `basis` itself if it
-/// is, else the standard monomials of the first weighted order (weight 1 on the visible
-/// unknowns, `w` on the hidden ones, `w` doubled from 2) that gives one, in descending
-/// grevlex order. `None` if none does within [`MAX_HIDDEN_WEIGHT`] or the budget.
+/// The shifts tried, in increasing degree: any monomial `m` is sound (a template that
+/// reduces `m R` onto `m B` proves `m (r - sum c_j b_j) ∈ I`, so the relation holds in
+/// `I : m^∞ ⊆ I : s^∞` for `m` dividing a power of `s`, and `B` is a basis of the
+/// latter), so smaller ones than `s` are tried too: `1`, each variable of `s` to its
+/// power in `s`, then `s^k` for `k` up to [`MAX_SHIFT_POWER`].
+fn shifts(s: &Monomial) -> Vec<Monomial> {
+    let n = s.nvars();
+    let mut out = vec![Monomial::one(n)];
+    for (v, &e) in s.0.iter().enumerate() {
+        if e > 0 {
+            let mut m = Monomial::one(n);
+            m.0[v] = e;
+            out.push(m);
+        }
+    }
+    let mut power = Monomial::one(n);
+    for _ in 0..MAX_SHIFT_POWER {
+        power = power.mul(s);
+        out.push(power.clone());
+    }
+    out.dedup();
+    out
+}
+
+/// A basis of the saturated quotient free of the hidden unknowns, in descending grevlex
+/// order, with the weights of its order: for `visible_weights` all 1, `basis` itself if it
+/// is free; else the standard monomials of the first weighted order (`visible_weights` on
+/// the visible unknowns, `w` on the hidden ones, `w` doubled from twice the largest
+/// visible weight) that gives one. `None` if none does within [`MAX_HIDDEN_WEIGHT`] or the
+/// budget.
 fn basis_without_hidden<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     basis: &[Monomial],
-    hidden: usize,
+    visible_weights: &[u32],
     deadline: &Deadline,
 ) -> Option<(Vec<Monomial>, Vec<u32>)> {
     let nvars = basis.first()?.nvars();
-    let visible = nvars - hidden;
+    let visible = visible_weights.len().min(nvars);
     let free = |b: &[Monomial]| b.iter().all(|m| m.0[visible..].iter().all(|&e| e == 0));
-    if free(basis) {
+    if free(basis) && visible_weights.iter().all(|&w| w == 1) {
         return Some((basis.to_vec(), Vec::new()));
     }
-    let mut w = 2;
+    let mut w = 2 * visible_weights.iter().copied().max().unwrap_or(1);
     while w <= MAX_HIDDEN_WEIGHT {
         let weights: Vec<u32> = (0..nvars)
-            .map(|v| if v < visible { 1 } else { w })
+            .map(|v| visible_weights.get(v).copied().unwrap_or(w))
             .collect();
         if !weights_fit(&weights, nvars) || deadline.check_time().is_err() {
             return None;
@@ -135,8 +165,7 @@ fn basis_without_hidden<const P: u32>(
 }
 
 /// The templates of `actions` with the saturation built in (see the module
-/// documentation), each action's smallest over the shifts `s^k`, `k` from 1 to
-/// [`MAX_SHIFT_POWER`], within `opts.max_extra_degree` degrees of its start; where none
+/// documentation), each action's smallest over the shifts of [`shifts`], within `opts.max_extra_degree` degrees of its start; where none
 /// reduces there, the degree is raised for every action with the shift `s` until one
 /// does, within [`SATURATED_BUDGET_SHARE`] of the budget. Empty where the system has no
 /// monomial saturation or no basis free of the hidden unknowns is found. `basis` and
@@ -156,26 +185,30 @@ pub(super) fn saturated_templates<const P: u32>(
         return Vec::new();
     };
     let deadline = &deadline.portion(SATURATED_BUDGET_SHARE);
-    let Some((base, weights)) = basis_without_hidden(eqs, basis, opts.hidden_vars, deadline) else {
+    let nvars = sat.shift.nvars();
+    let visible = nvars - opts.hidden_vars;
+    let Some((base, weights)) = basis_without_hidden(eqs, basis, &vec![1; visible], deadline)
+    else {
         return Vec::new();
     };
     let written = &eqs[..sat.equations];
-    let nvars = sat.shift.nvars();
-    let visible = nvars - opts.hidden_vars;
-    let order = if weights.is_empty() {
-        "grevlex".to_string()
-    } else {
-        format!("weighted order, weights {weights:?}")
+    let order_of = |weights: &[u32]| {
+        if weights.is_empty() {
+            "grevlex".to_string()
+        } else {
+            format!("weighted order, weights {weights:?}")
+        }
     };
-    let shifted = |k: u16| {
-        let shift = (0..k).fold(Monomial::one(nvars), |m, _| m.mul(&sat.shift));
+    let order = order_of(&weights);
+    let shifted = |shift: &Monomial| {
         let label = format!(
             "standard monomials ({order}) of the saturation, shifted by {} (saturated inside the template)",
             shift.display_with(&opts.var_names)
         );
-        let b: Vec<Monomial> = base.iter().map(|b| b.mul(&shift)).collect();
+        let b: Vec<Monomial> = base.iter().map(|b| b.mul(shift)).collect();
         (b, label)
     };
+    let shifts = shifts(&sat.shift);
     let build = |basis: &[Monomial], label: &str, action: &Action, degrees, distinct| {
         let search = DegreeSearch {
             degrees,
@@ -198,8 +231,8 @@ pub(super) fn saturated_templates<const P: u32>(
     let mut all: PerAction = Vec::new();
     for (action, &distinct) in actions.iter().zip(&distinct) {
         let mut best: Option<Result<BuiltTemplate, TemplateError>> = None;
-        for k in 1..=MAX_SHIFT_POWER {
-            let (b, label) = shifted(k);
+        for shift in &shifts {
+            let (b, label) = shifted(shift);
             let start = start_degree(written, &b, action, visible, &[]);
             let r = build(
                 &b,
@@ -224,6 +257,48 @@ pub(super) fn saturated_templates<const P: u32>(
             all.push((action.clone(), r));
         }
     }
+    // Other bases (weights 1 and 2 on the visible unknowns), for the best action and
+    // shift only.
+    let best = all
+        .iter()
+        .enumerate()
+        .filter_map(|(k, (_, r))| r.as_ref().ok().map(|b| (k, b)))
+        .min_by_key(|(k, b)| (super::area(b), *k))
+        .map(|(k, b)| (k, b.template.unit()));
+    if let Some((k, shift)) = best {
+        let mut seen = vec![base.clone()];
+        for w in ones_and_twos(visible, MAX_ALTERNATIVE_BASES) {
+            if deadline.check_time().is_err() {
+                break;
+            }
+            let Some((other, weights)) = basis_without_hidden(eqs, basis, &w, deadline) else {
+                continue;
+            };
+            if seen.contains(&other) {
+                continue;
+            }
+            seen.push(other.clone());
+            let b: Vec<Monomial> = other.iter().map(|m| m.mul(&shift)).collect();
+            let label = format!(
+                "standard monomials ({}) of the saturation, shifted by {} (saturated inside the template)",
+                order_of(&weights),
+                shift.display_with(&opts.var_names)
+            );
+            let start = start_degree(written, &b, &actions[k], visible, &[]);
+            let r = build(
+                &b,
+                &label,
+                &actions[k],
+                start..=start + opts.max_extra_degree,
+                distinct[k],
+            );
+            if let (Ok(new), Ok(old)) = (&r, &all[k].1) {
+                if super::area(new) < super::area(old) {
+                    all[k].1 = r;
+                }
+            }
+        }
+    }
     // No action reduces within its window: raise the degree, shift `s`, all actions.
     let raisable = |r: &Result<BuiltTemplate, TemplateError>| {
         matches!(
@@ -237,7 +312,7 @@ pub(super) fn saturated_templates<const P: u32>(
     if all.is_empty() || !all.iter().all(|(_, r)| raisable(r)) {
         return all;
     }
-    let (b, label) = shifted(1);
+    let (b, label) = shifted(&sat.shift);
     let starts: Vec<u32> = actions
         .iter()
         .map(|a| start_degree(written, &b, a, visible, &[]) + opts.max_extra_degree + 1)

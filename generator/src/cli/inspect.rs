@@ -185,7 +185,15 @@ fn print_plan(out: &mut String, plan: &SolverPlan) {
             .iter()
             .filter(|d| d.iter().any(|&k| k > 0))
             .count();
-        let saturation = if plan.problem.is_saturated() {
+        let t = &plan.generated.built.template;
+        let visible = t.visible_vars();
+        let hidden_in_template = t
+            .columns
+            .iter()
+            .any(|m| m.0[visible..].iter().any(|&e| e > 0));
+        let saturation = if plan.problem.is_saturated() && !hidden_in_template {
+            "kept, inside the template (the basis shifted by the monomial; no hidden unknown in it)"
+        } else if plan.problem.is_saturated() {
             "kept (a hidden unknown per nonzero)"
         } else {
             "dropped (the divided system has the same solutions without it)"

@@ -5,14 +5,15 @@
 //! states it with a hidden unknown `u` and `u s - 1 = 0`, which the template must then
 //! carry as a variable. Here the template is built without it, in the declared unknowns
 //! only: for a basis `B` of `C[x] / (I : s^∞)` and the reducible monomials `R` of the
-//! action, the template reduces the shifted monomials `s^k R` onto `s^k B` with multiples
-//! of the equations as written. A relation `s^k (r - sum_j c_j b_j) ∈ I` is
-//! `r - sum_j c_j b_j ∈ I : s^∞`, so the action matrix is the one of the saturated
-//! quotient, as in the saturated templates of Larsson, Åström and Oskarsson (ICCV 2017)
-//! for a monomial, or the Laurent templates of Martyushev et al. (arXiv 2307.00320) moved
-//! to polynomials by a common monomial factor. The template's basis is `s^k B`, whose
-//! unit ([`crate::template::basis_unit`]) is `s^k`: the solver reads every unknown
-//! relative to that entry of the eigenvector.
+//! action, the template reduces the shifted monomials `m R` onto `m B` with multiples of
+//! the equations as written, for a monomial `m` dividing a power of `s` ([`shifts`]). A
+//! relation `m (r - sum_j c_j b_j) ∈ I` puts `r - sum_j c_j b_j` in `I : m^∞ ⊆ I : s^∞`,
+//! so the action matrix is the one of the saturated quotient, as in the saturated
+//! templates of Larsson, Åström and Oskarsson (ICCV 2017) for a monomial, or the Laurent
+//! templates of Martyushev et al. (arXiv 2307.00320) moved to polynomials by a common
+//! monomial factor. The template's basis is `m B`, whose unit
+//! ([`crate::template::basis_unit`]) is `m`: the solver reads every unknown relative to
+//! that entry of the eigenvector.
 //!
 //! `B` must be free of the hidden unknowns: the standard monomials of an order in which
 //! `u` is heavier than every monomial of its normal form (then `u` is a leading
@@ -209,17 +210,21 @@ pub(super) fn saturated_templates<const P: u32>(
         (b, label)
     };
     let shifts = shifts(&sat.shift);
-    let build = |basis: &[Monomial], label: &str, action: &Action, degrees, distinct| {
-        let search = DegreeSearch {
-            degrees,
-            basis_selection: false,
-            deadline: Some(deadline),
-            exclude: false,
-            weights: &[],
-            max_pool: None,
+    let build_graded =
+        |basis: &[Monomial], label: &str, action: &Action, degrees, distinct, weights: &[u32]| {
+            let search = DegreeSearch {
+                degrees,
+                basis_selection: false,
+                deadline: Some(deadline),
+                exclude: false,
+                weights,
+                max_pool: None,
+            };
+            let r = build_template(written, basis, label, action, &search, distinct, opts);
+            with_fold_count(r, constants)
         };
-        let r = build_template(written, basis, label, action, &search, distinct, opts);
-        with_fold_count(r, constants)
+    let build = |basis: &[Monomial], label: &str, action: &Action, degrees, distinct| {
+        build_graded(basis, label, action, degrees, distinct, &[])
     };
     let distinct: Vec<bool> = actions
         .iter()
@@ -284,17 +289,23 @@ pub(super) fn saturated_templates<const P: u32>(
                 order_of(&weights),
                 shift.display_with(&opts.var_names)
             );
-            let start = start_degree(written, &b, &actions[k], visible, &[]);
-            let r = build(
-                &b,
-                &label,
-                &actions[k],
-                start..=start + opts.max_extra_degree,
-                distinct[k],
-            );
-            if let (Ok(new), Ok(old)) = (&r, &all[k].1) {
-                if super::area(new) < super::area(old) {
-                    all[k].1 = r;
+            // Pools graded by total degree, then by the basis's own weights (its basis and
+            // reducible monomials are low in that grading).
+            for grading in [&[][..], &weights[..]] {
+                let start = start_degree(written, &b, &actions[k], visible, grading);
+                let step = grading.iter().copied().max().unwrap_or(1);
+                let r = build_graded(
+                    &b,
+                    &label,
+                    &actions[k],
+                    start..=start + opts.max_extra_degree * step,
+                    distinct[k],
+                    grading,
+                );
+                if let (Ok(new), Ok(old)) = (&r, &all[k].1) {
+                    if super::area(new) < super::area(old) {
+                        all[k].1 = r;
+                    }
                 }
             }
         }

@@ -97,11 +97,9 @@ pub(crate) fn best_template_within(
     // (one variable more in every pool and basis) is not run.
     let saturated =
         saturated::saturated_templates(eqs, Some(constants), basis, gb, opts, deadline, &first);
-    if let (Some(b), Some(sat)) = (
-        choose(&saturated, opts),
-        saturated::monomial_saturation(eqs, opts.hidden_vars),
-    ) {
-        let written = &eqs[..sat.equations];
+    if let Some((b, written, saturated)) =
+        saturated.and_then(|(all, written)| choose(&all, opts).map(|b| (b, written, all)))
+    {
         let mut b = refine(written, Some(constants), b, visible, opts, deadline);
         fold_constant_rows(&mut b.template, constants);
         return Ok((b, saturated));
@@ -146,10 +144,7 @@ pub(crate) fn best_template_within(
         let mut work = 0u64;
         // An action whose check runs out of budget counts as not distinct: the search
         // after it stops on the same budget.
-        let distinct_of = |a: &Action| {
-            nf_action_charpoly::<P1>(gb, basis, a, Some(deadline))
-                .is_ok_and(|c| is_squarefree::<P1>(&c))
-        };
+        let distinct_of = |a: &Action| distinct_eigenvalues(gb, basis, a, deadline);
         let starts = try_alternative_bases(
             eqs,
             constants,
@@ -301,10 +296,7 @@ fn search_actions<const P: u32>(
     // basis only, as long as some action has distinct eigenvalues.
     let distinct: Vec<bool> = monomials
         .iter()
-        .map(|a| {
-            nf_action_charpoly::<P>(gb, basis, a, Some(deadline))
-                .is_ok_and(|c| is_squarefree::<P>(&c))
-        })
+        .map(|a| distinct_eigenvalues(gb, basis, a, deadline))
         .collect();
     let skip_selection = opts.require_distinct_eigenvalues && distinct.iter().any(|&d| d);
     let starts: Vec<u32> = monomials
@@ -332,20 +324,34 @@ fn search_actions<const P: u32>(
         .collect();
     if opts.adaptive_degree && all.iter().all(|(_, r)| r.is_err()) {
         raise_degree(
-            eqs, constants, basis, monomials, &starts, &distinct, opts, deadline, &mut all,
+            eqs, constants, basis, STANDARD, monomials, &starts, &distinct, opts, deadline,
+            &mut all,
         );
     }
     all
 }
 
+/// Whether `action`'s matrix on the quotient (normal forms of `gb` on `basis`) has
+/// distinct eigenvalues; a check that runs out of `deadline` counts as not distinct.
+fn distinct_eigenvalues<const P: u32>(
+    gb: &GroebnerBasis<P>,
+    basis: &[Monomial],
+    action: &Action,
+    deadline: &Deadline,
+) -> bool {
+    nf_action_charpoly::<P>(gb, basis, action, Some(deadline)).is_ok_and(|c| is_squarefree::<P>(&c))
+}
+
 /// The adaptive part of [`best_template_within`]: candidate degrees beyond every action's
 /// first window, one degree at a time for all actions together, until one action reduces
 /// (then every action that reduces at that degree is kept) or the budget runs out.
+/// `label` describes `basis` in the templates built.
 #[allow(clippy::too_many_arguments)]
 fn raise_degree<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     constants: Constants<'_>,
     basis: &[Monomial],
+    label: &str,
     monomials: &[Action],
     starts: &[u32],
     distinct: &[bool],
@@ -384,7 +390,7 @@ fn raise_degree<const P: u32>(
                 max_pool: None,
             };
             let r = with_fold_count(
-                build_template(eqs, basis, STANDARD, a, &search, distinct[k], opts),
+                build_template(eqs, basis, label, a, &search, distinct[k], opts),
                 constants,
             );
             let stop = matches!(

@@ -26,10 +26,8 @@ use crate::algebra::{Fp, Monomial, Poly};
 use crate::budget::Deadline;
 use crate::groebner::{groebner_with, weights_fit, GroebnerBasis, GroebnerOptions};
 use crate::quotient::standard_monomials;
-use crate::template::build::{build_template, BuiltTemplate, DegreeSearch};
+use crate::template::build::{build_template, BuiltTemplate};
 use crate::template::candidates::start_degree;
-use crate::template::linalg::is_squarefree;
-use crate::template::validate::nf_action_charpoly;
 use crate::template::weight_sample::ones_and_twos;
 use crate::template::{Action, TemplateError, TemplateOptions};
 
@@ -166,42 +164,38 @@ fn basis_without_hidden<const P: u32>(
 }
 
 /// The templates of `actions` with the saturation built in (see the module
-/// documentation), each action's smallest over the shifts of [`shifts`], within `opts.max_extra_degree` degrees of its start; where none
-/// reduces there, the degree is raised for every action with the shift `s` until one
-/// does, within [`SATURATED_BUDGET_SHARE`] of the budget. Empty where the system has no
-/// monomial saturation or no basis free of the hidden unknowns is found. `basis` and
-/// `gb`: the analysis's, for the actions' distinct eigenvalues (the saturated quotient's
-/// are the same).
+/// documentation), each action's smallest over the shifts of [`shifts`], within
+/// `opts.max_extra_degree` degrees of its start; where none reduces there, the degree is
+/// raised for every action with the shift `s` until one does (with
+/// `opts.adaptive_degree`), within [`SATURATED_BUDGET_SHARE`] of the budget. Returned
+/// with the equations as written (the system's without the hidden ones), which the
+/// templates' rows refer to. `None` where the system has no monomial saturation or no
+/// basis free of the hidden unknowns is found. `basis` and `gb`: the analysis's, for the
+/// actions' distinct eigenvalues (the saturated quotient's are the same).
 #[allow(clippy::too_many_arguments)]
-pub(super) fn saturated_templates<const P: u32>(
-    eqs: &[Poly<Fp<P>>],
+pub(super) fn saturated_templates<'a, const P: u32>(
+    eqs: &'a [Poly<Fp<P>>],
     constants: Constants<'_>,
     basis: &[Monomial],
     gb: &GroebnerBasis<P>,
     opts: &TemplateOptions,
     deadline: &Deadline,
     actions: &[Action],
-) -> PerAction {
-    let Some(sat) = monomial_saturation(eqs, opts.hidden_vars) else {
-        return Vec::new();
-    };
+) -> Option<(PerAction, &'a [Poly<Fp<P>>])> {
+    let sat = monomial_saturation(eqs, opts.hidden_vars)?;
     let deadline = &deadline.portion(SATURATED_BUDGET_SHARE);
     let nvars = sat.shift.nvars();
     let visible = nvars - opts.hidden_vars;
-    let Some((base, weights)) = basis_without_hidden(eqs, basis, &vec![1; visible], deadline)
-    else {
-        return Vec::new();
-    };
+    let (base, weights) = basis_without_hidden(eqs, basis, &vec![1; visible], deadline)?;
     let written = &eqs[..sat.equations];
-    let order_of = |weights: &[u32]| {
-        if weights.is_empty() {
+    // A basis of the saturated quotient (of the order with `weights`) times `shift`, and
+    // its description.
+    let shifted = |base: &[Monomial], weights: &[u32], shift: &Monomial| {
+        let order = if weights.is_empty() {
             "grevlex".to_string()
         } else {
             format!("weighted order, weights {weights:?}")
-        }
-    };
-    let order = order_of(&weights);
-    let shifted = |shift: &Monomial| {
+        };
         let label = format!(
             "standard monomials ({order}) of the saturation, shifted by {} (saturated inside the template)",
             shift.display_with(&opts.var_names)
@@ -210,46 +204,27 @@ pub(super) fn saturated_templates<const P: u32>(
         (b, label)
     };
     let shifts = shifts(&sat.shift);
-    let build_graded =
-        |basis: &[Monomial], label: &str, action: &Action, degrees, distinct, weights: &[u32]| {
-            let search = DegreeSearch {
-                degrees,
-                basis_selection: false,
-                deadline: Some(deadline),
-                exclude: false,
-                weights,
-                max_pool: None,
-            };
-            let r = build_template(written, basis, label, action, &search, distinct, opts);
-            with_fold_count(r, constants)
-        };
-    let build = |basis: &[Monomial], label: &str, action: &Action, degrees, distinct| {
-        build_graded(basis, label, action, degrees, distinct, &[])
+    // The template of `action` on the basis `b` within its window of candidate degrees,
+    // pools graded by `grading` (empty: total degree).
+    let build = |b: &[Monomial], label: &str, action: &Action, distinct, grading: &[u32]| {
+        let search = super::degree_window(written, b, action, visible, opts, deadline, grading);
+        let r = build_template(written, b, label, action, &search, distinct, opts);
+        with_fold_count(r, constants)
     };
     let distinct: Vec<bool> = actions
         .iter()
-        .map(|a| {
-            nf_action_charpoly::<P>(gb, basis, a, Some(deadline))
-                .is_ok_and(|c| is_squarefree::<P>(&c))
-        })
+        .map(|a| super::distinct_eigenvalues(gb, basis, a, deadline))
         .collect();
     let mut all: PerAction = Vec::new();
     for (action, &distinct) in actions.iter().zip(&distinct) {
         let mut best: Option<Result<BuiltTemplate, TemplateError>> = None;
         for shift in &shifts {
-            let (b, label) = shifted(shift);
-            let start = start_degree(written, &b, action, visible, &[]);
-            let r = build(
-                &b,
-                &label,
-                action,
-                start..=start + opts.max_extra_degree,
-                distinct,
-            );
+            let (b, label) = shifted(&base, &weights, shift);
+            let r = build(&b, &label, action, distinct, &[]);
             let better = match (&r, &best) {
                 (Ok(new), Some(Ok(old))) => super::area(new) < super::area(old),
-                (Ok(_), _) | (Err(_), None) => true,
-                (Err(_), Some(_)) => false,
+                (_, Some(Ok(_))) => false,
+                _ => r.is_ok() || best.is_none(),
             };
             if better {
                 best = Some(r);
@@ -283,25 +258,11 @@ pub(super) fn saturated_templates<const P: u32>(
                 continue;
             }
             seen.push(other.clone());
-            let b: Vec<Monomial> = other.iter().map(|m| m.mul(&shift)).collect();
-            let label = format!(
-                "standard monomials ({}) of the saturation, shifted by {} (saturated inside the template)",
-                order_of(&weights),
-                shift.display_with(&opts.var_names)
-            );
+            let (b, label) = shifted(&other, &weights, &shift);
             // Pools graded by total degree, then by the basis's own weights (its basis and
             // reducible monomials are low in that grading).
             for grading in [&[][..], &weights[..]] {
-                let start = start_degree(written, &b, &actions[k], visible, grading);
-                let step = grading.iter().copied().max().unwrap_or(1);
-                let r = build_graded(
-                    &b,
-                    &label,
-                    &actions[k],
-                    start..=start + opts.max_extra_degree * step,
-                    distinct[k],
-                    grading,
-                );
+                let r = build(&b, &label, &actions[k], distinct[k], grading);
                 if let (Ok(new), Ok(old)) = (&r, &all[k].1) {
                     if super::area(new) < super::area(old) {
                         all[k].1 = r;
@@ -311,47 +272,17 @@ pub(super) fn saturated_templates<const P: u32>(
         }
     }
     // No action reduces within its window: raise the degree, shift `s`, all actions.
-    let raisable = |r: &Result<BuiltTemplate, TemplateError>| {
-        matches!(
-            r,
-            Err(TemplateError::NotReducible {
-                exhausted: None,
-                ..
-            })
-        )
-    };
-    if all.is_empty() || !all.iter().all(|(_, r)| raisable(r)) {
-        return all;
+    if opts.adaptive_degree && all.iter().all(|(_, r)| r.is_err()) {
+        let (b, label) = shifted(&base, &weights, &sat.shift);
+        let starts: Vec<u32> = actions
+            .iter()
+            .map(|a| start_degree(written, &b, a, visible, &[]))
+            .collect();
+        super::raise_degree(
+            written, constants, &b, &label, actions, &starts, &distinct, opts, deadline, &mut all,
+        );
     }
-    let (b, label) = shifted(&sat.shift);
-    let starts: Vec<u32> = actions
-        .iter()
-        .map(|a| start_degree(written, &b, a, visible, &[]) + opts.max_extra_degree + 1)
-        .collect();
-    let first = starts.iter().copied().min().unwrap_or(0);
-    for d in first.. {
-        let mut any = false;
-        for (k, action) in actions.iter().enumerate() {
-            if d < starts[k] || !raisable(&all[k].1) {
-                continue;
-            }
-            let r = build(&b, &label, action, d..=d, distinct[k]);
-            any |= r.is_ok();
-            let stop = r
-                .as_ref()
-                .err()
-                .and_then(TemplateError::exhausted)
-                .is_some();
-            all[k].1 = r;
-            if stop {
-                return all;
-            }
-        }
-        if any || !all.iter().any(|(_, r)| raisable(r)) {
-            return all;
-        }
-    }
-    all
+    Some((all, written))
 }
 
 #[cfg(test)]

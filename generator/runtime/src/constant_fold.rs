@@ -69,10 +69,8 @@ pub fn fold_constant_rows(
                 continue;
             }
             let range = plan.inv_start[p] as usize..plan.inv_start[p + 1] as usize;
-            let (Some(qs), Some(vs)) = (
-                plan.inv_cols.get(range.clone()),
-                plan.inv_vals.get(range),
-            ) else {
+            let (Some(qs), Some(vs)) = (plan.inv_cols.get(range.clone()), plan.inv_vals.get(range))
+            else {
                 return false;
             };
             for (&q, &v) in qs.iter().zip(vs) {

@@ -49,7 +49,7 @@
 //! - [`null_vector3`]: unit null vector of an n x 3 matrix (recovery of eliminated
 //!   unknowns such as a translation direction).
 //! - [`read_unknowns`]: the unknowns read off an eigenvector of the action matrix.
-//! - [`newton_polish`]: Gauss-Newton polishing of a solution on the original equations
+//! - [`newton_polish`] / [`newton_polish_with`]: Gauss-Newton polishing of a solution on the original equations
 //!   (`option newton`); [`worst_relative_residual`] and [`screen_redundant_readout`]: a
 //!   read-out's residual, and whether a read-out of a redundant basis is a solution (its
 //!   action matrix has spurious eigenvalues); [`DistinctSolutions`]: drops a solution that
@@ -99,8 +99,8 @@ pub use equation_reduction::reduce_equations;
 pub use hqr::{real_eigenpairs_hqr, real_eigenpairs_hqr_dyn};
 pub use least_squares::{least_squares_dyn, LeastSquares};
 pub use newton::{
-    newton_polish, screen_redundant_readout, worst_relative_residual, NewtonTerm,
-    AT_ROUNDING_LEVEL, MAX_NEWTON_UNKNOWNS, RESCUED_RESIDUAL, SPURIOUS_RESCUE,
+    newton_polish, newton_polish_with, screen_redundant_readout, worst_relative_residual,
+    NewtonTerm, AT_ROUNDING_LEVEL, MAX_NEWTON_UNKNOWNS, RESCUED_RESIDUAL, SPURIOUS_RESCUE,
     SPURIOUS_RESCUE_STEPS, SPURIOUS_RESIDUAL,
 };
 pub use null::{null_vector3, null_vector3_rows};

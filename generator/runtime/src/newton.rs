@@ -298,45 +298,72 @@ pub fn newton_polish(
 }
 
 /// [`newton_polish`] with working arrays for `M >= x.len()` unknowns.
-#[allow(clippy::needless_range_loop)] // the normal equations' triangular index ranges
 fn polish<const M: usize>(
     x: &mut [f64],
     equations: &[&[NewtonTerm<'_>]],
     coefficients: &[f64],
     steps: usize,
 ) -> usize {
+    gauss_newton::<M>(
+        x,
+        steps,
+        |x| squared_residual::<M>(equations, coefficients, x),
+        |x, h, b| {
+            let mut grad = [0.0; M];
+            let powers = Powers::<M>::new(x);
+            for eq in equations {
+                let Some(f) = value_and_gradient(eq, coefficients, &powers, &mut grad) else {
+                    return false;
+                };
+                add_equation(h, b, f, &grad[..x.len()]);
+            }
+            true
+        },
+    )
+}
+
+/// Adds an equation's value `f` and gradient to the normal equations `h δ = b` (the lower
+/// triangle of `h = Σ g gᵀ`, `b = -Σ f g`).
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // the triangular index range reads clearer
+fn add_equation<const M: usize>(h: &mut [[f64; M]; M], b: &mut [f64; M], f: f64, grad: &[f64]) {
+    for i in 0..grad.len() {
+        b[i] -= f * grad[i];
+        for j in 0..=i {
+            h[i][j] += grad[i] * grad[j];
+        }
+    }
+}
+
+/// The steps both forms take from `x` (`x.len() <= M` unknowns): `squared(x)` is the sum
+/// of squares and whether every equation is at rounding level, `normal_equations(x, h, b)`
+/// adds every equation ([`add_equation`]; `false`: stop).
+#[inline(always)]
+fn gauss_newton<const M: usize>(
+    x: &mut [f64],
+    steps: usize,
+    squared: impl Fn(&[f64]) -> Option<(f64, bool)>,
+    normal_equations: impl Fn(&[f64], &mut [[f64; M]; M], &mut [f64; M]) -> bool,
+) -> usize {
     let n = x.len();
-    let Some((mut cost, mut converged)) = squared_residual::<M>(equations, coefficients, x) else {
+    let Some((mut cost, mut converged)) = squared(x) else {
         return 0;
     };
     let mut taken = 0;
-    let mut grad = [0.0; M];
     for _ in 0..steps {
         if cost == 0.0 || converged {
             break;
         }
         let mut h = [[0.0; M]; M];
         let mut b = [0.0; M];
-        let powers = Powers::<M>::new(x);
-        for eq in equations {
-            let Some(f) = value_and_gradient(eq, coefficients, &powers, &mut grad) else {
-                return taken;
-            };
-            for i in 0..n {
-                b[i] -= f * grad[i];
-                for j in 0..=i {
-                    h[i][j] += grad[i] * grad[j];
-                }
-            }
-        }
-        if !solve_normal(&mut h, &mut b, n) {
+        if !normal_equations(x, &mut h, &mut b) || !solve_normal(&mut h, &mut b, n) {
             break;
         }
         let mut next = [0.0; M];
-        for i in 0..n {
-            next[i] = x[i] + b[i];
+        for ((next, x), b) in next.iter_mut().zip(&*x).zip(&b) {
+            *next = x + b;
         }
-        match squared_residual::<M>(equations, coefficients, &next[..n]) {
+        match squared(&next[..n]) {
             Some((c, at_rounding_level)) if c < cost => {
                 x.copy_from_slice(&next[..n]);
                 cost = c;
@@ -347,6 +374,54 @@ fn polish<const M: usize>(
         }
     }
     taken
+}
+
+/// [`newton_polish`] on equations given as code rather than as a term table: the same
+/// steps, acceptance test and stopping rule, and the same bits when the code evaluates the
+/// terms as [`newton_polish`] does (emitted solvers write their equations out so, without
+/// a table to walk per term).
+///
+/// `values(x, f, magnitudes)` writes each equation's value `f_i(x)` and its magnitude
+/// `Σ_terms |c x^e|` ([`AT_ROUNDING_LEVEL`]); `jacobian(x, f, j)` writes the values and
+/// the gradients, `j[i][k] = ∂f_i/∂x_k`. Returns the number of steps taken; none if there
+/// are no unknowns, more than [`MAX_NEWTON_UNKNOWNS`], fewer equations than unknowns, or
+/// a value is not finite. Never panics, never allocates.
+pub fn newton_polish_with<const N: usize, const E: usize>(
+    x: &mut [f64; N],
+    steps: usize,
+    values: impl Fn(&[f64; N], &mut [f64; E], &mut [f64; E]),
+    jacobian: impl Fn(&[f64; N], &mut [f64; E], &mut [[f64; N]; E]),
+) -> usize {
+    if N == 0 || N > MAX_NEWTON_UNKNOWNS || E < N {
+        return 0;
+    }
+    gauss_newton::<N>(
+        x,
+        steps,
+        |x| {
+            let x: &[f64; N] = x.try_into().ok()?;
+            let (mut f, mut magnitude) = ([0.0; E], [0.0; E]);
+            values(x, &mut f, &mut magnitude);
+            let mut sum = 0.0;
+            let mut converged = true;
+            for (f, m) in f.iter().zip(&magnitude) {
+                sum += f * f;
+                converged &= f.abs() <= AT_ROUNDING_LEVEL * m;
+            }
+            sum.is_finite().then_some((sum, converged))
+        },
+        |x, h, b| {
+            let Ok(x) = <&[f64; N]>::try_from(x) else {
+                return false;
+            };
+            let (mut f, mut jac) = ([0.0; E], [[0.0; N]; E]);
+            jacobian(x, &mut f, &mut jac);
+            for (&f, grad) in f.iter().zip(&jac) {
+                add_equation(h, b, f, grad);
+            }
+            true
+        },
+    )
 }
 
 #[cfg(test)]
@@ -407,6 +482,47 @@ mod tests {
             (x[0] - 1.0).abs() < 1e-14 && (x[1] - 1.0).abs() < 1e-14,
             "{x:?}"
         );
+    }
+
+    /// The system of [`system`] written out as the emitted solvers write it: the same
+    /// steps and the same bits as the table form.
+    #[test]
+    fn code_form_takes_the_same_steps_as_the_table() {
+        let (eqs, c) = system();
+        let eqs: Vec<&[NewtonTerm]> = eqs.iter().map(Vec::as_slice).collect();
+        let values = |x: &[f64; 2], f: &mut [f64; 3], m: &mut [f64; 3]| {
+            let t = [
+                [c[0] * (x[0] * x[0]), c[1] * (x[1] * x[1]), c[2]],
+                [c[1] * x[0], c[3] * x[1], 0.0],
+                [c[1] * (x[0] * x[1]), c[3], 0.0],
+            ];
+            for i in 0..3 {
+                f[i] = t[i].iter().sum();
+                m[i] = t[i].iter().map(|t| t.abs()).sum();
+            }
+        };
+        let jacobian = |x: &[f64; 2], f: &mut [f64; 3], j: &mut [[f64; 2]; 3]| {
+            let mut m = [0.0; 3];
+            values(x, f, &mut m);
+            *j = [
+                [c[0] * 2.0 * x[0], c[1] * 2.0 * x[1]],
+                [c[1], c[3]],
+                [c[1] * x[1], c[1] * x[0]],
+            ];
+        };
+        for start in [
+            [1.3, 0.8],
+            [1.0 + 1e-5, 1.0 - 3e-6],
+            [3.0, -2.0],
+            [1.0, 1.0],
+        ] {
+            let (mut a, mut b) = (start, start);
+            let steps = newton_polish(&mut a, &eqs, &c, 4);
+            assert_eq!(newton_polish_with(&mut b, 4, values, jacobian), steps);
+            assert_eq!(a, b, "from {start:?}");
+        }
+        let mut x = [f64::NAN, 1.0];
+        assert_eq!(newton_polish_with(&mut x, 4, values, jacobian), 0);
     }
 
     #[test]

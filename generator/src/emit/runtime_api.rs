@@ -106,6 +106,12 @@ pub(crate) fn newton_polish() -> TokenStream {
     quote!(mingen_runtime::newton_polish)
 }
 
+/// `newton_polish_with::<N, E>(x: &mut [f64; N], steps: usize, values, jacobian) -> usize`:
+/// Gauss-Newton polishing on equations written out as code.
+pub(crate) fn newton_polish_with() -> TokenStream {
+    quote!(mingen_runtime::newton_polish_with)
+}
+
 /// `screen_redundant_readout(x: &mut [f64], equations: &[&[NewtonTerm]], coefficients:
 /// &[f64]) -> bool`: whether a read-out of a redundant basis is a solution.
 pub(crate) fn screen_redundant_readout() -> TokenStream {

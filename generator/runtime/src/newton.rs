@@ -171,15 +171,61 @@ pub fn screen_redundant_readout(
     equations: &[&[NewtonTerm<'_>]],
     coefficients: &[f64],
 ) -> bool {
-    match worst_relative_residual(x, equations, coefficients) {
+    screen(
+        x,
+        |x| worst_relative_residual(x, equations, coefficients),
+        |x| {
+            newton_polish(x, equations, coefficients, SPURIOUS_RESCUE_STEPS);
+        },
+    )
+}
+
+/// [`screen_redundant_readout`] on equations given as code, as [`newton_polish_with`]
+/// takes them: the same test and the same bits.
+pub fn screen_redundant_readout_with<const N: usize, const E: usize>(
+    x: &mut [f64; N],
+    values: impl Fn(&[f64; N], &mut [f64; E], &mut [f64; E]),
+    jacobian: impl Fn(&[f64; N], &mut [f64; E], &mut [[f64; N]; E]),
+) -> bool {
+    let worst = |x: &[f64]| {
+        let x: &[f64; N] = x.try_into().ok()?;
+        let (mut f, mut magnitude) = ([0.0; E], [0.0; E]);
+        values(x, &mut f, &mut magnitude);
+        let mut worst = 0.0f64;
+        for (f, m) in f.iter().zip(&magnitude) {
+            if !(f.is_finite() && m.is_finite()) {
+                return None;
+            }
+            if *m > 0.0 {
+                worst = worst.max(f.abs() / m);
+            }
+        }
+        Some(worst)
+    };
+    screen(x, worst, |x| {
+        if let Ok(x) = <&mut [f64; N]>::try_from(x) {
+            newton_polish_with(x, SPURIOUS_RESCUE_STEPS, &values, &jacobian);
+        }
+    })
+}
+
+/// The screen of both forms: `worst(x)` is the worst relative residual, `polish(x)` the
+/// rescue's steps.
+fn screen(
+    x: &mut [f64],
+    worst: impl Fn(&[f64]) -> Option<f64>,
+    polish: impl Fn(&mut [f64]),
+) -> bool {
+    match worst(x) {
         Some(r) if r <= SPURIOUS_RESIDUAL => true,
         Some(r) if r <= SPURIOUS_RESCUE => {
             let mut polished = [0.0; MAX_NEWTON_UNKNOWNS];
-            let polished = &mut polished[..x.len()];
+            let Some(polished) = polished.get_mut(..x.len()) else {
+                return false;
+            };
             polished.copy_from_slice(x);
-            newton_polish(polished, equations, coefficients, SPURIOUS_RESCUE_STEPS);
-            let rescued = worst_relative_residual(polished, equations, coefficients)
-                .is_some_and(|r| r <= RESCUED_RESIDUAL);
+            polish(polished);
+            let rescued = worst(polished).is_some_and(|r| r <= RESCUED_RESIDUAL);
             if rescued {
                 x.copy_from_slice(polished);
             }
@@ -523,6 +569,13 @@ mod tests {
         }
         let mut x = [f64::NAN, 1.0];
         assert_eq!(newton_polish_with(&mut x, 4, values, jacobian), 0);
+        // The redundant basis's screen: kept as is, rescued by polishing, dropped.
+        for start in [[1.0, 1.0], [1.0 + 1e-3, 1.0 - 2e-3], [1.3, 0.8], [3.0, -2.0]] {
+            let (mut a, mut b) = (start, start);
+            let kept = screen_redundant_readout(&mut a, &eqs, &c);
+            assert_eq!(screen_redundant_readout_with(&mut b, values, jacobian), kept);
+            assert_eq!(a, b, "from {start:?}");
+        }
     }
 
     #[test]

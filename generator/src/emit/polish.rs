@@ -1,8 +1,9 @@
 //! Emission of `option newton`: the original equations' coefficients (computed with the
 //! template's, from the same shared intermediates), the equations written out as code
-//! (their values, magnitudes and Jacobian, for `mingen_runtime::newton_polish_with`) or,
-//! past [`MAX_CODE_FORM_PRODUCTS`], as a constant table of terms (for
-//! `mingen_runtime::newton_polish`), and the polishing of each solution.
+//! (their values, magnitudes and Jacobian, for `mingen_runtime::newton_polish_with` and
+//! `screen_redundant_readout_with`) or, past [`MAX_CODE_FORM_PRODUCTS`], as a constant
+//! table of terms (for `newton_polish` and `screen_redundant_readout`), and the screening
+//! and polishing of each solution.
 
 use super::coefficients::{Expr, VarStyle};
 use super::runtime_api as rt;
@@ -92,12 +93,22 @@ pub(super) fn tokens(
             quote!(&[#(#ts),*])
         })
         .collect();
+    let code_form = (p.steps > 0 || p.reject_spurious)
+        .then(|| code_form(terms, p.unknowns))
+        .flatten();
     let (check, seen_setup, seen_check) = if p.reject_spurious {
-        let (screen, distinct) = (rt::screen_redundant_readout(), rt::distinct_solutions());
+        let distinct = rt::distinct_solutions();
         let n = lit(p.unknowns);
+        let screen = if code_form.is_some() {
+            let screen = rt::screen_redundant_readout_with();
+            quote!(#screen(&mut x, newton_values, newton_jacobian))
+        } else {
+            let screen = rt::screen_redundant_readout();
+            quote!(#screen(&mut x, &NEWTON_TERMS, &newton_c))
+        };
         (
             quote! {
-                if !#screen(&mut x, &NEWTON_TERMS, &newton_c) {
+                if !#screen {
                     continue;
                 }
             },
@@ -113,11 +124,8 @@ pub(super) fn tokens(
     } else {
         (quote!(), quote!(), quote!())
     };
-    let code_form = (p.steps > 0)
-        .then(|| code_form(terms, p.unknowns))
-        .flatten();
     let polish = match &code_form {
-        Some(_) => {
+        Some(_) if p.steps > 0 => {
             let (steps, polish) = (lit(p.steps), rt::newton_polish_with());
             quote!(#polish(&mut x, #steps, newton_values, newton_jacobian);)
         }
@@ -125,11 +133,10 @@ pub(super) fn tokens(
             let (steps, polish) = (lit(p.steps), rt::newton_polish());
             quote!(#polish(&mut x, &NEWTON_TERMS, &newton_c, #steps);)
         }
-        None => quote!(),
+        _ => quote!(),
     };
-    // The term table serves the screening of a redundant basis's read-outs and the
-    // polishing of equations too large to write out.
-    let table = if p.reject_spurious || (p.steps > 0 && code_form.is_none()) {
+    // The term table serves equations too large to write out.
+    let table = if (p.reject_spurious || p.steps > 0) && code_form.is_none() {
         quote!(const NEWTON_TERMS: [&[(usize, &[u8])]; #neq] = [#(#eqs),*];)
     } else {
         quote!()

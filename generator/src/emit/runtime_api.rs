@@ -118,6 +118,12 @@ pub(crate) fn screen_redundant_readout() -> TokenStream {
     quote!(mingen_runtime::screen_redundant_readout)
 }
 
+/// `screen_redundant_readout_with::<N, E>(x: &mut [f64; N], values, jacobian) -> bool`:
+/// [`screen_redundant_readout`] on equations written out as code.
+pub(crate) fn screen_redundant_readout_with() -> TokenStream {
+    quote!(mingen_runtime::screen_redundant_readout_with)
+}
+
 /// `DistinctSolutions<N, CAP>` (`new()`, `insert(&[f64]) -> bool`): the solutions kept
 /// so far, to drop a repeated read-out of a redundant basis.
 pub(crate) fn distinct_solutions() -> TokenStream {

@@ -5,15 +5,20 @@
 //! substitution, where the general recovery ([`super::null_vector`] of `[A b]`) factors the
 //! whole matrix per solution.
 //!
-//! `A` (`rows x k`, `rows >= k`) is scaled to max |a_ij| = 1 and factored `A = Q R` by
-//! Householder reflections; `n = -R⁻¹ (Qᵀ b)[..k]`, with `b` scaled alike, minimises
-//! `|A n + b|`. For equations that have an exact solution (a minimal problem's, at one of
-//! its solutions) that solution is the one returned.
-
-use super::null_general::scale_to_unit_max;
+//! `A` (`rows x k`, `rows >= k`) is scaled by the power of two at or below its largest
+//! `|a_ij|` (exactly: no rounding) and factored `A = Q R` by Householder reflections;
+//! `n = -R⁻¹ (Qᵀ b)[..k]`, with `b` scaled alike, minimises `|A n + b|`. For equations
+//! that have an exact solution (a minimal problem's, at one of its solutions) that
+//! solution is the one returned. The factorisation keeps each reflection's `2 / vᵀv` and
+//! the reciprocals of `R`'s diagonal, so that a solve multiplies only: it runs once per
+//! solution, the factorisation once per instance.
 
 /// A diagonal entry of `R` at most this (of the scaled matrix) makes `A` rank deficient.
 const RANK_TOL: f64 = 1e-12;
+
+/// Per column of the factorisation: the first entry `v_0` of its reflection's vector (the
+/// others are stored below `R`'s diagonal), `2 / vᵀv`, and `1 / R_jj`.
+type Reflection = (f64, f64, f64);
 
 /// The factorisation `A = Q R` of a fixed-size `R x K` matrix (see the module
 /// documentation); [`LeastSquares::solve`] per right-hand side. No heap allocation.
@@ -21,24 +26,23 @@ const RANK_TOL: f64 = 1e-12;
 pub struct LeastSquares<const R: usize, const K: usize> {
     /// Householder vectors below the diagonal, `R` on and above it (row-major).
     qr: [[f64; K]; R],
-    /// Per column, `(v_0, vᵀv)` of its reflection (the vector's first entry is not stored
-    /// in `qr`, whose diagonal holds `R`'s).
-    reflections: [(f64, f64); K],
-    /// The largest `|a_ij|`, which `A` and every `b` are divided by.
-    scale: f64,
+    /// Per column, its reflection and `R`'s diagonal ([`Reflection`]).
+    reflections: [Reflection; K],
+    /// The reciprocal of the power of two `A` and every `b` are scaled by.
+    inv_scale: f64,
 }
 
 impl<const R: usize, const K: usize> LeastSquares<R, K> {
-    /// Factors `a`; `None` if `K == 0`, `R < K`, an entry is not finite, `a` is zero, or
-    /// its rank is below `K`. Never panics.
+    /// Factors `a`; `None` if `K == 0`, `R < K`, an entry is not finite, `a` is zero (or
+    /// its largest entry subnormal), or its rank is below `K`. Never panics.
     pub fn new(a: &[[f64; K]; R]) -> Option<Self> {
         let mut qr = *a;
-        let mut reflections = [(0.0, 0.0); K];
-        let scale = factor(qr.as_flattened_mut(), R, K, &mut reflections)?;
+        let mut reflections = [(0.0, 0.0, 0.0); K];
+        let inv_scale = factor(qr.as_flattened_mut(), R, K, &mut reflections)?;
         Some(LeastSquares {
             qr,
             reflections,
-            scale,
+            inv_scale,
         })
     }
 
@@ -52,7 +56,7 @@ impl<const R: usize, const K: usize> LeastSquares<R, K> {
             R,
             K,
             &self.reflections,
-            self.scale,
+            self.inv_scale,
             &mut work,
             &mut n,
         )
@@ -68,21 +72,36 @@ pub fn least_squares_dyn(a: &[f64], rows: usize, k: usize, b: &[f64]) -> Option<
         return None;
     }
     let mut qr = a.to_vec();
-    let mut reflections = vec![(0.0, 0.0); k];
-    let scale = factor(&mut qr, rows, k, &mut reflections)?;
+    let mut reflections = vec![(0.0, 0.0, 0.0); k];
+    let inv_scale = factor(&mut qr, rows, k, &mut reflections)?;
     let mut work = b.to_vec();
     let mut n = vec![0.0; k];
-    solve(&qr, rows, k, &reflections, scale, &mut work, &mut n).then_some(n)
+    solve(&qr, rows, k, &reflections, inv_scale, &mut work, &mut n).then_some(n)
 }
 
-/// Scales the row-major `r x k` matrix `a` to max |a_ij| = 1 and overwrites it with its
-/// Householder QR (see [`LeastSquares::qr`]); returns the largest `|a_ij|`, `None` if the matrix is
-/// not of full column rank (or not finite, or `r < k`, or `k == 0`).
-fn factor(a: &mut [f64], r: usize, k: usize, reflections: &mut [(f64, f64)]) -> Option<f64> {
+/// Scales the row-major `r x k` matrix `a` by the power of two at or below its largest
+/// `|a_ij|` and overwrites it with its Householder QR (see [`LeastSquares::qr`]); returns
+/// the scale's reciprocal, `None` if the matrix is not of full column rank (or not
+/// finite, or its largest entry zero or subnormal, or `r < k`, or `k == 0`). Inlined, so
+/// that [`LeastSquares`]'s fixed sizes unroll its loops.
+#[inline(always)]
+fn factor(a: &mut [f64], r: usize, k: usize, reflections: &mut [Reflection]) -> Option<f64> {
     if k == 0 || r < k {
         return None;
     }
-    let scale = scale_to_unit_max(a)?;
+    let mut max = 0.0f64;
+    for x in a.iter() {
+        if !x.is_finite() {
+            return None;
+        }
+        max = max.max(x.abs());
+    }
+    if !max.is_normal() {
+        return None;
+    }
+    // 2^floor(log2 max): the exponent bits alone. Its reciprocal is exact.
+    let inv_scale = 1.0 / f64::from_bits(max.to_bits() & 0x7ff0_0000_0000_0000);
+    a.iter_mut().for_each(|x| *x *= inv_scale);
     let at = |i: usize, j: usize| i * k + j;
     for j in 0..k {
         let norm = (j..r)
@@ -96,35 +115,38 @@ fn factor(a: &mut [f64], r: usize, k: usize, reflections: &mut [(f64, f64)]) -> 
         let alpha = if a[at(j, j)] > 0.0 { -norm } else { norm };
         let v0 = a[at(j, j)] - alpha;
         let vtv = v0 * v0 + (j + 1..r).map(|i| a[at(i, j)] * a[at(i, j)]).sum::<f64>();
+        let beta = 2.0 / vtv;
         for c in j + 1..k {
             let d = v0 * a[at(j, c)] + (j + 1..r).map(|i| a[at(i, j)] * a[at(i, c)]).sum::<f64>();
-            let f = 2.0 * d / vtv;
+            let f = beta * d;
             a[at(j, c)] -= f * v0;
             for i in j + 1..r {
                 a[at(i, c)] -= f * a[at(i, j)];
             }
         }
         a[at(j, j)] = alpha;
-        reflections[j] = (v0, vtv);
+        reflections[j] = (v0, beta, 1.0 / alpha);
     }
-    Some(scale)
+    Some(inv_scale)
 }
 
-/// `n = -R⁻¹ (Qᵀ (b / scale))[..k]` from the factorisation of [`factor`]; `b` is work space.
+/// `n = -R⁻¹ (Qᵀ (b · inv_scale))[..k]` from the factorisation of [`factor`]; `b` is work
+/// space.
+#[inline(always)]
 fn solve(
     qr: &[f64],
     r: usize,
     k: usize,
-    reflections: &[(f64, f64)],
-    scale: f64,
+    reflections: &[Reflection],
+    inv_scale: f64,
     b: &mut [f64],
     n: &mut [f64],
 ) -> bool {
     let at = |i: usize, j: usize| i * k + j;
-    b.iter_mut().for_each(|x| *x /= scale);
-    for (j, &(v0, vtv)) in reflections.iter().enumerate() {
+    b.iter_mut().for_each(|x| *x *= inv_scale);
+    for (j, &(v0, beta, _)) in reflections.iter().enumerate() {
         let d = v0 * b[j] + (j + 1..r).map(|i| qr[at(i, j)] * b[i]).sum::<f64>();
-        let f = 2.0 * d / vtv;
+        let f = beta * d;
         b[j] -= f * v0;
         for i in j + 1..r {
             b[i] -= f * qr[at(i, j)];
@@ -132,7 +154,7 @@ fn solve(
     }
     for i in (0..k).rev() {
         let s: f64 = b[i] + (i + 1..k).map(|l| qr[at(i, l)] * n[l]).sum::<f64>();
-        n[i] = -s / qr[at(i, i)];
+        n[i] = -s * reflections[i].2;
     }
     n.iter().all(|x| x.is_finite())
 }

@@ -570,10 +570,18 @@ mod tests {
         let mut x = [f64::NAN, 1.0];
         assert_eq!(newton_polish_with(&mut x, 4, values, jacobian), 0);
         // The redundant basis's screen: kept as is, rescued by polishing, dropped.
-        for start in [[1.0, 1.0], [1.0 + 1e-3, 1.0 - 2e-3], [1.3, 0.8], [3.0, -2.0]] {
+        for start in [
+            [1.0, 1.0],
+            [1.0 + 1e-3, 1.0 - 2e-3],
+            [1.3, 0.8],
+            [3.0, -2.0],
+        ] {
             let (mut a, mut b) = (start, start);
             let kept = screen_redundant_readout(&mut a, &eqs, &c);
-            assert_eq!(screen_redundant_readout_with(&mut b, values, jacobian), kept);
+            assert_eq!(
+                screen_redundant_readout_with(&mut b, values, jacobian),
+                kept
+            );
             assert_eq!(a, b, "from {start:?}");
         }
     }

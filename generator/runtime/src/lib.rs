@@ -100,8 +100,9 @@ pub use hqr::{real_eigenpairs_hqr, real_eigenpairs_hqr_dyn};
 pub use least_squares::{least_squares_dyn, LeastSquares};
 pub use newton::{
     newton_polish, newton_polish_with, screen_redundant_readout, screen_redundant_readout_with,
-    worst_relative_residual, NewtonTerm, AT_ROUNDING_LEVEL, MAX_NEWTON_UNKNOWNS, RESCUED_RESIDUAL,
-    SPURIOUS_RESCUE, SPURIOUS_RESCUE_STEPS, SPURIOUS_RESIDUAL,
+    worst_relative_residual, NewtonTerm, AT_ROUNDING_LEVEL, MAX_NEWTON_UNKNOWNS,
+    MAX_TABULATED_POWER, RESCUED_RESIDUAL, SPURIOUS_RESCUE, SPURIOUS_RESCUE_STEPS,
+    SPURIOUS_RESIDUAL,
 };
 pub use null::{null_vector3, null_vector3_rows};
 pub use null_general::{dehomogenize, null_vector, null_vector_dyn};

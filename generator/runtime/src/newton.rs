@@ -18,8 +18,9 @@ pub type NewtonTerm<'a> = (usize, &'a [u8]);
 pub const MAX_NEWTON_UNKNOWNS: usize = 24;
 
 /// Highest power of an unknown taken from the table of [`Powers`]; higher exponents use
-/// `powi`.
-const MAX_TABULATED_POWER: usize = 15;
+/// `powi`. The emitted solvers' written-out equations form their powers the same way, so
+/// that both forms compute the same bits.
+pub const MAX_TABULATED_POWER: usize = 15;
 
 /// The powers `x_j^0 ..= x_j^MAX_TABULATED_POWER` of every unknown, so that a term costs a
 /// few multiplications instead of a `powi` per factor. `M` is the capacity (at least
@@ -136,14 +137,38 @@ fn squared_residual<const M: usize>(
     x: &[f64],
 ) -> Option<(f64, bool)> {
     let powers = Powers::<M>::new(x);
+    sum_of_squares(equations.iter().map(|eq| value(eq, coefficients, &powers)))
+}
+
+/// `Σ f²` and whether every `|f| <= AT_ROUNDING_LEVEL · magnitude`, over each equation's
+/// `(f, magnitude)`; `None` if one is `None` (a malformed term) or the sum not finite.
+#[inline(always)]
+fn sum_of_squares(values: impl IntoIterator<Item = Option<(f64, f64)>>) -> Option<(f64, bool)> {
     let mut sum = 0.0;
     let mut converged = true;
-    for eq in equations {
-        let (f, magnitude) = value(eq, coefficients, &powers)?;
+    for v in values {
+        let (f, magnitude) = v?;
         sum += f * f;
         converged &= f.abs() <= AT_ROUNDING_LEVEL * magnitude;
     }
     sum.is_finite().then_some((sum, converged))
+}
+
+/// The largest `|f| / magnitude` over each equation's `(f, magnitude)` (those of zero
+/// magnitude left out); `None` if one is `None` or not finite.
+#[inline(always)]
+fn worst_of(values: impl IntoIterator<Item = Option<(f64, f64)>>) -> Option<f64> {
+    let mut worst = 0.0f64;
+    for v in values {
+        let (f, magnitude) = v?;
+        if !(f.is_finite() && magnitude.is_finite()) {
+            return None;
+        }
+        if magnitude > 0.0 {
+            worst = worst.max(f.abs() / magnitude);
+        }
+    }
+    Some(worst)
 }
 
 /// The largest relative residual ([`worst_relative_residual`]) at which a read-out of a
@@ -187,21 +212,7 @@ pub fn screen_redundant_readout_with<const N: usize, const E: usize>(
     values: impl Fn(&[f64; N], &mut [f64; E], &mut [f64; E]),
     jacobian: impl Fn(&[f64; N], &mut [f64; E], &mut [[f64; N]; E]),
 ) -> bool {
-    let worst = |x: &[f64]| {
-        let x: &[f64; N] = x.try_into().ok()?;
-        let (mut f, mut magnitude) = ([0.0; E], [0.0; E]);
-        values(x, &mut f, &mut magnitude);
-        let mut worst = 0.0f64;
-        for (f, m) in f.iter().zip(&magnitude) {
-            if !(f.is_finite() && m.is_finite()) {
-                return None;
-            }
-            if *m > 0.0 {
-                worst = worst.max(f.abs() / m);
-            }
-        }
-        Some(worst)
-    };
+    let worst = |x: &[f64]| worst_of(evaluate(&values, x.try_into().ok()?));
     screen(x, worst, |x| {
         if let Ok(x) = <&mut [f64; N]>::try_from(x) {
             newton_polish_with(x, SPURIOUS_RESCUE_STEPS, &values, &jacobian);
@@ -261,17 +272,7 @@ fn worst_relative<const M: usize>(
     coefficients: &[f64],
 ) -> Option<f64> {
     let powers = Powers::<M>::new(x);
-    let mut worst = 0.0f64;
-    for eq in equations {
-        let (f, magnitude) = value(eq, coefficients, &powers)?;
-        if !(f.is_finite() && magnitude.is_finite()) {
-            return None;
-        }
-        if magnitude > 0.0 {
-            worst = worst.max(f.abs() / magnitude);
-        }
-    }
-    Some(worst)
+    worst_of(equations.iter().map(|eq| value(eq, coefficients, &powers)))
 }
 
 /// Solves `h δ = b` for the symmetric positive semi-definite `n x n` leading block of `h`
@@ -422,6 +423,17 @@ fn gauss_newton<const M: usize>(
     taken
 }
 
+/// Each equation's `(value, magnitude)` from the code form's `values`.
+#[inline(always)]
+fn evaluate<const N: usize, const E: usize>(
+    values: impl Fn(&[f64; N], &mut [f64; E], &mut [f64; E]),
+    x: &[f64; N],
+) -> impl Iterator<Item = Option<(f64, f64)>> {
+    let (mut f, mut magnitude) = ([0.0; E], [0.0; E]);
+    values(x, &mut f, &mut magnitude);
+    f.into_iter().zip(magnitude).map(Some)
+}
+
 /// [`newton_polish`] on equations given as code rather than as a term table: the same
 /// steps, acceptance test and stopping rule, and the same bits when the code evaluates the
 /// terms as [`newton_polish`] does (emitted solvers write their equations out so, without
@@ -444,18 +456,7 @@ pub fn newton_polish_with<const N: usize, const E: usize>(
     gauss_newton::<N>(
         x,
         steps,
-        |x| {
-            let x: &[f64; N] = x.try_into().ok()?;
-            let (mut f, mut magnitude) = ([0.0; E], [0.0; E]);
-            values(x, &mut f, &mut magnitude);
-            let mut sum = 0.0;
-            let mut converged = true;
-            for (f, m) in f.iter().zip(&magnitude) {
-                sum += f * f;
-                converged &= f.abs() <= AT_ROUNDING_LEVEL * m;
-            }
-            sum.is_finite().then_some((sum, converged))
-        },
+        |x| sum_of_squares(evaluate(&values, x.try_into().ok()?)),
         |x, h, b| {
             let Ok(x) = <&[f64; N]>::try_from(x) else {
                 return false;

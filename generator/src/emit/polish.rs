@@ -10,8 +10,8 @@ use super::runtime_api as rt;
 use super::tokens::lit;
 use super::{EmitError, PolishSpec, Traced};
 use crate::algebra::{Monomial, Poly, Ring};
-use proc_macro2::{Ident, Literal, Span, TokenStream};
-use quote::quote;
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::{format_ident, quote};
 
 /// Equations with at most this many factor products (terms and gradient entries) are
 /// written out as code; larger ones are polished from the table of their terms, so that
@@ -163,29 +163,25 @@ pub(super) fn tokens(
     )
 }
 
+/// The name of `x_k^p` (`p` from 2 up to `mingen_runtime::MAX_TABULATED_POWER`) in the
+/// written-out equations.
+fn power_name(k: usize, p: u8) -> Ident {
+    format_ident!("x{k}_{p}")
+}
+
 /// `x_k^e` as the runtime's power table computes it: `x_k` itself, a product of the chain
 /// `x_k^p = x_k^(p-1) x_k` up to the table's last power, `powi` past it.
 fn power(k: usize, e: u8) -> TokenStream {
-    let x = ident(&format!("x{k}"));
-    match e {
-        1 => quote!(#x),
-        2..=TABULATED_POWER => {
-            let p = ident(&format!("x{k}_{e}"));
-            quote!(#p)
-        }
-        _ => {
-            let e = Literal::i32_unsuffixed(i32::from(e));
-            quote!(#x.powi(#e))
-        }
+    let x = format_ident!("x{k}");
+    if e == 1 {
+        quote!(#x)
+    } else if usize::from(e) <= mingen_runtime::MAX_TABULATED_POWER {
+        let p = power_name(k, e);
+        quote!(#p)
+    } else {
+        let e = Literal::i32_unsuffixed(i32::from(e));
+        quote!(#x.powi(#e))
     }
-}
-
-/// The runtime's highest tabulated power (`newton.rs`, `MAX_TABULATED_POWER`): powers up
-/// to it are chains of products, above it `powi`, in both forms alike.
-const TABULATED_POWER: u8 = 15;
-
-fn ident(name: &str) -> Ident {
-    Ident::new(name, Span::call_site())
 }
 
 /// `a * b * c` (left to right), or `None` for no factor.
@@ -225,7 +221,7 @@ fn code_form(terms: &[EquationTerms], n: usize) -> Option<TokenStream> {
         for (h, &d) in highest.iter_mut().zip(e) {
             // A gradient reads x^(d - 1) as well; powers past the table are `powi`.
             for p in [d, d.saturating_sub(1)] {
-                if p <= TABULATED_POWER {
+                if usize::from(p) <= mingen_runtime::MAX_TABULATED_POWER {
                     *h = (*h).max(p);
                 }
             }
@@ -239,12 +235,11 @@ fn code_form(terms: &[EquationTerms], n: usize) -> Option<TokenStream> {
         if h == 0 {
             continue;
         }
-        let x = ident(&format!("x{k}"));
+        let x = format_ident!("x{k}");
         let i = lit(k);
         setup.push(quote!(let #x = x[#i];));
         for p in 2..=h {
-            let (this, before) = (power(k, p), power(k, p - 1));
-            let this = ident(&this.to_string());
+            let (this, before) = (power_name(k, p), power(k, p - 1));
             setup.push(quote!(let #this = #before * #x;));
         }
     }

@@ -1,15 +1,20 @@
 //! Reading the unknowns off an eigenvector of the action matrix.
 
-/// A ratio of eigenvector entries (unit vectors) is read only if its denominator (for
-/// several pairs, the root of the sum of their squares) exceeds this: a smaller one is
-/// numerical noise or a solution at infinity, and the eigenvector is skipped.
+/// A ratio of eigenvector entries (unit vectors) is accurate only if its denominator (for
+/// several pairs, the root of the sum of their squares) exceeds this: an eigenvector
+/// accurate to `e` gives the ratio to about `e / |denominator|`. Below it the ratio is
+/// still read (a real eigenvector of a quotient basis's action matrix is a solution, and a
+/// solution far from the origin has tiny low-degree entries; the polishing on the original
+/// equations, where the plan chooses it, restores its accuracy), but the eigenvalue is
+/// preferred for the action's own unknown, and only an exactly zero denominator or a
+/// non-finite ratio skips the eigenvector.
 pub const MIN_UNIT_ENTRY: f64 = 1e-12;
 
 /// Reads every unknown off the unit eigenvector `v ∝ (b_0(s), ..., b_{n-1}(s))` of the
 /// action matrix into `out` (one entry per element of `pairs`); `false` (skip this
 /// eigenvector) if `v[one]` (the basis monomial 1) is not finite, if an unknown's
-/// denominators are at most [`MIN_UNIT_ENTRY`] (see there), or if an unknown is not
-/// finite.
+/// denominators are all zero, or if an unknown is not finite (a denominator at most
+/// [`MIN_UNIT_ENTRY`] gives a less accurate ratio, see there).
 ///
 /// `pairs[i]` lists the read-out pairs `(j, k)` of unknown `x_i`: `b_k = x_i * b_j`. An
 /// empty list leaves `out[i]` as it is: that unknown is not in the basis and is read by
@@ -31,9 +36,9 @@ pub fn read_unknowns(v: &[f64], one: usize, pairs: &[&[(usize, usize)]], out: &m
 
 /// [`read_unknowns`], except that the unknown `action.0`, whose eigenvalue `action.1` the
 /// eigenvector belongs to (the action is that unknown alone), is the eigenvalue where its
-/// pairs cannot be read (their denominators at most [`MIN_UNIT_ENTRY`]: a basis shifted by
-/// a monomial that is large at this solution, or a solution far from the origin). `None`:
-/// exactly [`read_unknowns`]. Never panics.
+/// pairs cannot be read accurately (their denominators at most [`MIN_UNIT_ENTRY`]: a basis
+/// shifted by a monomial that is large at this solution, or a solution far from the
+/// origin). `None`: exactly [`read_unknowns`]. Never panics.
 #[inline]
 pub fn read_unknowns_with_eigenvalue(
     v: &[f64],
@@ -52,25 +57,29 @@ pub fn read_unknowns_with_eigenvalue(
         if p.is_empty() {
             continue;
         }
-        let value = match (read_pairs(v, p), action) {
-            (Some(value), _) => value,
-            (None, Some((a, lambda))) if a == i && lambda.is_finite() => lambda,
-            (None, _) => return false,
+        let eigenvalue = action
+            .filter(|&(a, lambda)| a == i && lambda.is_finite())
+            .map(|(_, lambda)| lambda);
+        let value = match (read_pairs(v, p), eigenvalue) {
+            (Some((value, true)), _) | (Some((value, false)), None) => value,
+            (_, Some(lambda)) => lambda,
+            (None, None) => return false,
         };
         *x = value;
     }
     true
 }
 
-/// One unknown from its pairs (see [`read_unknowns`]); `None` for a denominator at most
-/// [`MIN_UNIT_ENTRY`], an index out of range or a non-finite value.
+/// One unknown from its pairs (see [`read_unknowns`]) and whether its denominator exceeds
+/// [`MIN_UNIT_ENTRY`] (the ratio is accurate); `None` for a zero denominator, an index out
+/// of range or a non-finite value.
 #[inline]
-fn read_pairs(v: &[f64], p: &[(usize, usize)]) -> Option<f64> {
-    let value = match *p {
-        [(j, k)] => match (v.get(j), v.get(k)) {
-            (Some(a), Some(b)) if a.abs() > MIN_UNIT_ENTRY => b / a,
-            _ => return None,
-        },
+fn read_pairs(v: &[f64], p: &[(usize, usize)]) -> Option<(f64, bool)> {
+    let (value, accurate) = match *p {
+        [(j, k)] => {
+            let (a, b) = (*v.get(j)?, *v.get(k)?);
+            (b / a, a.abs() > MIN_UNIT_ENTRY)
+        }
         _ => {
             let (mut num, mut den) = (0.0, 0.0);
             for &(j, k) in p {
@@ -78,24 +87,23 @@ fn read_pairs(v: &[f64], p: &[(usize, usize)]) -> Option<f64> {
                 num += a * b;
                 den += a * a;
             }
-            if den <= MIN_UNIT_ENTRY * MIN_UNIT_ENTRY {
-                return None;
-            }
-            num / den
+            (num / den, den > MIN_UNIT_ENTRY * MIN_UNIT_ENTRY)
         }
     };
-    value.is_finite().then_some(value)
+    // Also `None` for 0 / 0 and x / 0.
+    value.is_finite().then_some((value, accurate))
 }
 
 /// Reads an unknown `x` that is not in the basis off the unit eigenvector `v ∝ (b_0(s),
 /// ..., b_{n-1}(s))` through its reduced template row `x + sum_k row[k] b_k` (a linear
-/// equation makes `x` a combination of basis monomials): `x = -sum_k row[k] v[k] / v[one]`.
-/// `None` (skip this eigenvector) if `v[one]` is not finite or at most [`MIN_UNIT_ENTRY`],
-/// if the lengths differ, or if the value is not finite. Never panics.
+/// equation makes `x` a combination of basis monomials): `x = -sum_k row[k] v[k] / v[one]`
+/// (less accurate where `|v[one]|` is at most [`MIN_UNIT_ENTRY`], see there). `None` (skip
+/// this eigenvector) if `v[one]` is zero or not finite, if the lengths differ, or if the
+/// value is not finite. Never panics.
 #[inline]
 pub fn read_linear(v: &[f64], one: usize, row: &[f64]) -> Option<f64> {
     let w = *v.get(one)?;
-    if !w.is_finite() || w.abs() <= MIN_UNIT_ENTRY || row.len() != v.len() {
+    if !w.is_finite() || row.len() != v.len() {
         return None;
     }
     let dot: f64 = row.iter().zip(v).map(|(r, x)| r * x).sum();
@@ -110,20 +118,27 @@ mod tests {
     #[test]
     fn the_action_unknown_falls_back_to_its_eigenvalue() {
         // A basis (p^3, p, a p) shifted by p (its unit at 1), at p = 1e8 and a = 0.5: the only
-        // pair of a, (p, a p), has a denominator below MIN_UNIT_ENTRY.
+        // pair of a, (p, a p), has a denominator below MIN_UNIT_ENTRY, so the ratio is read
+        // (roughly: the entries carry an error of 1e-20) unless `a` is the action, whose
+        // eigenvalue is exact.
         let (p, a) = (1e8f64, 0.5);
         let n = (p.powi(6) + p * p + a * a * p * p).sqrt();
-        let v = [p.powi(3) / n, p / n, a * p / n];
+        let v = [p.powi(3) / n, p / n, a * p / n + 1e-20];
+        assert!(v[1] < MIN_UNIT_ENTRY);
         let pairs: [&[(usize, usize)]; 1] = [&[(1, 2)]];
         let mut out = [0.0];
-        assert!(!read_unknowns(&v, 1, &pairs, &mut out));
-        assert!(!read_unknowns_with_eigenvalue(
+        assert!(read_unknowns(&v, 1, &pairs, &mut out));
+        assert!((out[0] - a).abs() < 1e-3 && out[0] != a, "{out:?}");
+        // Another unknown's eigenvalue does not stand in for it.
+        let mut other = [0.0];
+        assert!(read_unknowns_with_eigenvalue(
             &v,
             1,
             &pairs,
-            Some((1, 0.5)),
-            &mut out
+            Some((1, 0.25)),
+            &mut other
         ));
+        assert_eq!(other, out);
         assert!(read_unknowns_with_eigenvalue(
             &v,
             1,
@@ -132,6 +147,16 @@ mod tests {
             &mut out
         ));
         assert_eq!(out, [a]);
+        // An accurate ratio is preferred to the eigenvalue.
+        let mut near = [0.0];
+        assert!(read_unknowns_with_eigenvalue(
+            &[0.6, 0.8],
+            0,
+            &[&[(0, 1)]],
+            Some((0, 1.0)),
+            &mut near
+        ));
+        assert!((near[0] - 0.8 / 0.6).abs() < 1e-15, "{near:?}");
     }
 
     #[test]
@@ -151,8 +176,8 @@ mod tests {
 
     #[test]
     fn reads_solutions_far_from_the_origin() {
-        // Basis (x^4, x^3, x^2, x, 1) at x = 1e4: v[1] is 1e-16, below MIN_UNIT_ENTRY, but the
-        // pairs (x^k, x^{k+1}) with large x^k read x; the single pair (1, x) cannot.
+        // Basis (x^4, x^3, x^2, x, 1) at x = 1e4: v[1] is 1e-16, below MIN_UNIT_ENTRY; the
+        // pairs (x^k, x^{k+1}) with large x^k read x accurately.
         let x = 1e4f64;
         let b = [x.powi(4), x.powi(3), x * x, x, 1.0];
         let n = b.iter().map(|e| e * e).sum::<f64>().sqrt();
@@ -166,7 +191,10 @@ mod tests {
             &mut out
         ));
         assert!((out[0] - x).abs() < 1e-9 * x, "{out:?}");
-        assert!(!read_unknowns(&v, 4, &[&[(4, 3)]], &mut out));
+        // The single pair (1, x) reads x from a denominator of 1e-16: roughly in general,
+        // exactly here (the entries carry no error).
+        assert!(read_unknowns(&v, 4, &[&[(4, 3)]], &mut out));
+        assert!((out[0] - x).abs() < 1e-9 * x, "{out:?}");
     }
 
     #[test]
@@ -182,7 +210,10 @@ mod tests {
         assert!(read_unknowns(&v, 1, &[&[], &[(1, 0)]], &mut out));
         assert_eq!(out[0], 7.0);
         assert!((out[1] - t3).abs() < 1e-15);
-        assert_eq!(read_linear(&[1.0, 1e-13], 1, &[1.0, 1.0]), None);
+        assert_eq!(read_linear(&[1.0, 0.0], 1, &[1.0, 1.0]), None);
+        // A unit entry below MIN_UNIT_ENTRY still reads (a far solution).
+        let far = read_linear(&[1.0, 1e-13], 1, &[1.0, 0.0]).unwrap();
+        assert!((far + 1e13).abs() < 1.0, "{far}");
         assert_eq!(read_linear(&v, 1, &[1.0]), None);
         assert_eq!(read_linear(&v, 5, &[1.0, 1.0]), None);
         assert_eq!(read_linear(&[f64::INFINITY, 1.0], 1, &[1.0, 1.0]), None);
@@ -199,7 +230,7 @@ mod tests {
         ));
         assert_eq!(out, [0.5, 1.0]);
         assert!(!read_unknowns(
-            &[1.0, 1e-13],
+            &[1.0, 0.0],
             1,
             &[&[(1, 0)], &[(1, 1)]],
             &mut out

@@ -1,5 +1,5 @@
 //! Generates a solver for every problem of the classic corpus (`templates/classic/*.mp`)
-//! into `$OUT_DIR` for the planted-solution tests (`tests/corpus.rs`), and two of them again
+//! into `$OUT_DIR` for the planted-solution tests (`tests/corpus.rs`), and three of them again
 //! in each form of the coefficient code (`tests/code_forms.rs`). Each problem is planned
 //! once, whatever the number of forms it is emitted in: planning is the costly part.
 
@@ -9,8 +9,9 @@ use std::path::{Path, PathBuf};
 
 /// Corpus problems also emitted in each form of the coefficient code (`src/lib.rs`'s
 /// `inline` and `table` modules): one with a large template and Newton polishing, one
-/// whose affine equations planning substitutes into the others.
-const BOTH_FORMS: [&str; 2] = ["p35pf", "relpose_5pt_entries"];
+/// whose affine equations planning substitutes into the others, one whose constant rows'
+/// fold the inline form writes out as code (the table form walks the fold's plan).
+const BOTH_FORMS: [&str; 3] = ["p35pf", "relpose_5pt_entries", "p3ll"];
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let out_dir = PathBuf::from(std::env::var("OUT_DIR")?);

@@ -14,6 +14,7 @@ use crate::algebra::{Monomial, MonomialOrder};
 use crate::template::{ConstantFold, EliminationTemplate};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
+use std::collections::HashSet;
 
 /// Every coefficient the solver computes from the data, as one straight-line [`Program`]:
 /// its outputs are the template fill's values, then the elimination matrix's, then the
@@ -202,7 +203,7 @@ pub(super) fn fill_tokens(plan: &Plan, coefficients: &mut Coefficients) -> Resul
         functions.extend(items);
         code.extend(reduce);
     } else if let Some(f) = &t.fold {
-        let (items, fold) = fold_tokens(t, f, &alloc);
+        let (items, fold) = fold_tokens(t, f, fill_pos, !table_form, &alloc);
         functions.extend(items);
         code.extend(fold);
     }
@@ -215,10 +216,13 @@ pub(super) fn fill_tokens(plan: &Plan, coefficients: &mut Coefficients) -> Resul
 
 /// The constants of a template's fold (static items) and the code that forms the Schur
 /// complement of the filled template `mf` into the template `m` (allocated by `alloc`):
-/// the constant block's complement first, then the pivot rows'.
+/// the constant block's complement first (written out in the `inline` form when small,
+/// [`STRAIGHT_LINE_FOLD_MAX_UPDATES`]), then the pivot rows'.
 fn fold_tokens(
     t: &EliminationTemplate,
     f: &ConstantFold,
+    fill_pos: &[usize],
+    inline: bool,
     alloc: &TokenStream,
 ) -> (TokenStream, TokenStream) {
     let (rows, cols) = t.eliminated_size();
@@ -228,29 +232,6 @@ fn fold_tokens(
     let mut items = TokenStream::new();
     let mut code = TokenStream::new();
     let source = if f.rows > 0 {
-        let (rows_l, cols_l, k_l) = (lit(rows1), lit(cols1), lit(f.rows));
-        let ty = rt::constant_fold();
-        let fold = rt::fold_constant_rows();
-        let starts = f.inv_start.iter().map(|&x| Literal::u32_unsuffixed(x));
-        let inv_cols = f.inv_cols.iter().map(|&x| Literal::u16_unsuffixed(x));
-        let m12_starts = f.m12_start.iter().map(|&x| Literal::u32_unsuffixed(x));
-        let m12_cols = f.m12_cols.iter().map(|&x| Literal::u16_unsuffixed(x));
-        let inv_vals = f.inv_vals.iter().map(|&x| signed_f64_literal(x));
-        items.extend(quote! {
-            /// The inverse of the template's constant block (see
-            /// `mingen_runtime::ConstantFold`), computed exactly by the generator.
-            #[rustfmt::skip]
-            pub static CONSTANT_FOLD: #ty<'static> = #ty {
-                rows: #rows_l,
-                folded: #k_l,
-                cols: #cols_l,
-                inv_start: &[#(#starts),*],
-                inv_cols: &[#(#inv_cols),*],
-                inv_vals: &[#(#inv_vals),*],
-                m12_start: &[#(#m12_starts),*],
-                m12_cols: &[#(#m12_cols),*],
-            };
-        });
         let target = if kt == 0 {
             code.extend(alloc.clone());
             format_ident!("m")
@@ -263,13 +244,42 @@ fn fold_tokens(
             });
             format_ident!("mc")
         };
-        code.extend(quote! {
-            let mut fold_scratch = [0.0f64; #k_l];
-            if !#fold(&mf, &CONSTANT_FOLD, &mut fold_scratch, &mut #target) {
-                return out;
-            }
-        });
-        target
+        if inline && f.updates <= STRAIGHT_LINE_FOLD_MAX_UPDATES {
+            let written: HashSet<usize> = fill_pos.iter().copied().collect();
+            code.extend(straight_line_fold(f, rows1, cols1, &written, &target));
+            target
+        } else {
+            let (rows_l, cols_l, k_l) = (lit(rows1), lit(cols1), lit(f.rows));
+            let ty = rt::constant_fold();
+            let fold = rt::fold_constant_rows();
+            let starts = f.inv_start.iter().map(|&x| Literal::u32_unsuffixed(x));
+            let inv_cols = f.inv_cols.iter().map(|&x| Literal::u16_unsuffixed(x));
+            let m12_starts = f.m12_start.iter().map(|&x| Literal::u32_unsuffixed(x));
+            let m12_cols = f.m12_cols.iter().map(|&x| Literal::u16_unsuffixed(x));
+            let inv_vals = f.inv_vals.iter().map(|&x| signed_f64_literal(x));
+            items.extend(quote! {
+                /// The inverse of the template's constant block (see
+                /// `mingen_runtime::ConstantFold`), computed exactly by the generator.
+                #[rustfmt::skip]
+                pub static CONSTANT_FOLD: #ty<'static> = #ty {
+                    rows: #rows_l,
+                    folded: #k_l,
+                    cols: #cols_l,
+                    inv_start: &[#(#starts),*],
+                    inv_cols: &[#(#inv_cols),*],
+                    inv_vals: &[#(#inv_vals),*],
+                    m12_start: &[#(#m12_starts),*],
+                    m12_cols: &[#(#m12_cols),*],
+                };
+            });
+            code.extend(quote! {
+                let mut fold_scratch = [0.0f64; #k_l];
+                if !#fold(&mf, &CONSTANT_FOLD, &mut fold_scratch, &mut #target) {
+                    return out;
+                }
+            });
+            target
+        }
     } else {
         format_ident!("mf")
     };
@@ -297,4 +307,104 @@ fn fold_tokens(
         });
     }
     (items, code)
+}
+
+/// In the inline form, constant folds of at most this many multiply-adds
+/// ([`ConstantFold::updates`]) are written out as straight-line code; larger ones, and
+/// every fold of the table form, call `mingen_runtime::fold_constant_rows` with their plan
+/// (the code would grow with the fold). Both compute the same values.
+pub const STRAIGHT_LINE_FOLD_MAX_UPDATES: usize = 1024;
+
+/// `mingen_runtime::fold_constant_rows` written out for the fold `f` of the filled
+/// template `mf` (`(f.rows + rows) x (f.rows + cols)`, the positions `written` filled, the
+/// others zero) into `target` (`rows x cols`): per row of the complement, `t = M21[i, :]
+/// M11⁻¹` as `t_q = 0 + sum_p M21[i, p] inv[p][q]` in increasing `p`, then `target[i, c] =
+/// M22[i, c] - sum_q t_q M12[q, c]` in increasing `q`, the runtime's operations in its
+/// order, so its values (it skips a zero factor at run time where this code multiplies it,
+/// which can change the sign of a zero only). No plan to walk and every index a constant:
+/// the compiler keeps the values in registers.
+fn straight_line_fold(
+    f: &ConstantFold,
+    rows: usize,
+    cols: usize,
+    written: &HashSet<usize>,
+    target: &proc_macro2::Ident,
+) -> TokenStream {
+    let k = f.rows;
+    let width = k + cols;
+    let read = |pos: usize| {
+        let p = lit(pos);
+        quote!(mf[#p])
+    };
+    // The non-zeros of M12, per folded row: (column, position in `mf`).
+    let m12: Vec<Vec<(usize, usize)>> = (0..k)
+        .map(|q| {
+            let range = f.m12_start[q] as usize..f.m12_start[q + 1] as usize;
+            f.m12_cols[range]
+                .iter()
+                .map(|&c| (usize::from(c), q * width + k + usize::from(c)))
+                .filter(|(_, pos)| written.contains(pos))
+                .collect()
+        })
+        .collect();
+    let mut code = TokenStream::new();
+    for i in 0..rows {
+        let row = (k + i) * width;
+        // t_q's terms, in increasing p.
+        let mut terms: Vec<Vec<TokenStream>> = vec![Vec::new(); k];
+        for p in (0..k).filter(|&p| written.contains(&(row + p))) {
+            let range = f.inv_start[p] as usize..f.inv_start[p + 1] as usize;
+            for (&q, &v) in f.inv_cols[range.clone()].iter().zip(&f.inv_vals[range]) {
+                let a = read(row + p);
+                // Products by 1 and -1 are exact: `a` and `-a` are the same bits.
+                terms[usize::from(q)].push(if v == 1.0 {
+                    quote!(+ #a)
+                } else if v == -1.0 {
+                    quote!(- #a)
+                } else {
+                    let v = signed_f64_literal(v);
+                    quote!(+ #a * #v)
+                });
+            }
+        }
+        let t_name = |q: usize| format_ident!("t{}", q);
+        // A t_q that no column of M12 reads is left out (the runtime computes it unused).
+        let lets = terms
+            .iter()
+            .enumerate()
+            .filter(|(q, ts)| !ts.is_empty() && !m12[*q].is_empty())
+            .map(|(q, ts)| {
+                let name = t_name(q);
+                quote!(let #name = 0.0 #(#ts)*;)
+            });
+        // Per output column, the subtrahends in increasing q.
+        let mut minus: Vec<Vec<TokenStream>> = vec![Vec::new(); cols];
+        for (q, entries) in m12.iter().enumerate() {
+            if terms[q].is_empty() {
+                continue;
+            }
+            let name = t_name(q);
+            for &(c, pos) in entries {
+                let x = read(pos);
+                minus[c].push(quote!(- #name * #x));
+            }
+        }
+        let stores = (0..cols).filter_map(|c| {
+            let m22 = written.contains(&(row + k + c)).then(|| read(row + k + c));
+            if minus[c].is_empty() && m22.is_none() {
+                return None;
+            }
+            let first = m22.unwrap_or_else(|| quote!(0.0));
+            let rest = &minus[c];
+            let at = lit(i * cols + c);
+            Some(quote!(#target[#at] = #first #(#rest)*;))
+        });
+        code.extend(quote! {
+            {
+                #(#lets)*
+                #(#stores)*
+            }
+        });
+    }
+    code
 }

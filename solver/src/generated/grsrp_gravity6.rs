@@ -175,19 +175,6 @@ pub const MAX_SOLUTIONS: usize = 6;
 pub type Solutions = mingen_runtime::SolutionSet<Solution, MAX_SOLUTIONS>;
 /// The elimination template's `[rows, cols, pivot columns, first reduced row]`.
 pub const TEMPLATE_SHAPE: [usize; 4] = [3, 9, 3, 1];
-/// The inverse of the template's constant block (see
-/// `mingen_runtime::ConstantFold`), computed exactly by the generator.
-#[rustfmt::skip]
-pub static CONSTANT_FOLD: mingen_runtime::ConstantFold<'static> = mingen_runtime::ConstantFold {
-    rows: 3,
-    folded: 6,
-    cols: 9,
-    inv_start: &[0, 1, 2, 5, 6, 7, 8],
-    inv_cols: &[0, 1, 1, 2, 5, 3, 4, 5],
-    inv_vals: &[1.0, 1.0, -1.0, 1.0, 1.0, 1.0, 1.0, 1.0],
-    m12_start: &[0, 2, 4, 4, 6, 8, 10],
-    m12_cols: &[0, 5, 1, 4, 3, 6, 2, 7, 4, 8],
-};
 /// Solves `grsrp_gravity6`: all real solutions of the problem's equations for the given data.
 ///
 /// Fills a 3 x 9 elimination template, reduces it (LU with partial pivoting, back substitution of the 2 reducible rows only), builds the 6 x 6 action matrix of `c` on the basis [c^3, c^2, c*s, c, s, 1] and reads each unknown `x` off the real eigenvectors `v` as the least-squares ratio of the entries `v[x b]` and `v[b]` over the basis monomials `b` with `x b` in the basis (`v[x] / v[1]` if that is the only one).
@@ -458,14 +445,45 @@ pub fn solve_staged<S: mingen_runtime::Stages>(
     mf[133] = c136;
     mf[134] = c135;
     let mut m = [0.0f64; 27];
-    let mut fold_scratch = [0.0f64; 6];
-    if !mingen_runtime::fold_constant_rows(
-        &mf,
-        &CONSTANT_FOLD,
-        &mut fold_scratch,
-        &mut m,
-    ) {
-        return out;
+    {
+        let t0 = 0.0 + mf[90];
+        let t1 = 0.0 + mf[91];
+        let t3 = 0.0 + mf[93];
+        m[0] = mf[96] - t0 * mf[6];
+        m[1] = mf[97] - t1 * mf[22];
+        m[2] = mf[98];
+        m[3] = mf[99] - t3 * mf[54];
+        m[4] = mf[100] - t1 * mf[25];
+        m[5] = mf[101] - t0 * mf[11];
+        m[6] = mf[102] - t3 * mf[57];
+    }
+    {
+        let t0 = 0.0 + mf[105];
+        let t1 = 0.0 + mf[106] - mf[107];
+        let t3 = 0.0 + mf[108];
+        let t4 = 0.0 + mf[109];
+        let t5 = 0.0 + mf[107] + mf[110];
+        m[9] = mf[111] - t0 * mf[6];
+        m[10] = 0.0 - t1 * mf[22];
+        m[11] = mf[113] - t4 * mf[68];
+        m[12] = 0.0 - t3 * mf[54];
+        m[13] = 0.0 - t1 * mf[25] - t5 * mf[85];
+        m[14] = mf[116] - t0 * mf[11];
+        m[15] = 0.0 - t3 * mf[57];
+        m[16] = mf[118] - t4 * mf[73];
+        m[17] = 0.0 - t5 * mf[89];
+    }
+    {
+        let t3 = 0.0 + mf[123];
+        let t4 = 0.0 + mf[124];
+        let t5 = 0.0 + mf[125];
+        m[20] = mf[128] - t4 * mf[68];
+        m[21] = mf[129] - t3 * mf[54];
+        m[22] = mf[130] - t5 * mf[85];
+        m[23] = mf[131];
+        m[24] = mf[132] - t3 * mf[57];
+        m[25] = mf[133] - t4 * mf[73];
+        m[26] = mf[134] - t5 * mf[89];
     }
     if !stages.filled(&m) {
         return out;

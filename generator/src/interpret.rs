@@ -317,7 +317,8 @@ pub struct TemplateSolutions {
     /// order).
     pub solutions: Vec<Vec<f64>>,
     /// Number of real eigenpairs of the action matrix: those beyond `solutions.len()` were
-    /// rejected by the read-out (a solution at infinity or a non-finite unknown).
+    /// rejected by the read-out (a zero denominator, a solution at infinity, or a
+    /// non-finite unknown; a tiny denominator is read, see `mingen_runtime::MIN_UNIT_ENTRY`).
     pub eigenpairs: usize,
 }
 

@@ -19,6 +19,7 @@
 use crate::audit::{audit_plan, AuditOptions};
 use crate::pipeline::SolverPlan;
 use crate::polishing::AUTO_POLISH_STEPS;
+use crate::template::BuiltTemplate;
 
 /// Instances each template solves.
 pub const REDUNDANT_CHECK_INSTANCES: usize = 200;
@@ -51,6 +52,9 @@ pub struct RedundantCheck {
     pub redundant_size: (usize, usize),
     /// Its spurious eigenvalues (basis monomials beyond the solution count).
     pub spurious_eigenvalues: usize,
+    /// Smaller templates with a redundant basis measured before it and dropped (rows,
+    /// columns), smallest first.
+    pub dropped_smaller: Vec<(usize, usize)>,
 }
 
 impl RedundantCheck {
@@ -65,6 +69,7 @@ impl RedundantCheck {
             "instances": self.instances,
             "mean_real_solutions": [self.mean_real.0, self.mean_real.1],
             "failures": [self.failures.0, self.failures.1],
+            "dropped_smaller": self.dropped_smaller.iter().map(|(r, c)| [r, c]).collect::<Vec<_>>(),
         })
     }
 }
@@ -76,6 +81,7 @@ pub(crate) fn choose(plan: &mut SolverPlan) -> Option<RedundantCheck> {
         return None;
     }
     let alternative = *plan.generated.built.quotient_basis.take()?;
+    let others = std::mem::take(&mut plan.generated.built.redundant_alternatives);
     let options = AuditOptions {
         instances: REDUNDANT_CHECK_INSTANCES,
         seed: REDUNDANT_CHECK_SEED,
@@ -88,28 +94,50 @@ pub(crate) fn choose(plan: &mut SolverPlan) -> Option<RedundantCheck> {
     if set_steps.is_none() {
         plan.problem.layout.options.newton = Some(AUTO_POLISH_STEPS);
     }
-    let redundant = audit_plan(plan, &options);
-    let redundant_size = plan.generated.built.template.eliminated_size();
-    let spurious_eigenvalues = plan.generated.built.template.spurious_eigenvalues;
-    let grown = std::mem::replace(&mut plan.generated.built, alternative);
+    let candidates: Vec<BuiltTemplate> =
+        std::iter::once(std::mem::replace(&mut plan.generated.built, alternative))
+            .chain(others)
+            .collect();
     let quotient = audit_plan(plan, &options);
-    plan.problem.layout.options.newton = set_steps;
     let solved = |a: &crate::AuditReport| a.instances - a.solve_errors;
     let measurable =
         quotient.mean_real_solutions * solved(&quotient) as f64 >= REDUNDANT_MIN_REAL_SOLUTIONS;
-    let kept = measurable
-        && (redundant.mean_real_solutions - quotient.mean_real_solutions).abs()
-            <= REDUNDANT_REAL_TOLERANCE * quotient.mean_real_solutions
-        && redundant.failures <= quotient.failures + REDUNDANT_EXTRA_FAILURES;
-    if kept {
-        plan.generated.built = grown;
+    // Smallest first; the first that loses nothing is kept. The check reports it, or the
+    // smallest when none is kept.
+    let mut checks: Vec<RedundantCheck> = Vec::new();
+    for grown in candidates {
+        let redundant_size = grown.template.eliminated_size();
+        let spurious_eigenvalues = grown.template.spurious_eigenvalues;
+        let quotient_built = std::mem::replace(&mut plan.generated.built, grown);
+        let redundant = audit_plan(plan, &options);
+        let grown = std::mem::replace(&mut plan.generated.built, quotient_built);
+        let kept = measurable
+            && (redundant.mean_real_solutions - quotient.mean_real_solutions).abs()
+                <= REDUNDANT_REAL_TOLERANCE * quotient.mean_real_solutions
+            && redundant.failures <= quotient.failures + REDUNDANT_EXTRA_FAILURES;
+        checks.push(RedundantCheck {
+            kept,
+            instances: REDUNDANT_CHECK_INSTANCES,
+            mean_real: (redundant.mean_real_solutions, quotient.mean_real_solutions),
+            failures: (redundant.failures, quotient.failures),
+            redundant_size,
+            spurious_eigenvalues,
+            dropped_smaller: Vec::new(),
+        });
+        if kept {
+            plan.generated.built = grown;
+            break;
+        }
     }
-    Some(RedundantCheck {
-        kept,
-        instances: REDUNDANT_CHECK_INSTANCES,
-        mean_real: (redundant.mean_real_solutions, quotient.mean_real_solutions),
-        failures: (redundant.failures, quotient.failures),
-        redundant_size,
-        spurious_eigenvalues,
-    })
+    let check = if checks.last().is_some_and(|c| c.kept) {
+        let mut kept = checks.pop();
+        if let Some(k) = &mut kept {
+            k.dropped_smaller = checks.iter().map(|c| c.redundant_size).collect();
+        }
+        kept
+    } else {
+        checks.into_iter().next()
+    };
+    plan.problem.layout.options.newton = set_steps;
+    check
 }

@@ -296,6 +296,12 @@ fn print_plan(out: &mut String, plan: &SolverPlan) {
             r.failures.0,
             r.failures.1
         );
+        for (rows, cols) in &r.dropped_smaller {
+            outln!(
+                out,
+                "  measured before it and dropped: {rows} x {cols} (solutions lost or spurious read-outs kept)"
+            );
+        }
     }
     let steps = plan.problem.layout.options.newton_steps();
     match &plan.auto_polishing {

@@ -39,6 +39,10 @@ pub struct BuiltTemplate {
     /// ([`EliminationTemplate::spurious_eigenvalues`]), the template with a quotient basis
     /// it was grown from, for the plan to measure one against the other; `None` otherwise.
     pub quotient_basis: Option<Box<BuiltTemplate>>,
+    /// Other templates with a redundant basis for the same action, larger than this one,
+    /// smallest first: the plan measures each in turn when it drops this one
+    /// (`crate::redundancy`); empty otherwise.
+    pub redundant_alternatives: Vec<BuiltTemplate>,
 }
 
 impl BuiltTemplate {
@@ -223,6 +227,7 @@ pub(crate) fn build_template<const P: u32>(
         pool_weights: weights.to_vec(),
         foldable_rows: 0,
         quotient_basis: None,
+        redundant_alternatives: Vec::new(),
     })
 }
 

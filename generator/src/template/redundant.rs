@@ -10,10 +10,14 @@
 //! eigenvalues, `|B| - count` of them spurious, which the solver tells apart by the
 //! residual of the equations at the read-out solution.
 //!
-//! [`grow_basis`] moves columns into B one at a time, greedily: a column joins B when
-//! shrinking the rows with the larger B ([`shrink_quick`]) gives the smallest template,
-//! and the growth stops when no column makes the template smaller or B has
-//! [`max_redundant_basis`] monomials.
+//! Two constructions, both from the chosen template's rows. [`grow_basis`] moves columns
+//! into B one at a time, greedily: a column joins B when shrinking the rows with the
+//! larger B ([`shrink_quick`]) gives the smallest template, and the growth stops when no
+//! column makes the template smaller or B has [`max_redundant_basis`] monomials.
+//! [`reduce_permissible`] is Martyushev et al.'s: B is the whole permissible set of a
+//! pool (the rows closed under their columns, [`closed_rows`]), and monomials are excluded
+//! from the pool while the template shrinks. [`with_redundant_basis`] keeps every result
+//! smaller than the quotient template, smallest first, for the plan to measure.
 
 use super::build::{assemble, BuiltTemplate};
 use super::candidates::{Blocks, Candidate};
@@ -37,13 +41,17 @@ fn area(blocks: &Blocks, rows: &[Candidate]) -> usize {
     rows.len() * (blocks.excess_of(rows.iter()).len() + blocks.reducible.len() + blocks.basis.len())
 }
 
+/// The monomials of the rows: the template's columns.
+fn columns(rows: &[Candidate]) -> BTreeSet<&Monomial> {
+    rows.iter()
+        .flat_map(|c| c.terms.iter().map(|(m, _)| m))
+        .collect()
+}
+
 /// The columns that may join B: monomials of the rows, outside B, whose products with the
 /// action are all columns (so that `action * m` can be reduced or is in B).
 fn permissible(blocks: &Blocks, rows: &[Candidate], action: &Action) -> Vec<Monomial> {
-    let cols: BTreeSet<&Monomial> = rows
-        .iter()
-        .flat_map(|c| c.terms.iter().map(|(m, _)| m))
-        .collect();
+    let cols = columns(rows);
     cols.iter()
         .filter(|m| !blocks.basis_set.contains(**m))
         .filter(|m| action.products(m).all(|(p, _)| cols.contains(&p)))
@@ -99,8 +107,160 @@ pub(crate) fn grow_basis<const P: u32>(
     best
 }
 
+/// The largest redundant solving set of a row set (Martyushev, Bhayani and Pajdla's
+/// permissible monomials): every monomial of the rows whose products with the action are
+/// all monomials of the rows.
+fn permissible_set(rows: &[Candidate], action: &Action) -> Vec<Monomial> {
+    let cols = columns(rows);
+    let mut basis: Vec<Monomial> = cols
+        .iter()
+        .filter(|m| action.products(m).all(|(p, _)| cols.contains(&p)))
+        .map(|m| (*m).clone())
+        .collect();
+    basis.sort_by(|x, y| MonomialOrder::Grevlex.cmp(y, x));
+    basis
+}
+
+/// The rows with their permissible set as the basis, shrunk, and then with the shrunk
+/// rows' own (smaller) permissible set while they reduce it; `None` when the rows do not
+/// reduce their permissible set.
+fn settle_permissible<const P: u32>(
+    rows: Vec<Candidate>,
+    action: &Action,
+    visible: usize,
+) -> Option<(Blocks, Vec<Candidate>)> {
+    let basis = permissible_set(&rows, action);
+    if basis.is_empty() {
+        return None;
+    }
+    let blocks = Blocks::new(&basis, action, visible);
+    let refs: Vec<&Candidate> = rows.iter().collect();
+    if !blocks.reducible_by::<P>(&refs) {
+        return None;
+    }
+    let mut kept = shrink_quick::<P>(&blocks, rows);
+    let mut blocks = blocks;
+    // The shrunk rows' own permissible set is smaller; it is the basis when they reduce it.
+    loop {
+        let basis = permissible_set(&kept, action);
+        if basis.len() >= blocks.basis.len() || basis.is_empty() {
+            break;
+        }
+        let smaller = Blocks::new(&basis, action, visible);
+        let refs: Vec<&Candidate> = kept.iter().collect();
+        if !smaller.reducible_by::<P>(&refs) {
+            break;
+        }
+        kept = shrink_quick::<P>(&smaller, kept);
+        blocks = smaller;
+    }
+    Some((blocks, kept))
+}
+
+/// Every multiple `m f` of the equations whose monomials are all monomials of `rows`:
+/// more rows over the same columns, so more ways to reduce a permissible set.
+fn closed_rows<const P: u32>(eqs: &[Poly<Fp<P>>], rows: &[Candidate]) -> Vec<Candidate> {
+    let cols = columns(rows);
+    let mut seen: BTreeSet<(usize, Monomial)> = BTreeSet::new();
+    let mut out = Vec::new();
+    for c in rows {
+        seen.insert((c.row.equation, c.row.multiplier.clone()));
+        out.push(c.clone());
+    }
+    for (e, f) in eqs.iter().enumerate() {
+        let Some((lead, _)) = f.terms().next() else {
+            continue;
+        };
+        for t in &cols {
+            let Some(m) = lead.divide_into(t) else {
+                continue;
+            };
+            if seen.contains(&(e, m.clone())) {
+                continue;
+            }
+            if f.terms().all(|(s, _)| cols.contains(&s.mul(&m))) {
+                let degree = f.degree().unwrap_or(0) + m.degree();
+                seen.insert((e, m.clone()));
+                out.push(Candidate::multiple(e, f, m, degree));
+            }
+        }
+    }
+    out
+}
+
+/// The bound on the summed `rows x columns` of the row sets [`reduce_permissible`] tries.
+const MAX_PERMISSIBLE_WORK: u64 = 1 << 26;
+
+/// Martyushev, Bhayani and Pajdla's reduction of a redundant template: the basis is the
+/// permissible set of the rows ([`permissible_set`]); monomials of the template are
+/// excluded from the pool one at a time (every row containing one leaves), highest first,
+/// and a move is kept when the pool still reduces its permissible set and the template
+/// shrinks. Returns the basis's blocks and the template's rows, `None` when the pool does
+/// not reduce its permissible set or the result has more than `max_basis` monomials.
+pub(crate) fn reduce_permissible<const P: u32>(
+    pool: &[Candidate],
+    action: &Action,
+    visible: usize,
+    max_basis: usize,
+    deadline: Option<&Deadline>,
+) -> Option<(Blocks, Vec<Candidate>)> {
+    let mut pool = pool.to_vec();
+    let mut best = settle_permissible::<P>(pool.clone(), action, visible)?;
+    let mut best_area = area(&best.0, &best.1);
+    let mut tried: BTreeSet<Monomial> = BTreeSet::new();
+    let mut work = 0u64;
+    let within = |b: (Blocks, Vec<Candidate>)| (b.0.basis.len() <= max_basis).then_some(b);
+    loop {
+        let mut improved = false;
+        let mut order: Vec<Monomial> = best
+            .1
+            .iter()
+            .flat_map(|c| c.terms.iter().map(|(m, _)| m.clone()))
+            .collect::<BTreeSet<_>>()
+            .into_iter()
+            .collect();
+        order.sort_by(|x, y| MonomialOrder::Grevlex.cmp(y, x));
+        for m in order {
+            if tried.contains(&m) {
+                continue;
+            }
+            // Bounded by work (the summed size of the pools eliminated), so that the result
+            // does not depend on the machine's speed; the deadline only guards the budget.
+            work = work.saturating_add(pool.len() as u64 * best.1.len().max(1) as u64);
+            if work > MAX_PERMISSIBLE_WORK || deadline.is_some_and(|d| d.check_time().is_err()) {
+                return within(best);
+            }
+            tried.insert(m.clone());
+            let smaller: Vec<Candidate> = pool
+                .iter()
+                .filter(|c| !c.terms.iter().any(|(t, _)| *t == m))
+                .cloned()
+                .collect();
+            if smaller.is_empty() || smaller.len() == pool.len() {
+                continue;
+            }
+            if let Some(s) = settle_permissible::<P>(smaller.clone(), action, visible) {
+                let a = area(&s.0, &s.1);
+                if a < best_area {
+                    best_area = a;
+                    best = s;
+                    pool = smaller;
+                    improved = true;
+                }
+            }
+        }
+        if !improved {
+            return within(best);
+        }
+    }
+}
+
 /// The chosen template with a redundant basis ([`super::redundant`]) when that is
-/// smaller; otherwise the template itself.
+/// smaller; otherwise the template itself. Two constructions compete: the quotient basis
+/// grown column by column ([`grow_basis`]) and the permissible set of the rows reduced
+/// greedily ([`reduce_permissible`]); the smallest becomes the template, the others, in
+/// increasing size, its [`BuiltTemplate::redundant_alternatives`], which the plan measures
+/// in turn when it drops the smaller one.
 pub(super) fn with_redundant_basis<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     constants: Option<&[EquationConstants]>,
@@ -124,20 +284,54 @@ pub(super) fn with_redundant_basis<const P: u32>(
         })
         .collect();
     let blocks = Blocks::new(&t.basis, &t.action, visible);
-    let Some((grown, kept)) =
-        grow_basis::<P>(&blocks, &rows, &t.action, visible, count, Some(deadline))
-    else {
+    let grown = grow_basis::<P>(&blocks, &rows, &t.action, visible, count, Some(deadline));
+    let closed = closed_rows::<P>(eqs, &rows);
+    let reduced = reduce_permissible::<P>(
+        &closed,
+        &t.action,
+        visible,
+        max_redundant_basis(count),
+        Some(deadline),
+    );
+    let mut built: Vec<BuiltTemplate> = [grown, reduced]
+        .into_iter()
+        .flatten()
+        .filter_map(|(b, kept)| {
+            let parts = (b, kept.as_slice(), visible, count);
+            redundant_template::<P>(eqs, constants, &best, parts, opts, deadline)
+        })
+        .filter(|g| g.folded_area() < best.folded_area())
+        .collect();
+    built.sort_by_key(BuiltTemplate::folded_area);
+    built.dedup_by_key(|g| g.template.eliminated_size());
+    if built.is_empty() {
         return best;
-    };
+    }
+    let mut chosen = built.remove(0);
+    chosen.redundant_alternatives = built;
+    chosen
+}
+
+/// The template of `best`'s action on a redundant basis `blocks` with rows `kept`; `None`
+/// when it cannot be emitted or a spurious eigenvalue may meet a solution's.
+fn redundant_template<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    constants: Option<&[EquationConstants]>,
+    best: &BuiltTemplate,
+    (blocks, kept, visible, count): (Blocks, &[Candidate], usize, usize),
+    opts: &TemplateOptions,
+    deadline: &Deadline,
+) -> Option<BuiltTemplate> {
+    let t = &best.template;
     // The basis in descending grevlex, as every other template's.
-    let mut basis = grown.basis;
+    let mut basis = blocks.basis;
     basis.sort_by(|x, y| MonomialOrder::Grevlex.cmp(y, x));
     let grown = Blocks::new(&basis, &t.action, visible);
-    let mut template = assemble::<P>(t.nvars, &grown, &kept, &t.action, t.n_hidden);
+    let mut template = assemble::<P>(t.nvars, &grown, kept, &t.action, t.n_hidden);
     let nb = template.basis.len();
     template.spurious_eigenvalues = nb - count;
     if template.check_emittable(&opts.var_names).is_err() {
-        return best;
+        return None;
     }
     // A spurious eigenvalue equal to a solution's would make the eigenvectors of both
     // undefined: where the quotient's eigenvalues are distinct, no root of its
@@ -157,7 +351,7 @@ pub(super) fn with_redundant_basis<const P: u32>(
             _ => false,
         };
         if !separate {
-            return best;
+            return None;
         }
     }
     let mut history = best.history.clone();
@@ -168,17 +362,13 @@ pub(super) fn with_redundant_basis<const P: u32>(
         c,
     ));
     let foldable_rows = constants.map_or(0, |c| foldable_rows(&template, c));
-    let grown = BuiltTemplate {
+    Some(BuiltTemplate {
         template,
         history,
         basis_choice: format!("{}, redundant basis", best.basis_choice),
         foldable_rows,
         quotient_basis: Some(Box::new(best.clone())),
+        redundant_alternatives: Vec::new(),
         ..best.clone()
-    };
-    if grown.folded_area() < best.folded_area() {
-        grown
-    } else {
-        best
-    }
+    })
 }

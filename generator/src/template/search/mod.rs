@@ -217,6 +217,12 @@ pub(crate) fn best_template_within(
         if let Some(q) = &mut b.quotient_basis {
             fold_constant_rows(&mut q.template, constants);
         }
+        for a in &mut b.redundant_alternatives {
+            fold_constant_rows(&mut a.template, constants);
+            if let Some(q) = &mut a.quotient_basis {
+                fold_constant_rows(&mut q.template, constants);
+            }
+        }
         finalists.push(b);
     }
     if let (Some((red, reduced)), Some(b)) = (&reduction, choose(&reduced_all, opts)) {
@@ -225,6 +231,12 @@ pub(crate) fn best_template_within(
         r.template.reduction = Some(red.clone());
         if let Some(q) = &mut r.quotient_basis {
             q.template.reduction = Some(red.clone());
+        }
+        for a in &mut r.redundant_alternatives {
+            a.template.reduction = Some(red.clone());
+            if let Some(q) = &mut a.quotient_basis {
+                q.template.reduction = Some(red.clone());
+            }
         }
         finalists.push(r);
     }

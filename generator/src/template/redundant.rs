@@ -189,13 +189,13 @@ fn closed_rows<const P: u32>(eqs: &[Poly<Fp<P>>], rows: &[Candidate]) -> Vec<Can
 }
 
 /// The bound on the summed `rows x columns` of the row sets [`reduce_permissible`] tries.
-const MAX_PERMISSIBLE_WORK: u64 = 1 << 26;
+const MAX_PERMISSIBLE_WORK: u64 = 1 << 27;
 
 /// Martyushev, Bhayani and Pajdla's reduction of a redundant template: the basis is the
 /// permissible set of the rows ([`permissible_set`]); monomials of the template are
 /// excluded from the pool one at a time (every row containing one leaves), highest first,
 /// and a move is kept when the pool still reduces its permissible set and the template
-/// shrinks. Returns the basis's blocks and the template's rows, `None` when the pool does
+/// shrinks (or, while the set has more than `max_basis` monomials, the set does). Returns the basis's blocks and the template's rows, `None` when the pool does
 /// not reduce its permissible set or the result has more than `max_basis` monomials.
 pub(crate) fn reduce_permissible<const P: u32>(
     pool: &[Candidate],
@@ -206,7 +206,11 @@ pub(crate) fn reduce_permissible<const P: u32>(
 ) -> Option<(Blocks, Vec<Candidate>)> {
     let mut pool = pool.to_vec();
     let mut best = settle_permissible::<P>(pool.clone(), action, visible)?;
-    let mut best_area = area(&best.0, &best.1);
+    // Monomials above the cap first, then the area: a basis over the cap is no result.
+    let key = |b: &(Blocks, Vec<Candidate>)| {
+        (b.0.basis.len().saturating_sub(max_basis), area(&b.0, &b.1))
+    };
+    let mut best_key = key(&best);
     let mut tried: BTreeSet<Monomial> = BTreeSet::new();
     let mut work = 0u64;
     let within = |b: (Blocks, Vec<Candidate>)| (b.0.basis.len() <= max_basis).then_some(b);
@@ -226,7 +230,7 @@ pub(crate) fn reduce_permissible<const P: u32>(
             }
             // Bounded by work (the summed size of the pools eliminated), so that the result
             // does not depend on the machine's speed; the deadline only guards the budget.
-            work = work.saturating_add(pool.len() as u64 * best.1.len().max(1) as u64);
+            work = work.saturating_add(pool.len() as u64 * columns(&pool).len() as u64);
             if work > MAX_PERMISSIBLE_WORK || deadline.is_some_and(|d| d.check_time().is_err()) {
                 return within(best);
             }
@@ -240,9 +244,9 @@ pub(crate) fn reduce_permissible<const P: u32>(
                 continue;
             }
             if let Some(s) = settle_permissible::<P>(smaller.clone(), action, visible) {
-                let a = area(&s.0, &s.1);
-                if a < best_area {
-                    best_area = a;
+                let k = key(&s);
+                if k < best_key {
+                    best_key = k;
                     best = s;
                     pool = smaller;
                     improved = true;
@@ -286,16 +290,11 @@ pub(super) fn with_redundant_basis<const P: u32>(
     let blocks = Blocks::new(&t.basis, &t.action, visible);
     let grown = grow_basis::<P>(&blocks, &rows, &t.action, visible, count, Some(deadline));
     let closed = closed_rows::<P>(eqs, &rows);
-    let reduced = reduce_permissible::<P>(
-        &closed,
-        &t.action,
-        visible,
-        max_redundant_basis(count),
-        Some(deadline),
-    );
-    let mut built: Vec<BuiltTemplate> = [grown, reduced]
+    let cap = max_redundant_basis(count);
+    let reduced = reduce_permissible::<P>(&closed, &t.action, visible, cap, Some(deadline));
+    let mut built: Vec<BuiltTemplate> = grown
         .into_iter()
-        .flatten()
+        .chain(reduced)
         .filter_map(|(b, kept)| {
             let parts = (b, kept.as_slice(), visible, count);
             redundant_template::<P>(eqs, constants, &best, parts, opts, deadline)

@@ -36,6 +36,10 @@ pub fn max_redundant_basis(count: usize) -> usize {
     count + count.div_ceil(2)
 }
 
+/// How the searches size a template of rows with the blocks' basis: its area, or its area
+/// after the fold where the equations have constants to fold (`with_redundant_basis`).
+pub(crate) type Measure<'a> = dyn Fn(&Blocks, &[Candidate]) -> usize + 'a;
+
 /// Rows times columns of the rows with the blocks' basis.
 fn area(blocks: &Blocks, rows: &[Candidate]) -> usize {
     rows.len() * (blocks.excess_of(rows.iter()).len() + blocks.reducible.len() + blocks.basis.len())
@@ -66,12 +70,12 @@ pub(crate) fn grow_basis<const P: u32>(
     blocks: &Blocks,
     rows: &[Candidate],
     action: &Action,
-    visible: usize,
-    count: usize,
+    (visible, count): (usize, usize),
+    measure: &Measure<'_>,
     deadline: Option<&Deadline>,
 ) -> Option<(Blocks, Vec<Candidate>)> {
     let mut best: Option<(Blocks, Vec<Candidate>)> = None;
-    let mut current_area = area(blocks, rows);
+    let mut current_area = measure(blocks, rows);
     loop {
         let (cur_blocks, cur_rows) = match &best {
             Some((b, r)) => (b, r.as_slice()),
@@ -93,7 +97,7 @@ pub(crate) fn grow_basis<const P: u32>(
                 continue;
             }
             let kept = shrink_quick::<P>(&grown, cur_rows.to_vec());
-            let a = area(&grown, &kept);
+            let a = measure(&grown, &kept);
             if a < current_area && step.as_ref().map_or(true, |s| a < s.0) {
                 step = Some((a, grown, kept));
             }
@@ -200,15 +204,18 @@ const MAX_PERMISSIBLE_WORK: u64 = 1 << 27;
 pub(crate) fn reduce_permissible<const P: u32>(
     pool: &[Candidate],
     action: &Action,
-    visible: usize,
-    max_basis: usize,
+    (visible, max_basis): (usize, usize),
+    measure: &Measure<'_>,
     deadline: Option<&Deadline>,
 ) -> Option<(Blocks, Vec<Candidate>)> {
     let mut pool = pool.to_vec();
     let mut best = settle_permissible::<P>(pool.clone(), action, visible)?;
     // Monomials above the cap first, then the area: a basis over the cap is no result.
     let key = |b: &(Blocks, Vec<Candidate>)| {
-        (b.0.basis.len().saturating_sub(max_basis), area(&b.0, &b.1))
+        (
+            b.0.basis.len().saturating_sub(max_basis),
+            measure(&b.0, &b.1),
+        )
     };
     let mut best_key = key(&best);
     let mut tried: BTreeSet<Monomial> = BTreeSet::new();
@@ -288,10 +295,21 @@ pub(super) fn with_redundant_basis<const P: u32>(
         })
         .collect();
     let blocks = Blocks::new(&t.basis, &t.action, visible);
-    let grown = grow_basis::<P>(&blocks, &rows, &t.action, visible, count, Some(deadline));
+    // Templates compare by their area after the fold, as the search's do.
+    let measure = |b: &Blocks, r: &[Candidate]| match constants {
+        None => area(b, r),
+        Some(cs) => {
+            let candidate = assemble::<P>(t.nvars, b, r, &t.action, t.n_hidden);
+            let (rows, cols) = candidate.eliminated_size();
+            let k = foldable_rows(&candidate, cs).min(rows).min(cols);
+            (rows - k) * (cols - k)
+        }
+    };
+    let dims = (visible, count);
+    let grown = grow_basis::<P>(&blocks, &rows, &t.action, dims, &measure, Some(deadline));
     let closed = closed_rows::<P>(eqs, &rows);
-    let cap = max_redundant_basis(count);
-    let reduced = reduce_permissible::<P>(&closed, &t.action, visible, cap, Some(deadline));
+    let dims = (visible, max_redundant_basis(count));
+    let reduced = reduce_permissible::<P>(&closed, &t.action, dims, &measure, Some(deadline));
     let mut built: Vec<BuiltTemplate> = grown
         .into_iter()
         .chain(reduced)

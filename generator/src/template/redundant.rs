@@ -199,8 +199,9 @@ const MAX_PERMISSIBLE_WORK: u64 = 1 << 27;
 /// permissible set of the rows ([`permissible_set`]); monomials of the template are
 /// excluded from the pool one at a time (every row containing one leaves), highest first,
 /// and a move is kept when the pool still reduces its permissible set and the template
-/// shrinks (or, while the set has more than `max_basis` monomials, the set does). Returns the basis's blocks and the template's rows, `None` when the pool does
-/// not reduce its permissible set or the result has more than `max_basis` monomials.
+/// shrinks (or, while the set has more than `max_basis` monomials, the set does). Returns
+/// the basis's blocks and the template's rows, `None` when the pool does not reduce its
+/// permissible set or the result has more than `max_basis` monomials.
 pub(crate) fn reduce_permissible<const P: u32>(
     pool: &[Candidate],
     action: &Action,

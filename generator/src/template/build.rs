@@ -40,8 +40,9 @@ pub struct BuiltTemplate {
     /// it was grown from, for the plan to measure one against the other; `None` otherwise.
     pub quotient_basis: Option<Box<BuiltTemplate>>,
     /// Other templates with a redundant basis for the same action, larger than this one,
-    /// smallest first: the plan measures each in turn when it drops this one
-    /// (`crate::redundancy`); empty otherwise.
+    /// smallest first: the plan measures each in turn, against this one's
+    /// `quotient_basis`, when it drops this one (`crate::redundancy`); empty otherwise (and
+    /// their own `quotient_basis` is `None`).
     pub redundant_alternatives: Vec<BuiltTemplate>,
 }
 

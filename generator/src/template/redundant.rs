@@ -55,9 +55,17 @@ fn columns(rows: &[Candidate]) -> BTreeSet<&Monomial> {
 /// The columns that may join B: monomials of the rows, outside B, whose products with the
 /// action are all columns (so that `action * m` can be reduced or is in B).
 fn permissible(blocks: &Blocks, rows: &[Candidate], action: &Action) -> Vec<Monomial> {
+    permissible_columns(rows, action)
+        .into_iter()
+        .filter(|m| !blocks.basis_set.contains(m))
+        .collect()
+}
+
+/// Every monomial of the rows whose products with the action are all monomials of the
+/// rows, in the monomials' own order.
+fn permissible_columns(rows: &[Candidate], action: &Action) -> Vec<Monomial> {
     let cols = columns(rows);
     cols.iter()
-        .filter(|m| !blocks.basis_set.contains(**m))
         .filter(|m| action.products(m).all(|(p, _)| cols.contains(&p)))
         .map(|m| (*m).clone())
         .collect()
@@ -115,12 +123,7 @@ pub(crate) fn grow_basis<const P: u32>(
 /// permissible monomials): every monomial of the rows whose products with the action are
 /// all monomials of the rows.
 fn permissible_set(rows: &[Candidate], action: &Action) -> Vec<Monomial> {
-    let cols = columns(rows);
-    let mut basis: Vec<Monomial> = cols
-        .iter()
-        .filter(|m| action.products(m).all(|(p, _)| cols.contains(&p)))
-        .map(|m| (*m).clone())
-        .collect();
+    let mut basis = permissible_columns(rows, action);
     basis.sort_by(|x, y| MonomialOrder::Grevlex.cmp(y, x));
     basis
 }
@@ -221,6 +224,7 @@ pub(crate) fn reduce_permissible<const P: u32>(
     let mut best_key = key(&best);
     let mut tried: BTreeSet<Monomial> = BTreeSet::new();
     let mut work = 0u64;
+    let mut pool_columns = columns(&pool).len();
     let within = |b: (Blocks, Vec<Candidate>)| (b.0.basis.len() <= max_basis).then_some(b);
     loop {
         let mut improved = false;
@@ -238,7 +242,7 @@ pub(crate) fn reduce_permissible<const P: u32>(
             }
             // Bounded by work (the summed size of the pools eliminated), so that the result
             // does not depend on the machine's speed; the deadline only guards the budget.
-            work = work.saturating_add(pool.len() as u64 * columns(&pool).len() as u64);
+            work = work.saturating_add(pool.len() as u64 * pool_columns as u64);
             if work > MAX_PERMISSIBLE_WORK || deadline.is_some_and(|d| d.check_time().is_err()) {
                 return within(best);
             }
@@ -257,6 +261,7 @@ pub(crate) fn reduce_permissible<const P: u32>(
                     best_key = k;
                     best = s;
                     pool = smaller;
+                    pool_columns = columns(&pool).len();
                     improved = true;
                 }
             }
@@ -326,6 +331,7 @@ pub(super) fn with_redundant_basis<const P: u32>(
         return best;
     }
     let mut chosen = built.remove(0);
+    chosen.quotient_basis = Some(Box::new(best));
     chosen.redundant_alternatives = built;
     chosen
 }
@@ -385,7 +391,7 @@ fn redundant_template<const P: u32>(
         history,
         basis_choice: format!("{}, redundant basis", best.basis_choice),
         foldable_rows,
-        quotient_basis: Some(Box::new(best.clone())),
+        quotient_basis: None,
         redundant_alternatives: Vec::new(),
         ..best.clone()
     })

@@ -219,9 +219,6 @@ pub(crate) fn best_template_within(
         }
         for a in &mut b.redundant_alternatives {
             fold_constant_rows(&mut a.template, constants);
-            if let Some(q) = &mut a.quotient_basis {
-                fold_constant_rows(&mut q.template, constants);
-            }
         }
         finalists.push(b);
     }
@@ -234,9 +231,6 @@ pub(crate) fn best_template_within(
         }
         for a in &mut r.redundant_alternatives {
             a.template.reduction = Some(red.clone());
-            if let Some(q) = &mut a.quotient_basis {
-                q.template.reduction = Some(red.clone());
-            }
         }
         finalists.push(r);
     }

@@ -3,15 +3,46 @@
 //! in each form of the coefficient code (`tests/code_forms.rs`). Each problem is planned
 //! once, whatever the number of forms it is emitted in: planning is the costly part.
 
-use mingen::{emit_plan_in, plan_file, CodeForm, TemplateOptions};
+use mingen::{emit_plan_in, plan_file, CodeForm, PipelineError, SolverPlan, TemplateOptions};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
 
 /// Corpus problems also emitted in each form of the coefficient code (`src/lib.rs`'s
 /// `inline` and `table` modules): one with a large template and Newton polishing, one
 /// whose affine equations planning substitutes into the others, one whose constant rows'
 /// fold the inline form writes out as code (the table form walks the fold's plan).
 const BOTH_FORMS: [&str; 3] = ["p35pf", "relpose_5pt_entries", "p3ll"];
+
+/// Threads planning the corpus: its plans are independent, and planning is most of this
+/// script's time.
+const PLANNING_THREADS: usize = 2;
+
+/// The plan of each file, in order, planned on [`PLANNING_THREADS`] threads.
+fn plan_all(files: &[PathBuf]) -> Vec<Result<SolverPlan, PipelineError>> {
+    let next = AtomicUsize::new(0);
+    let plans: Vec<Mutex<Option<Result<SolverPlan, PipelineError>>>> =
+        files.iter().map(|_| Mutex::new(None)).collect();
+    std::thread::scope(|scope| {
+        for _ in 0..PLANNING_THREADS {
+            scope.spawn(|| loop {
+                let i = next.fetch_add(1, Ordering::Relaxed);
+                let Some(file) = files.get(i) else { break };
+                let plan = plan_file(file, &TemplateOptions::default());
+                *plans[i].lock().expect("no thread panicked") = Some(plan);
+            });
+        }
+    });
+    plans
+        .into_iter()
+        .map(|p| {
+            p.into_inner()
+                .expect("no thread panicked")
+                .expect("every file planned")
+        })
+        .collect()
+}
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let out_dir = PathBuf::from(std::env::var("OUT_DIR")?);
@@ -23,10 +54,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .filter(|p| p.extension().is_some_and(|x| x == "mp"))
         .collect();
     files.sort();
+    let plans = plan_all(&files);
     let mut modules = String::new();
-    for file in &files {
+    for (file, plan) in files.iter().zip(plans) {
         println!("cargo:rerun-if-changed={}", file.display());
-        let plan = plan_file(file, &TemplateOptions::default())?;
+        let plan = plan?;
         let name = plan.module_name();
         let shown = file.display().to_string();
         let mut forms = vec![(out_dir.clone(), CodeForm::Auto)];

@@ -7,7 +7,6 @@ use mingen::{emit_plan_in, plan_file, CodeForm, PipelineError, SolverPlan, Templ
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
 
 /// Corpus problems also emitted in each form of the coefficient code (`src/lib.rs`'s
 /// `inline` and `table` modules): one with a large template and Newton polishing, one
@@ -19,29 +18,30 @@ const BOTH_FORMS: [&str; 3] = ["p35pf", "relpose_5pt_entries", "p3ll"];
 /// script's time.
 const PLANNING_THREADS: usize = 2;
 
-/// The plan of each file, in order, planned on [`PLANNING_THREADS`] threads.
+/// The plan of each file, in order, planned on [`PLANNING_THREADS`] threads, each taking
+/// the next file not yet taken (plans differ in cost by orders of magnitude).
 fn plan_all(files: &[PathBuf]) -> Vec<Result<SolverPlan, PipelineError>> {
     let next = AtomicUsize::new(0);
-    let plans: Vec<Mutex<Option<Result<SolverPlan, PipelineError>>>> =
-        files.iter().map(|_| Mutex::new(None)).collect();
-    std::thread::scope(|scope| {
-        for _ in 0..PLANNING_THREADS {
-            scope.spawn(|| loop {
-                let i = next.fetch_add(1, Ordering::Relaxed);
-                let Some(file) = files.get(i) else { break };
-                let plan = plan_file(file, &TemplateOptions::default());
-                *plans[i].lock().expect("no thread panicked") = Some(plan);
-            });
-        }
+    let mut plans: Vec<(usize, Result<SolverPlan, PipelineError>)> = std::thread::scope(|scope| {
+        let threads: Vec<_> = (0..PLANNING_THREADS)
+            .map(|_| {
+                scope.spawn(|| {
+                    std::iter::from_fn(|| {
+                        let i = next.fetch_add(1, Ordering::Relaxed);
+                        let file = files.get(i)?;
+                        Some((i, plan_file(file, &TemplateOptions::default())))
+                    })
+                    .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        threads
+            .into_iter()
+            .flat_map(|h| h.join().expect("a planning thread panicked"))
+            .collect()
     });
-    plans
-        .into_iter()
-        .map(|p| {
-            p.into_inner()
-                .expect("no thread panicked")
-                .expect("every file planned")
-        })
-        .collect()
+    plans.sort_by_key(|(i, _)| *i);
+    plans.into_iter().map(|(_, p)| p).collect()
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

@@ -28,6 +28,7 @@ mod instance;
 mod instances_file;
 mod interpret;
 mod lang;
+mod parallel;
 mod pipeline;
 mod polishing;
 mod problem;
@@ -48,7 +49,8 @@ pub use emit::{CodeForm, EmitError};
 pub use expand::{EvalError, Problem, ProblemError, MAX_PROBLEM_FILE_BYTES};
 pub use lang::LangError;
 pub use pipeline::{
-    emit_plan_from, emit_plan_in, plan, plan_file, plan_source, PipelineError, SolverPlan,
+    emit_plan_from, emit_plan_in, plan, plan_file, plan_files, plan_source, PipelineError,
+    SolverPlan,
 };
 pub use polishing::{
     AutoPolishing, AUTO_POLISH_FAILURE_RATE, AUTO_POLISH_INSTANCES, AUTO_POLISH_MEDIAN,

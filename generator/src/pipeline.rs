@@ -39,7 +39,7 @@ use crate::template::{
 use crate::{Problem, ProblemError};
 use serde_json::{json, Value};
 use std::collections::HashSet;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 use thiserror::Error;
 
@@ -190,6 +190,17 @@ pub fn resolve_options(problem: &Problem, options: &TemplateOptions) -> Template
 pub fn plan_file(path: &Path, options: &TemplateOptions) -> Result<SolverPlan, PipelineError> {
     let problem = Problem::from_file_within(path, options.budget)?;
     plan(problem, &path.display().to_string(), options)
+}
+
+/// [`plan_file`] of every file, on at most `threads` threads (each plan on one thread,
+/// with its own `options.budget`), the plans in the files' order. A build script that
+/// plans many problems uses this as `prost-build` compiles many files.
+pub fn plan_files(
+    paths: &[PathBuf],
+    options: &TemplateOptions,
+    threads: usize,
+) -> Vec<Result<SolverPlan, PipelineError>> {
+    crate::parallel::map_in_order(paths, threads, |path| plan_file(path, options))
 }
 
 /// Parses and plans a problem given as source text; `file` names it in messages and in

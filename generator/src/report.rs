@@ -251,19 +251,22 @@ pub fn report_row_with(file: &Path, audit: &AuditOptions, options: &TemplateOpti
 
 /// The report of every problem file named by `paths` (see `problem_files`).
 pub fn report(paths: &[PathBuf], audit: &AuditOptions) -> Result<Vec<ReportRow>, ReportError> {
-    report_with(paths, audit, &TemplateOptions::default())
+    report_with(paths, audit, &TemplateOptions::default(), 1)
 }
 
-/// [`report`] with explicit template options.
+/// [`report`] with explicit template options, planning and auditing at most `threads`
+/// problems at a time (each on one thread with its own `options.budget`; rows in the
+/// files' order whatever the number of threads, and each row's `seconds` its own plan's).
 pub fn report_with(
     paths: &[PathBuf],
     audit: &AuditOptions,
     options: &TemplateOptions,
+    threads: usize,
 ) -> Result<Vec<ReportRow>, ReportError> {
-    Ok(problem_files(paths)?
-        .iter()
-        .map(|f| report_row_with(f, audit, options))
-        .collect())
+    let files = problem_files(paths)?;
+    Ok(crate::parallel::map_in_order(&files, threads, |f| {
+        report_row_with(f, audit, options)
+    }))
 }
 
 impl ReportRow {

@@ -12,7 +12,7 @@ fn generated_solvers_are_fresh() {
         .parent()
         .expect("workspace root");
     let out = Command::new(env!("CARGO_BIN_EXE_mingen"))
-        .args(["generate", "--all", "--check"])
+        .args(["generate", "--all", "--check", "--jobs", "2"])
         .current_dir(root)
         .output()
         .expect("mingen runs");

@@ -567,7 +567,18 @@ fn binary_reports_errors_with_exit_code_2() {
 #[test]
 fn binary_inspects_shipped_problems() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../templates/grsrp.mp");
-    let out = bin().args(["inspect", path, "--json"]).output().unwrap();
+    // Both forms at once: each plans the problem, on a core of its own.
+    let piped = |args: &[&str]| {
+        bin()
+            .args(args)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap()
+    };
+    let json = piped(&["inspect", path, "--json"]);
+    let text = piped(&["inspect", path]);
+    let out = json.wait_with_output().unwrap();
     assert!(out.status.success());
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["name"], "grsrp");
@@ -579,7 +590,7 @@ fn binary_inspects_shipped_problems() {
     assert_eq!(v["equation_degrees"], serde_json::json!([2, 2, 2, 2, 2, 2]));
     assert_eq!(v["data"][0]["kind"], "point");
     assert_eq!(v["equation_supports"][5][0], "t1^2");
-    let text = bin().args(["inspect", path]).output().unwrap();
+    let text = text.wait_with_output().unwrap();
     assert!(text.status.success());
     let s = String::from_utf8_lossy(&text.stdout);
     assert!(s.contains("problem grsrp") && s.contains("a1*t1"));

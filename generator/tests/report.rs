@@ -40,6 +40,8 @@ fn report_on_the_corpus_has_one_row_per_file_with_the_independent_counts() {
         "50",
         "--max-seconds",
         "8",
+        "--jobs",
+        "2",
     ]);
     assert!(
         run.status.success(),

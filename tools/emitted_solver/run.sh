@@ -14,7 +14,11 @@
 # PROFILE=dev builds the solver's crate in the dev (debug) profile instead of release, as
 # a user's `cargo build` does: emitted code must build in any profile. EDITION (default
 # 2024) is the crate's edition: it must build in any. BUILD_ONLY=1 stops
-# after the build (INSTANCES is then not read).
+# after the build (INSTANCES is then not read). MINGEN=PATH uses that mingen binary instead
+# of building the workspace's (CI passes the one its test build made). The crates share one
+# target directory, target/emitted-solver/target (or CARGO_TARGET_DIR), so mingen-runtime
+# and its dependencies are built once per profile, not once per problem; the driver is
+# TARGET_DIR/{release,debug}/emitted-solver-NAME.
 # Example (G-RSRP with unknown readout, 100 solutions):
 #   python3 tools/grsrp_readout_instances.py 200 2 --solutions /tmp/s.txt > /tmp/i.txt
 #   tools/emitted_solver/run.sh templates/large/grsrp_readout.mp /tmp/i.txt /tmp/s.txt 3,4,5
@@ -24,7 +28,7 @@ args=()
 while [[ $# -gt 0 && $1 != -- ]]; do args+=("$1"); shift; done
 [[ ${1:-} == -- ]] && shift
 if [[ ${#args[@]} -lt 2 ]]; then
-    sed -n 2,16p "$0" >&2
+    sed -n 2,24p "$0" >&2
     exit 2
 fi
 profile=${PROFILE:-release}
@@ -36,9 +40,14 @@ esac
 problem=${args[0]}
 name=$(basename "$problem" .mp)
 work="$root/target/emitted-solver/$name"
+crates_target="${CARGO_TARGET_DIR:-$root/target/emitted-solver/target}"
 mkdir -p "$work/src"
-cargo build --release -q -p mingen --manifest-path "$root/Cargo.toml"
-"${CARGO_TARGET_DIR:-$root/target}/release/mingen" generate "$problem" --out "$work/src/solver.rs" "$@"
+mingen=${MINGEN:-}
+if [[ -z $mingen ]]; then
+    cargo build --release -q -p mingen --manifest-path "$root/Cargo.toml"
+    mingen="${CARGO_TARGET_DIR:-$root/target}/release/mingen"
+fi
+"$mingen" generate "$problem" --out "$work/src/solver.rs" "$@"
 cp "$root/tools/emitted_solver/main.rs" "$work/src/main.rs"
 cat > "$work/Cargo.toml" <<TOML
 [package]
@@ -56,10 +65,10 @@ TOML
 # shared CARGO_TARGET_DIR reuses their builds (cargo drops the entries it does not need).
 [[ -f "$root/Cargo.lock" ]] && cp "$root/Cargo.lock" "$work/Cargo.lock"
 # Dependencies first, so that the figure below is the solver's own compile time.
-cargo build "${flag[@]}" -q --manifest-path "$work/Cargo.toml" -p mingen-runtime
+cargo build "${flag[@]}" -q --manifest-path "$work/Cargo.toml" --target-dir "$crates_target" -p mingen-runtime
 touch "$work/src/main.rs"
 start=$(date +%s%N)
-if ! log=$(cargo build "${flag[@]}" -q --manifest-path "$work/Cargo.toml" 2>&1); then
+if ! log=$(cargo build "${flag[@]}" -q --manifest-path "$work/Cargo.toml" --target-dir "$crates_target" 2>&1); then
     echo "$log" >&2
     exit 1
 fi
@@ -68,4 +77,4 @@ lines=$(wc -l < "$work/src/solver.rs")
 ms=$(( (end - start) / 1000000 ))
 printf '%s: %d lines emitted, compiled in %d.%d s (%s)\n' "$name" "$lines" $((ms / 1000)) $((ms % 1000 / 100)) "$profile"
 [[ ${BUILD_ONLY:-0} == 1 ]] && exit 0
-"${CARGO_TARGET_DIR:-$work/target}/$dir/emitted-solver-$name" "${args[@]:1}"
+"$crates_target/$dir/emitted-solver-$name" "${args[@]:1}"

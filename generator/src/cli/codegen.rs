@@ -6,7 +6,9 @@
 
 use mingen::__internal::emit::{is_fresh, write_output};
 use mingen::__internal::lang::names::module_name;
-use mingen::{emit_plan_from, emit_plan_in, plan_file, CodeForm, PipelineError, SolverPlan};
+use mingen::{
+    emit_plan_from, emit_plan_in, plan_file, plan_files, CodeForm, PipelineError, SolverPlan,
+};
 use mingen::{Problem, ProblemError, TemplateOptions};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -117,19 +119,21 @@ pub struct GeneratedFile {
     pub fresh: bool,
 }
 
-/// Generates the solvers of `files` (and, if `with_mod_rs`, the module list of every problem
-/// under `root`); with `check`, writes nothing and only reports freshness.
+/// Generates the solvers of `files`, planning `jobs` at a time (and, if `with_mod_rs`, the
+/// module list of every problem under `root`); with `check`, writes nothing and only
+/// reports freshness.
 pub fn generate_with(
     root: &Path,
     files: &[PathBuf],
     with_mod_rs: bool,
     check: bool,
+    jobs: usize,
     options: &TemplateOptions,
 ) -> Result<Vec<GeneratedFile>, GenerateError> {
     let options = options.clone();
     let mut outputs: Vec<(PathBuf, String)> = Vec::new();
-    for f in files {
-        let plan = plan_file(f, &options)?;
+    for plan in plan_files(files, &options, jobs) {
+        let plan = plan?;
         outputs.push((generated_path(root, &plan), emit_checked_in(&plan)?));
     }
     if with_mod_rs {

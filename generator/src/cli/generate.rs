@@ -44,6 +44,7 @@ pub(super) fn generate(
     files: Vec<PathBuf>,
     all: bool,
     check: bool,
+    jobs: usize,
     options: &TemplateOptions,
 ) -> Result<(), CliError> {
     let root = workspace_root()?;
@@ -60,7 +61,7 @@ pub(super) fn generate(
         });
     }
     let files = if all { problem_files(&root)? } else { files };
-    let report = generate_with(&root, &files, all, check, options)?;
+    let report = generate_with(&root, &files, all, check, jobs, options)?;
     let stale: Vec<_> = report.iter().filter(|f| !f.fresh).collect();
     for f in &report {
         let rel = f

@@ -84,6 +84,11 @@ enum Command {
         /// Seed of the audit instances.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// Problems planned and audited at a time, each on a thread of its own with its own
+        /// budget (1 to 256; more than the machine's cores only shares them). The rows and
+        /// their figures do not depend on it, except the seconds when cores are shared.
+        #[arg(long, default_value_t = 1, value_parser = job_count)]
+        jobs: usize,
         #[command(flatten)]
         search: SearchArgs,
     },
@@ -111,6 +116,10 @@ enum Command {
         /// template entries plus coefficient statements).
         #[arg(long, value_name = "auto|inline|table", value_parser = ["auto", "inline", "table"], requires = "out")]
         code_form: Option<String>,
+        /// Problems planned at a time without --out, each on a thread of its own with its
+        /// own budget (1 to 256); the files written do not depend on it.
+        #[arg(long, default_value_t = 1, value_parser = job_count, conflicts_with = "out")]
+        jobs: usize,
         #[command(flatten)]
         search: SearchArgs,
     },
@@ -123,6 +132,14 @@ fn instance_count(s: &str) -> Result<usize, String> {
     match s.parse::<usize>() {
         Ok(n) if (1..=max).contains(&n) => Ok(n),
         _ => Err(format!("expected an integer from 1 to {max}, found '{s}'")),
+    }
+}
+
+/// `--jobs`: a thread count from 1 to 256.
+fn job_count(s: &str) -> Result<usize, String> {
+    match s.parse::<usize>() {
+        Ok(n) if (1..=256).contains(&n) => Ok(n),
+        _ => Err(format!("expected an integer from 1 to 256, found '{s}'")),
     }
 }
 
@@ -298,6 +315,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
             check,
             out,
             code_form,
+            jobs,
             search,
         } => search.options().and_then(|o| match out {
             Some(out) => {
@@ -308,7 +326,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
                 };
                 generate::generate_out(&files, all, &out, check, &o, form)
             }
-            None => generate::generate(files, all, check, &o),
+            None => generate::generate(files, all, check, jobs, &o),
         }),
         Command::Audit {
             file,
@@ -331,9 +349,10 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
             json,
             instances,
             seed,
+            jobs,
             search,
         } => search
             .options()
-            .and_then(|o| report::report(&paths, instances, seed, json, &o)),
+            .and_then(|o| report::report(&paths, instances, seed, json, jobs, &o)),
     }
 }

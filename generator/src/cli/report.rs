@@ -9,6 +9,7 @@ pub(super) fn report(
     instances: usize,
     seed: u64,
     as_json: bool,
+    jobs: usize,
     template: &TemplateOptions,
 ) -> Result<(), CliError> {
     let options = AuditOptions {
@@ -16,7 +17,7 @@ pub(super) fn report(
         seed,
         time_limit: super::audit::time_limit(template.budget),
     };
-    let rows = mingen::report_with(paths, &options, template).map_err(|e| CliError {
+    let rows = mingen::report_with(paths, &options, template, jobs).map_err(|e| CliError {
         message: e.to_string(),
         code: 2,
     })?;

@@ -32,7 +32,7 @@ python3 "$repo/tools/gen_relpose_6pt_instances.py" "$count" 3 --solutions "$work
   >"$work/instances"
 "$repo/tools/emitted_solver/run.sh" "$repo/templates/large/gen_relpose_6pt.mp" \
   "$work/instances" "$work/solutions" -- "$@" >/dev/null
-ours="$repo/target/emitted-solver/gen_relpose_6pt/target/release/emitted-solver-gen_relpose_6pt"
+ours="${CARGO_TARGET_DIR:-$repo/target/emitted-solver/target}/release/emitted-solver-gen_relpose_6pt"
 
 pin=""
 command -v taskset >/dev/null && pin="taskset -c 0"

@@ -49,7 +49,7 @@ for p in "${problems[@]}"; do
   [[ $p == relpose_upright_3pt_elim ]] && sign_free=(2,3,4)
   "$repo/tools/emitted_solver/run.sh" "$repo/templates/classic/$p.mp" "$work/$p.ours" \
     "$work/$p.sol" "${sign_free[@]}" >/dev/null
-  ours="${CARGO_TARGET_DIR:-$repo/target/emitted-solver/$p/target}/release/emitted-solver-$p"
+  ours="${CARGO_TARGET_DIR:-$repo/target/emitted-solver/target}/release/emitted-solver-$p"
   for r in $(seq "$rounds"); do
     $pin "$work/poselib" "$p" "$work/$p.peer" "$work/$p.sol" | sed "s/^/$p $r poselib /" >>"$work/log"
     $pin "$ours" "$work/$p.ours" "$work/$p.sol" "${sign_free[@]}" | sed "s/^/$p $r ours /" >>"$work/log"

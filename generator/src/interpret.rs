@@ -578,6 +578,7 @@ mod tests {
             basis: vec![mono(&[1, 0]), mono(&[0, 1]), mono(&[0, 0])],
             action: crate::template::Action::var(2, 0),
             sparse: None,
+            unrolled: None,
             reduction: None,
             fold: None,
             spurious_eigenvalues: 0,

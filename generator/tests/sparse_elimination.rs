@@ -1,10 +1,11 @@
 //! The sparse elimination of a shipped large template reproduces the dense LU with partial
-//! pivoting (same pivots, same arithmetic on the non-zeros), and small templates keep the
-//! dense LU.
+//! pivoting (same pivots, same arithmetic on the non-zeros), and small templates are
+//! written out as straight-line code along their own order (whose numbers
+//! `tests/tests/unrolled_elimination.rs` of the workspace compares with the dense LU's).
 
 use mingen::__internal::instance::random_data_f64;
 use mingen::__internal::interpret::fill_template;
-use mingen::__internal::template::{TemplateOptions, SPARSE_MIN_PIVOTS};
+use mingen::__internal::template::{TemplateOptions, SPARSE_MIN_PIVOTS, UNROLLED_MAX_UPDATES};
 use mingen::plan_file;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -55,9 +56,34 @@ fn sparse_plan_matches_the_dense_lu() {
 }
 
 #[test]
-fn small_templates_keep_the_dense_lu() {
-    let plan = plan_file(&template_path("gs5pt"), &TemplateOptions::default()).unwrap();
+fn small_templates_are_written_out_along_their_own_order() {
+    for name in ["gs5pt", "classic/p3p", "classic/gp3p", "classic/up2p_elim"] {
+        let plan = plan_file(&template_path(name), &TemplateOptions::default()).unwrap();
+        let t = &plan.generated.built.template;
+        assert!(t.pivot_columns() < SPARSE_MIN_PIVOTS, "{name}");
+        assert!(t.sparse.is_none(), "{name}");
+        let e = t
+            .unrolled
+            .as_ref()
+            .expect("a small template is written out");
+        assert!(
+            e.sparse_updates <= e.dense_updates.min(UNROLLED_MAX_UPDATES),
+            "{name}"
+        );
+        // Its own order: no step is planned without its pivot column's filled entries.
+        let (_, cols) = t.eliminated_size();
+        for k in 0..t.pivot_columns() {
+            assert!(
+                e.filled.iter().any(|&i| i as usize % cols == k),
+                "{name}: column {k}"
+            );
+        }
+        let source = mingen::emit_plan_from(&plan, name).unwrap();
+        assert!(source.contains("fn eliminate_template("), "{name}");
+        assert!(!source.contains("lu_solve_template"), "{name}");
+    }
+    // A large template keeps its reordered plan, and nothing is written out for it.
+    let plan = plan_file(&template_path("grsrp_gravity"), &TemplateOptions::default()).unwrap();
     let t = &plan.generated.built.template;
-    assert!(t.pivot_columns() < SPARSE_MIN_PIVOTS);
-    assert!(t.sparse.is_none());
+    assert!(t.sparse.is_some() && t.unrolled.is_none());
 }

@@ -21,6 +21,7 @@ pub fn zeroed_coefficients<const N: usize>() -> Box<[f64; N]> {
 /// Writes `m[entry] = ±c[k]` for every `[entry, code]` of `table`, where
 /// `code = 2 k + negated`. Entries or coefficients out of range are skipped (the generator
 /// never emits them; skipping keeps the never-panics contract).
+#[inline]
 pub fn fill_template(m: &mut [f64], c: &[f64], table: &[[u32; 2]]) {
     for &[entry, code] in table {
         let (Some(&v), Some(slot)) = (c.get((code >> 1) as usize), m.get_mut(entry as usize))

@@ -21,6 +21,22 @@
 /// out of range, or `A` is singular or has non-finite entries (data degenerate for the
 /// reduction); never panics.
 pub fn reduce_equations(q: &mut [f64], n_mon: usize, pivots: &[usize]) -> bool {
+    reduce_core(q, n_mon, pivots)
+}
+
+/// [`reduce_equations`] with the shape as constants (`N_EQ` equations of `N_MON`
+/// coefficients): inlined into an emitted solver, whose pivots are constants too, its
+/// loops unroll. The same operations in the same order, so the same numbers.
+#[inline]
+pub fn reduce_equations_fixed<const N_EQ: usize, const N_MON: usize>(
+    q: &mut [f64],
+    pivots: &[usize; N_EQ],
+) -> bool {
+    reduce_core(q, N_MON, pivots)
+}
+
+#[inline(always)]
+fn reduce_core(q: &mut [f64], n_mon: usize, pivots: &[usize]) -> bool {
     let n = pivots.len();
     if n.checked_mul(n_mon) != Some(q.len()) || pivots.iter().any(|&p| p >= n_mon) {
         return false;
@@ -83,6 +99,18 @@ mod tests {
                 assert!((a - b).abs() < 1e-15, "{q:?}");
             }
         }
+    }
+
+    #[test]
+    fn the_fixed_form_gives_the_same_numbers() {
+        let rows = [
+            1.5, -2.0, 0.25, 3.0, 2.0, 1.0, -1.0, 0.5, -0.75, 4.0, 1.0, 2.0,
+        ];
+        let (mut a, mut b) = (rows.to_vec(), rows.to_vec());
+        assert!(reduce_equations(&mut a, 4, &[1, 0, 3]));
+        assert!(reduce_equations_fixed::<3, 4>(&mut b, &[1, 0, 3]));
+        assert_eq!(a, b);
+        assert!(!reduce_equations_fixed::<3, 5>(&mut b, &[1, 0, 3]));
     }
 
     #[test]

@@ -95,7 +95,7 @@ pub use distinct::{repeats, DistinctSolutions, DUPLICATE_TOLERANCE};
 pub use dynamic::{real_eigenpairs_dyn, DynEigenpair, MAX_DYNAMIC_BASIS, STURM_MAX_BASIS};
 pub use eigen::{real_eigenpairs, NEAR_REAL_TOL};
 pub use elim::{gauss_jordan, lu_solve_template, lu_solve_template_fixed, PIVOT_TOL};
-pub use equation_reduction::reduce_equations;
+pub use equation_reduction::{reduce_equations, reduce_equations_fixed};
 pub use hqr::{real_eigenpairs_hqr, real_eigenpairs_hqr_dyn};
 pub use least_squares::{least_squares_dyn, LeastSquares};
 pub use newton::{

@@ -12,6 +12,7 @@
 //! - `solution_loop`: the loop over the action matrix's real eigenvectors that reads,
 //!   unfolds, recovers, polishes, filters and pushes each solution.
 //! - `structs`: the emitted `Data` / `Solution` structs and their slot conversions.
+//! - `unrolled`: a small template's elimination written out as straight-line code.
 //! - `tokens`: literal and doc-attribute helpers both of the above use.
 //! - `files`: header line, atomic write, freshness check.
 //!
@@ -34,6 +35,7 @@ mod structs;
 mod table_form;
 mod tokens;
 pub mod traced;
+mod unrolled;
 
 pub use coefficients::Program;
 pub use files::{generated_header, generated_header_for_path, is_fresh, write_output};

@@ -1,6 +1,6 @@
 //! Emission of the equation reduction (see [`crate::template::reduction`]): the solver
 //! writes its equations' coefficients into their coefficient matrix `q`, reduces it to
-//! the planned pivots with `mingen_runtime::reduce_equations`, and fills the template
+//! the planned pivots with `mingen_runtime::reduce_equations_fixed`, and fills the template
 //! from the reduced coefficients through a constant table.
 
 use super::runtime_api as rt;
@@ -133,7 +133,7 @@ pub(super) fn reduce_and_fill_tokens(
             static REDUCED_FILL: [[u32; 2]; #n_fill] = [#(#entries),*];
         },
         quote! {
-            if !#reduce(&mut q[..], #n_l, &EQUATION_PIVOTS) {
+            if !#reduce::<#n_eq, #n_l>(&mut q[..], &EQUATION_PIVOTS) {
                 return out;
             }
             #alloc_m

@@ -37,6 +37,12 @@ pub(crate) fn lu_solve_template_sparse() -> TokenStream {
     quote!(mingen_runtime::lu_solve_template_sparse_fixed)
 }
 
+/// `PIVOT_TOL: f64`: the LU routines' relative pivot tolerance (times a column's largest
+/// magnitude).
+pub(crate) fn pivot_tol() -> TokenStream {
+    quote!(mingen_runtime::PIVOT_TOL)
+}
+
 /// The structure of a sparse elimination: `SparseLuPlan<'a>` with the public fields
 /// `rows, cols, pivot_cols, first_row: usize`, `pattern_start, target_start: &[u32]`,
 /// `pattern, targets: &[u16]`.
@@ -184,7 +190,8 @@ pub(crate) fn zeroed_coefficients() -> TokenStream {
     quote!(mingen_runtime::zeroed_coefficients)
 }
 
-/// `mingen_runtime::reduce_equations`.
+/// `reduce_equations_fixed::<N_EQ, N_MON>(q: &mut [f64], pivots: &[usize; N_EQ]) -> bool`:
+/// the equations' coefficient matrix row-reduced on the pivot columns, in place.
 pub(crate) fn reduce_equations() -> TokenStream {
-    quote!(mingen_runtime::reduce_equations)
+    quote!(mingen_runtime::reduce_equations_fixed)
 }

@@ -468,7 +468,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let n_slots_l = lit(n_slots);
     let (rows_l, cols_l, pivots_l, nb_l) = (lit(rows), lit(cols), lit(pivots), lit(nb));
     let first_row = &elimination.first_row;
-    let sparse_plan = &elimination.sparse_plan;
+    let elimination_items = &elimination.items;
     let reduce = &elimination.reduce;
     let coefficient_fns = &fill.functions;
     let coefficients_and_fill = &fill.code;
@@ -477,7 +477,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let solve = quote! {
         /// The elimination template's `[rows, cols, pivot columns, first reduced row]`.
         pub const TEMPLATE_SHAPE: [usize; 4] = [#rows_l, #cols_l, #pivots_l, #first_row];
-        #sparse_plan
+        #elimination_items
         #coefficient_fns
 
         #(#docs)*
@@ -557,8 +557,9 @@ fn data_slots(plan: &Plan) -> Result<Vec<TokenStream>, EmitError> {
 struct Elimination {
     /// The first row the elimination reduces (the rows above are excess rows).
     first_row: Literal,
-    /// The sparse LU's structure, a static item (empty for the dense LU).
-    sparse_plan: TokenStream,
+    /// The items it needs: the sparse LU's structure (a static) or the written-out
+    /// elimination (a function); empty for the dense LU.
+    items: TokenStream,
     /// The call that reduces `m`, true on success.
     reduce: TokenStream,
     /// How the documentation names it.
@@ -591,7 +592,7 @@ impl Elimination {
                     u16s(&e.targets),
                 );
                 Elimination {
-                    sparse_plan: quote! {
+                    items: quote! {
                         /// The structure of the template's sparse LU with partial pivoting (a bound
                         /// over every pivot choice; see `mingen_runtime::SparseLuPlan`).
                         #[rustfmt::skip]
@@ -611,10 +612,19 @@ impl Elimination {
                     words: "sparse LU with partial pivoting",
                 }
             }
+            None if t.unrolled.is_some() => {
+                let e = t.unrolled.as_ref().expect("checked just above");
+                Elimination {
+                    items: super::unrolled::eliminate_template_fn(t, e),
+                    reduce: quote!(eliminate_template(&mut m)),
+                    first_row,
+                    words: "LU with partial pivoting written out along the template's structure",
+                }
+            }
             None => {
                 let lu = rt::lu_solve_template();
                 Elimination {
-                    sparse_plan: quote!(),
+                    items: quote!(),
                     reduce: quote!(#lu::<#rows_l, #cols_l, #pivots_l, #first_row>(&mut m)),
                     first_row,
                     words: "LU with partial pivoting",

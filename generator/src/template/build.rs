@@ -296,6 +296,7 @@ pub(crate) fn assemble<const P: u32>(
         n_hidden,
         action: action.clone(),
         sparse: None,
+        unrolled: None,
         reduction: None,
         fold: None,
         spurious_eigenvalues: 0,

@@ -458,6 +458,7 @@ pub fn fold_constant_rows(t: &mut EliminationTemplate, equations: &[EquationCons
     t.rows = row_order.iter().map(|&r| t.rows[r].clone()).collect();
     t.columns = col_order.iter().map(|&c| t.columns[c].clone()).collect();
     t.sparse = None;
+    t.unrolled = None;
     t.fold = Some(fold.clone());
     if t.eliminated_size().1 + pivots.len() > usize::from(u16::MAX) {
         t.fold = None;

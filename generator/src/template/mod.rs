@@ -85,7 +85,7 @@ pub use reduction::{EquationReduction, ReductionError};
 pub use shape::ShapeError;
 pub use sparse_order::{
     elimination_updates, order_for_sparse_elimination, SparseElimination, SPARSE_MIN_GAIN,
-    SPARSE_MIN_PIVOTS,
+    SPARSE_MIN_PIVOTS, UNROLLED_MAX_UPDATES,
 };
 
 pub use build::BuiltTemplate;
@@ -143,6 +143,11 @@ pub struct EliminationTemplate {
     /// [`order_for_sparse_elimination`], which also orders the rows and columns for it);
     /// `None`: the dense LU with partial pivoting.
     pub sparse: Option<SparseElimination>,
+    /// The elimination in the template's own order along its structure, when `sparse` is
+    /// `None` and it is small enough to be written out as straight-line code (see
+    /// [`order_for_sparse_elimination`]): the dense LU's pivots and numbers, without its
+    /// operations on entries that are zero for every instance. `None`: the dense LU.
+    pub unrolled: Option<SparseElimination>,
     /// The row reduction of the equations on their data the rows refer to (see
     /// [`reduction`]); `None`: the rows are multiples of the equations as given.
     pub reduction: Option<EquationReduction>,

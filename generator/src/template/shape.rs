@@ -251,6 +251,7 @@ mod tests {
             basis: vec![m([0, 1]), m([1, 0]), m([0, 0])],
             action: super::super::Action::var(2, 0),
             sparse: None,
+            unrolled: None,
             reduction: None,
             fold: None,
             spurious_eigenvalues: 0,

@@ -10,8 +10,13 @@
 //! every candidate holds the union of the candidates' patterns. The numbers are then those
 //! of the dense LU with partial pivoting; the plan is kept for templates of at least
 //! [`SPARSE_MIN_PIVOTS`] pivot columns whose operation count beats the dense LU's by
-//! [`SPARSE_MIN_GAIN`]; other templates are left as they are. Large steps (a pattern over
-//! half the remaining columns) run as contiguous row operations at run time.
+//! [`SPARSE_MIN_GAIN`]. Large steps (a pattern over half the remaining columns) run as
+//! contiguous row operations at run time. A template left in its order gets the plan of
+//! that order instead (`EliminationTemplate::unrolled`) when it has at most
+//! [`UNROLLED_MAX_UPDATES`] multiply-adds: the solver writes it out as straight-line code,
+//! whose pivots and numbers are the dense LU's (rows outside a step's candidates are zero
+//! in its column), without the dense LU's operations on entries that are zero for every
+//! instance, its index arithmetic or its loops.
 
 use super::{EliminationTemplate, TemplateRow};
 use crate::algebra::Monomial;
@@ -24,6 +29,11 @@ pub const SPARSE_MIN_GAIN: usize = 3;
 /// Templates with fewer pivot columns keep the dense LU: it is already cheap there, and
 /// the per-step bookkeeping of the sparse one would not pay.
 pub const SPARSE_MIN_PIVOTS: usize = 32;
+
+/// Templates whose elimination in their own order takes at most this many multiply-adds
+/// are eliminated by straight-line code: it stays a few thousand statements, which
+/// rustc compiles quickly in any profile.
+pub const UNROLLED_MAX_UPDATES: usize = 3000;
 
 /// The structure of a template's elimination in its (permuted) natural order: the
 /// owned form of `mingen_runtime::SparseLuPlan` (see there for the fields' meaning).
@@ -41,6 +51,11 @@ pub struct SparseElimination {
     pub sparse_updates: usize,
     /// Multiply-adds of the dense LU on the same template (an upper bound).
     pub dense_updates: usize,
+    /// The entries (row-major indices into the eliminated matrix) that may be non-zero
+    /// before the elimination, ascending: recorded for a plan in the template's own order
+    /// (`EliminationTemplate::unrolled`), whose code reads the pivot tolerances off them;
+    /// empty otherwise.
+    pub filled: Vec<u32>,
 }
 
 impl SparseElimination {
@@ -277,6 +292,7 @@ fn plan(
         targets: Vec::new(),
         sparse_updates: 0,
         dense_updates: 0,
+        filled: Vec::new(),
     };
     let mut union = vec![0u64; bits.words];
     for k in 0..pivots {
@@ -305,11 +321,42 @@ fn plan(
 
 /// Orders `t` for sparse elimination and records the plan in `t.sparse` when it pays (see
 /// the module documentation); `supports[e]` are the monomials of equation `e` for generic
-/// data. Leaves `t` unchanged (and `t.sparse` empty) when the template is small
-/// ([`SPARSE_MIN_PIVOTS`]) or the dense LU is about as cheap,
-/// when the supports do not cover the template, or when the template has more rows than
-/// the plan's 16-bit indices hold.
+/// data. Leaves the order of `t` unchanged (and `t.sparse` empty) when the template is
+/// small ([`SPARSE_MIN_PIVOTS`]) or the dense LU is about as cheap, when the supports do
+/// not cover the template, or when the template has more rows than the plan's 16-bit
+/// indices hold; `t.unrolled` is then the plan of its own order if that is small
+/// ([`UNROLLED_MAX_UPDATES`]) and cheaper than the dense LU.
 pub fn order_for_sparse_elimination(t: &mut EliminationTemplate, supports: &[Vec<Monomial>]) {
+    t.unrolled = None;
+    if !order_by_markowitz(t, supports) {
+        t.unrolled = plan_in_own_order(t, supports);
+    }
+}
+
+/// The plan of `t` in its own order, when it is small and cheaper than the dense LU.
+fn plan_in_own_order(
+    t: &EliminationTemplate,
+    supports: &[Vec<Monomial>],
+) -> Option<SparseElimination> {
+    let (rows, cols) = t.eliminated_size();
+    let pivots = t.pivot_columns();
+    let first = t.first_reduced_row();
+    if pivots == 0 || pivots > rows || rows > usize::from(u16::MAX) || rows * cols > 1 << 31 {
+        return None;
+    }
+    let bits = structure(t, supports)?;
+    let filled: Vec<u32> = (0..rows)
+        .flat_map(|r| bits.ones(r, 0, cols).map(move |c| (r * cols + c) as u32))
+        .collect();
+    let mut e = plan(bits, rows, cols, pivots, first);
+    e.dense_updates = dense_updates(rows, cols, pivots, first);
+    e.filled = filled;
+    (e.sparse_updates <= UNROLLED_MAX_UPDATES && e.sparse_updates <= e.dense_updates).then_some(e)
+}
+
+/// [`order_for_sparse_elimination`]'s reordering: true if `t` was ordered and given its
+/// plan in `t.sparse`.
+fn order_by_markowitz(t: &mut EliminationTemplate, supports: &[Vec<Monomial>]) -> bool {
     t.sparse = None;
     // A fold's rows and columns stay first; the plan permutes those of the complement.
     let k = t.folded_rows();
@@ -317,13 +364,13 @@ pub fn order_for_sparse_elimination(t: &mut EliminationTemplate, supports: &[Vec
     let pivots = t.pivot_columns();
     let first = t.first_reduced_row();
     if pivots < SPARSE_MIN_PIVOTS || pivots > rows || rows > usize::from(u16::MAX) {
-        return;
+        return false;
     }
     let Some(bits) = structure(t, supports) else {
-        return;
+        return false;
     };
     let Some(order) = markowitz(bits.clone(), rows, first, pivots) else {
-        return;
+        return false;
     };
     // Rows: pivot rows in step order, then the others in their order.
     let mut row_order: Vec<usize> = order.iter().map(|&(r, _)| r).collect();
@@ -343,7 +390,7 @@ pub fn order_for_sparse_elimination(t: &mut EliminationTemplate, supports: &[Vec
     let mut e = plan(permuted, rows, cols, pivots, first);
     e.dense_updates = dense_updates(rows, cols, pivots, first);
     if e.sparse_updates.saturating_mul(SPARSE_MIN_GAIN) > e.dense_updates {
-        return;
+        return false;
     }
     // Template columns: eliminated column c is template column c + k below the dependent
     // block, c + k + n_dependent after it (k folded columns first).
@@ -387,4 +434,5 @@ pub fn order_for_sparse_elimination(t: &mut EliminationTemplate, supports: &[Vec
     t.rows = rows_new;
     t.columns = columns;
     t.sparse = Some(e);
+    true
 }

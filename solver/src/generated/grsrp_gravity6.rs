@@ -175,9 +175,106 @@ pub const MAX_SOLUTIONS: usize = 6;
 pub type Solutions = mingen_runtime::SolutionSet<Solution, MAX_SOLUTIONS>;
 /// The elimination template's `[rows, cols, pivot columns, first reduced row]`.
 pub const TEMPLATE_SHAPE: [usize; 4] = [3, 9, 3, 1];
+/// The elimination of the filled template (row-major, in place), written out along
+/// its structure: LU with partial pivoting among each step's candidate rows (those
+/// that may be non-zero in its column; the others are zero there), then back
+/// substitution of the rows from the first reduced one. The dense LU's pivots and
+/// numbers. False if an entry is not finite or a pivot is below its column's
+/// tolerance.
+#[inline]
+#[rustfmt::skip]
+#[allow(clippy::too_many_lines)]
+fn eliminate_template(m: &mut [f64]) -> bool {
+    let m: &mut [f64; 27] = match ::core::convert::TryFrom::try_from(m) {
+        Ok(m) => m,
+        Err(_) => return false,
+    };
+    let sums = [
+        m[0].abs() + m[4].abs() + m[10].abs() + m[14].abs() + m[20].abs() + m[24].abs(),
+        m[1].abs() + m[5].abs() + m[11].abs() + m[15].abs() + m[21].abs() + m[25].abs(),
+        m[2].abs() + m[6].abs() + m[12].abs() + m[16].abs() + m[22].abs() + m[26].abs(),
+        m[3].abs() + m[9].abs() + m[13].abs() + m[17].abs() + m[23].abs(),
+    ];
+    if !((sums[0] + sums[1]) + (sums[2] + sums[3])).is_finite() {
+        return false;
+    }
+    let pivot_tol = mingen_runtime::PIVOT_TOL;
+    let mut tol = [0.0f64; 3];
+    tol[0] = pivot_tol * m[0].abs().max(m[9].abs());
+    tol[1] = pivot_tol * m[1].abs().max(m[10].abs());
+    tol[2] = pivot_tol * m[2].abs().max(m[11].abs()).max(m[20].abs());
+    let (mut p, mut best) = (0, m[0].abs());
+    let a = m[9].abs();
+    if a > best {
+        best = a;
+        p = 1;
+    }
+    if !(best > tol[0] && best <= f64::MAX) {
+        return false;
+    }
+    if p != 0 {
+        for c in [0, 1, 2, 3, 4, 5, 6, 7, 8] {
+            m.swap(c, p * 9 + c);
+        }
+    }
+    let inv = 1.0 / m[0];
+    m[0] = 1.0;
+    m[1] *= inv;
+    m[2] *= inv;
+    m[3] *= inv;
+    m[4] *= inv;
+    m[5] *= inv;
+    m[6] *= inv;
+    m[7] *= inv;
+    m[8] *= inv;
+    let f = m[9];
+    m[9] = 0.0;
+    m[10] -= f * m[1];
+    m[11] -= f * m[2];
+    m[12] -= f * m[3];
+    m[13] -= f * m[4];
+    m[14] -= f * m[5];
+    m[15] -= f * m[6];
+    m[16] -= f * m[7];
+    m[17] -= f * m[8];
+    let best = m[10].abs();
+    if !(best > tol[1] && best <= f64::MAX) {
+        return false;
+    }
+    let inv = 1.0 / m[10];
+    m[10] = 1.0;
+    m[11] *= inv;
+    m[12] *= inv;
+    m[13] *= inv;
+    m[14] *= inv;
+    m[15] *= inv;
+    m[16] *= inv;
+    m[17] *= inv;
+    let best = m[20].abs();
+    if !(best > tol[2] && best <= f64::MAX) {
+        return false;
+    }
+    let inv = 1.0 / m[20];
+    m[20] = 1.0;
+    m[21] *= inv;
+    m[22] *= inv;
+    m[23] *= inv;
+    m[24] *= inv;
+    m[25] *= inv;
+    m[26] *= inv;
+    let f = m[11];
+    m[11] = 0.0;
+    m[12] -= f * m[21];
+    m[13] -= f * m[22];
+    m[14] -= f * m[23];
+    m[15] -= f * m[24];
+    m[16] -= f * m[25];
+    m[17] -= f * m[26];
+    true
+}
 /// Solves `grsrp_gravity6`: all real solutions of the problem's equations for the given data.
 ///
-/// Fills a 3 x 9 elimination template, reduces it (LU with partial pivoting, back substitution of the 2 reducible rows only), builds the 6 x 6 action matrix of `c` on the basis [c^3, c^2, c*s, c, s, 1] and reads each unknown `x` off the real eigenvectors `v` as the least-squares ratio of the entries `v[x b]` and `v[b]` over the basis monomials `b` with `x b` in the basis (`v[x] / v[1]` if that is the only one).
+/// Fills a 3 x 9 elimination template, reduces it (LU with partial pivoting written out along the template's structure, back substitution of the 2 reducible rows only), builds the 6 x 6 action matrix of `c` on the basis [c^3, c^2, c*s, c, s, 1] and reads each unknown `x` off the real eigenvectors `v` as the least-squares ratio of the entries `v[x b]` and `v[b]` over the basis monomials `b` with `x b` in the basis (`v[x] / v[1]` if that is the only one).
 ///
 /// Never panics: non-finite or degenerate data gives no solutions.
 #[must_use]
@@ -488,7 +585,7 @@ pub fn solve_staged<S: mingen_runtime::Stages>(
     if !stages.filled(&m) {
         return out;
     }
-    if !mingen_runtime::lu_solve_template_fixed::<3, 9, 3, 1>(&mut m) {
+    if !eliminate_template(&mut m) {
         return out;
     }
     if !stages.eliminated(&m) {

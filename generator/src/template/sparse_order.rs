@@ -176,10 +176,11 @@ fn structure(t: &EliminationTemplate, supports: &[Vec<Monomial>]) -> Option<Bits
     Some(out)
 }
 
-/// Multiply-adds of eliminating `t` as its solver does: along its sparse plan if it has
-/// one, else the dense LU's (an upper bound); a fold's are not included.
+/// Multiply-adds of eliminating `t` as its solver does: along its sparse plan or its
+/// written-out one if it has one, else the dense LU's (an upper bound); a fold's are not
+/// included.
 pub fn elimination_updates(t: &EliminationTemplate) -> usize {
-    match &t.sparse {
+    match t.sparse.as_ref().or(t.unrolled.as_ref()) {
         Some(s) => s.sparse_updates,
         None => {
             let (rows, cols) = t.eliminated_size();
@@ -325,7 +326,7 @@ fn plan(
 /// small ([`SPARSE_MIN_PIVOTS`]) or the dense LU is about as cheap, when the supports do
 /// not cover the template, or when the template has more rows than the plan's 16-bit
 /// indices hold; `t.unrolled` is then the plan of its own order if that is small
-/// ([`UNROLLED_MAX_UPDATES`]) and cheaper than the dense LU.
+/// ([`UNROLLED_MAX_UPDATES`]) and needs no more multiply-adds than the dense LU.
 pub fn order_for_sparse_elimination(t: &mut EliminationTemplate, supports: &[Vec<Monomial>]) {
     t.unrolled = None;
     if !order_by_markowitz(t, supports) {
@@ -333,7 +334,8 @@ pub fn order_for_sparse_elimination(t: &mut EliminationTemplate, supports: &[Vec
     }
 }
 
-/// The plan of `t` in its own order, when it is small and cheaper than the dense LU.
+/// The plan of `t` in its own order, when it is small and needs no more multiply-adds than
+/// the dense LU (a dense template too: its code has no loops or index arithmetic).
 fn plan_in_own_order(
     t: &EliminationTemplate,
     supports: &[Vec<Monomial>],

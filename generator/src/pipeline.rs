@@ -161,9 +161,14 @@ pub fn resolve_options(problem: &Problem, options: &TemplateOptions) -> Template
     let mut out = options.clone();
     if let Some(a) = action {
         let names = ProblemSource::new(problem).var_names();
-        out.actions = match names.iter().position(|n| n == a) {
-            Some(v) => ActionChoice::Unknowns(vec![v]),
-            None => ActionChoice::Random,
+        let inverse = a.strip_prefix("1/").map(str::trim);
+        out.actions = match (names.iter().position(|n| n == a), inverse) {
+            (Some(v), _) => ActionChoice::Unknowns(vec![v]),
+            (None, Some(i)) => match names.iter().position(|n| n == i) {
+                Some(v) => ActionChoice::Inverse(v),
+                None => ActionChoice::Random,
+            },
+            (None, None) => ActionChoice::Random,
         };
     }
     if let Some(d) = extra {
@@ -233,11 +238,13 @@ pub fn plan(
     let options = &resolve_options(&problem, options);
     if let Some(a) = &options.overrides.action {
         let names = ProblemSource::new(&problem).var_names();
-        if a != "random" && !names.contains(a) {
+        let unknown = |n: &str| names.iter().any(|m| m == n);
+        let inverse = a.strip_prefix("1/").is_some_and(|i| unknown(i.trim()));
+        if a != "random" && !unknown(a) && !inverse {
             return Err(PipelineError::Option {
                 file: file.to_string(),
                 message: format!(
-                    "--action {a}: not an unknown of the system (the unknowns: {}; or 'random')",
+                    "--action {a}: not an unknown of the system (the unknowns: {}; their inverses, e.g. '1/NAME'; or 'random')",
                     names.join(", ")
                 ),
             });

@@ -155,10 +155,11 @@ struct SearchArgs {
     /// more is not started).
     #[arg(long, value_name = "MIB", default_value_t = mingen::__internal::budget::DEFAULT_MAX_MEMORY_MB)]
     max_memory: u64,
-    /// The action: an unknown's name (e.g. t1) or `random` (a random linear combination
+    /// The action: an unknown's name (e.g. t1), its inverse (`1/t1`, a Laurent action:
+    /// the basis is the quotient basis times t1) or `random` (a random linear combination
     /// of the unknowns). Default: every unknown, then a random combination if no unknown
     /// has distinct eigenvalues.
-    #[arg(long, value_name = "NAME|random")]
+    #[arg(long, value_name = "NAME|1/NAME|random")]
     action: Option<String>,
     /// Candidate degrees tried above the start degree, as a hard bound (default: 4, then
     /// raised until a template is found or the budget runs out).

@@ -20,7 +20,7 @@ pub(super) fn action_matrix_tokens(
 ) -> (Vec<TokenStream>, TokenStream) {
     let nb_l = lit(nb);
     let mut units = Vec::new();
-    if t.action.single().is_none() {
+    if !t.action.is_monomial() {
         // Linear form: accumulate c * (unit or -T row) per product.
         let mut from_template = Vec::new();
         for (j, b) in t.basis.iter().enumerate() {
@@ -54,7 +54,12 @@ pub(super) fn action_matrix_tokens(
     let mut from_template = Vec::new();
     let mut single_source = None;
     for (j, b) in t.basis.iter().enumerate() {
-        let p = b.mul(&Monomial::var(t.nvars, t.action.single().expect("single")));
+        let p = t
+            .action
+            .products(b)
+            .next()
+            .map(|(p, _)| p)
+            .expect("a monomial action maps each basis monomial to one monomial");
         let c = t
             .eliminated_column(column_of[&p])
             .expect("action products are reducible or basis columns");

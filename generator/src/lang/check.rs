@@ -342,9 +342,11 @@ impl Checker {
             let bad = |what: &str| Err(LangError::new(value.pos, what.to_string()));
             let seen = match name.name.as_str() {
                 "action" => {
-                    if v != "random" && !names.contains(&v) {
+                    let unknown = |n: &str| names.iter().any(|m| m == n);
+                    let inverse = v.strip_prefix("1/").is_some_and(unknown);
+                    if v != "random" && !unknown(&v) && !inverse {
                         return bad(&format!(
-                            "option action: expected an unknown scalar ({}) or 'random', found '{v}'",
+                            "option action: expected an unknown scalar ({}), its inverse '1/NAME' or 'random', found '{v}'",
                             names
                                 .iter()
                                 .filter(|n| !n.contains('#'))

@@ -247,10 +247,15 @@ impl<'a> Parser<'a> {
                 let value = match v.tok {
                     Tok::Ident(s) | Tok::Number(s) => {
                         self.bump();
-                        Name {
-                            name: s,
-                            pos: v.pos,
-                        }
+                        // `1/NAME`: the inverse of an unknown (a Laurent action).
+                        let name = if s == "1" && self.peek().tok == Tok::Slash {
+                            self.bump();
+                            let n = self.ident("an unknown after '1/'")?;
+                            format!("1/{}", n.name)
+                        } else {
+                            s
+                        };
+                        Name { name, pos: v.pos }
                     }
                     _ => return Err(self.error_here("an option value (a name or a number)")),
                 };

@@ -97,6 +97,9 @@ pub(crate) fn build_template<const P: u32>(
 ) -> Result<BuiltTemplate, TemplateError> {
     let nvars = basis.first().map(|b| b.nvars()).unwrap_or(0);
     let visible = nvars - opts.hidden_vars.min(nvars);
+    // A Laurent action's basis is the quotient basis times its unknown.
+    let shifted = action.basis_for(basis);
+    let basis = &shifted[..];
     let blocks = Blocks::new(basis, action, visible);
     // Candidate families: all multiples up to degree d, optionally with every exponent of
     // the products capped; each family that reduces is shrunk, the smallest result kept.
@@ -187,7 +190,9 @@ pub(crate) fn build_template<const P: u32>(
     // (grevlex) basis is a leading term of the ideal, so the ideal holds a linear
     // polynomial in it: 1 and the variables are dependent, and no selected basis exists.
     let every_variable = (0..nvars).all(|v| basis.contains(&Monomial::var(nvars, v)));
-    if search.basis_selection && exhausted.is_none() && every_variable {
+    // Selected bases contain 1, which a Laurent action cannot divide.
+    let selectable = every_variable && action.inverse_of().is_none();
+    if search.basis_selection && exhausted.is_none() && selectable {
         let maxeq = eqs.iter().filter_map(|f| f.degree()).max().unwrap_or(0);
         if let Some(sel) = select::best_selected::<P>(
             eqs,

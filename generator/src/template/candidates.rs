@@ -210,7 +210,7 @@ pub(crate) fn start_degree<const P: u32>(
     visible: usize,
     weights: &[u32],
 ) -> u32 {
-    let blocks = Blocks::new(basis, action, visible);
+    let blocks = Blocks::new(&action.basis_for(basis), action, visible);
     eqs.iter()
         .filter_map(|f| poly_weighted_degree(f, weights))
         .chain(blocks.reducible.iter().map(|m| weighted_degree(m, weights)))

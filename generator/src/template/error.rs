@@ -83,6 +83,13 @@ pub enum TemplateError {
         /// The budget that stopped the first action stopped by one, if any did.
         exhausted: Option<Exhausted>,
     },
+    /// A Laurent action `1 / x` where `x` is zero on a solution (its multiplication
+    /// matrix on the quotient is singular): no template can reduce by it.
+    #[error("the unknown of {action} is zero on a solution, where {action} is undefined")]
+    NotInvertible {
+        /// The action (rendered).
+        action: String,
+    },
     /// The template cannot be solved by elimination and eigenvectors.
     #[error(transparent)]
     Shape(#[from] ShapeError),

@@ -112,6 +112,26 @@ pub(crate) fn gauss_jordan_within<const P: u32>(
     Ok(pivots)
 }
 
+/// The inverse of the square matrix `m` mod P (Gauss-Jordan on `[m | I]`), `None` when
+/// `m` is singular.
+pub(crate) fn inverse<const P: u32>(m: &[Vec<u32>]) -> Option<Vec<Vec<u32>>> {
+    let n = m.len();
+    let mut aug: Vec<Vec<u32>> = m
+        .iter()
+        .enumerate()
+        .map(|(i, row)| {
+            let mut r = row.clone();
+            r.extend((0..n).map(|j| u32::from(i == j)));
+            r
+        })
+        .collect();
+    let piv = gauss_jordan::<P>(&mut aug, n, true);
+    if piv.len() < n {
+        return None;
+    }
+    Some(aug.into_iter().map(|r| r[n..].to_vec()).collect())
+}
+
 /// An incrementally built echelon basis of a row space (for choosing independent rows).
 pub(crate) struct EchelonBasis<const P: u32> {
     ncols: usize,

@@ -60,6 +60,13 @@ pub struct TemplateOptions {
     /// no lost solution). Off by default: the larger eigenvalue problem makes the emitted
     /// solvers slower than the smaller template makes them faster.
     pub redundant_bases: bool,
+    /// Also try the Laurent actions `1 / x_v` of the unknowns tried as actions, each on
+    /// the quotient basis times `x_v` (see [`super::Action::inverse_of_var`]); the
+    /// template of an unknown and of its inverse are compared like any two actions'. Off
+    /// by default: on a quotient basis the inverse's template has not been smaller than the
+    /// unknown's on any problem measured (docs/BENCHMARK.md), and it doubles the actions
+    /// searched. `option action = 1/x` asks for one alone.
+    pub laurent_actions: bool,
     /// Also build templates from the equations row-reduced on their data (see
     /// [`super::reduction`]; every action and basis again) and keep the smaller. On by
     /// default.
@@ -93,6 +100,7 @@ impl Default for TemplateOptions {
             weights: Vec::new(),
             exclude_monomials: true,
             redundant_bases: false,
+            laurent_actions: false,
             reduce_equations: true,
             seed: 2024,
             hidden_vars: 0,
@@ -109,8 +117,11 @@ pub enum ActionChoice {
     /// eigenvalues, also a random linear combination of the unknowns ([`super::Action::random`]).
     #[default]
     Auto,
-    /// These unknowns (variable indices) only.
+    /// These unknowns (variable indices) only, and their inverses when
+    /// [`TemplateOptions::laurent_actions`].
     Unknowns(Vec<usize>),
+    /// The Laurent action `1 / x_v` of this unknown (variable index) only.
+    Inverse(usize),
     /// A random linear combination of the unknowns only.
     Random,
 }

@@ -66,7 +66,7 @@ fn permissible(blocks: &Blocks, rows: &[Candidate], action: &Action) -> Vec<Mono
 fn permissible_columns(rows: &[Candidate], action: &Action) -> Vec<Monomial> {
     let cols = columns(rows);
     cols.iter()
-        .filter(|m| action.products(m).all(|(p, _)| cols.contains(&p)))
+        .filter(|m| action.applies_to(m) && action.products(m).all(|(p, _)| cols.contains(&p)))
         .map(|m| (*m).clone())
         .collect()
 }

@@ -68,7 +68,11 @@ pub(crate) fn select_basis<const P: u32>(
         .collect();
     let mut pool: Vec<Monomial> = cols
         .iter()
-        .filter(|m| action.products(m).all(|(p, _)| cols.contains(&p)) && !forced.contains(m))
+        .filter(|m| {
+            action.applies_to(m)
+                && action.products(m).all(|(p, _)| cols.contains(&p))
+                && !forced.contains(m)
+        })
         .cloned()
         .collect();
     pool.sort_by(|a, b| key_cmp(order, b, a));

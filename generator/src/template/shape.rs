@@ -182,6 +182,12 @@ impl EliminationTemplate {
             }
         }
         for b in &self.basis {
+            if !self.action.applies_to(b) {
+                return Err(ShapeError::ActionNotCovered {
+                    basis: show(b),
+                    product: format!("{} / {}", show(b), show(&self.unit())),
+                });
+            }
             for (p, _) in self.action.products(b) {
                 match column_of.get(&p) {
                     Some(&c) if c >= npiv => {}

@@ -10,7 +10,7 @@
 //!   of every unknown outside the basis is its normal form, after [`check_readoff`] (the
 //!   basis must contain 1, every unknown must be in it or a reducible column).
 
-use super::linalg::{addmod, charpoly_within, gauss_jordan, mulmod, poly_gcd, submod};
+use super::linalg::{addmod, charpoly_within, gauss_jordan, inverse, mulmod, poly_gcd, submod};
 use super::{Action, EliminationTemplate, TemplateError};
 use crate::algebra::{Fp, Monomial, Poly, Ring, P1, P2};
 use crate::budget::{Deadline, Exhausted};
@@ -155,7 +155,7 @@ fn template_matrices<const P: u32>(
 
 /// The action matrix of multiplication by `action` on the quotient ring, in the basis
 /// `basis` (standard monomials of `gb`): row j holds the coefficients of
-/// `NF(action * basis[j])`. Checks `deadline` between rows (each is a normal form).
+/// `NF(action * basis[j])` (for a Laurent action `1 / x_v`, the inverse of `x_v`'s matrix). Checks `deadline` between rows (each is a normal form).
 pub fn gb_action_matrix<const P: u32>(
     gb: &GroebnerBasis<P>,
     basis: &[Monomial],
@@ -177,6 +177,14 @@ pub fn gb_action_matrix<const P: u32>(
         }
         let nf = gb.normal_form(&form.mul(&Poly::term(b.clone(), Fp::<P>::one())))?;
         rows.push(coordinates(&nf, &idx));
+    }
+    // A Laurent action `1 / x_v`: the inverse of multiplication by `x_v`, which exists
+    // where `x_v` is non-zero on every solution.
+    if let Some(v) = action.inverse_of() {
+        return inverse::<P>(&rows).ok_or_else(|| TemplateError::Singular {
+            instance: 0,
+            monomial: format!("1 / x{v} (x{v} is zero on a solution)"),
+        });
     }
     Ok(rows)
 }

@@ -18,7 +18,7 @@ use super::fold::{fold_constant_rows, foldable_rows, EquationConstants};
 use super::linalg::is_squarefree;
 use super::redundant::with_redundant_basis;
 use super::select::{basis_orders, BasisOrder};
-use super::validate::nf_action_charpoly;
+use super::validate::{gb_action_matrix, nf_action_charpoly};
 use super::weight_sample::{narrow_weights, neighbours, ones_and_twos, sampled_weights};
 use super::{Action, ActionChoice, EquationReduction, TemplateError, TemplateOptions};
 use crate::algebra::MonomialOrder;
@@ -87,11 +87,20 @@ pub(crate) fn best_template_within(
             opts.seed ^ RANDOM_ACTION_SEED,
         )]
     };
-    let first: Vec<Action> = match &opts.actions {
+    let mut first: Vec<Action> = match &opts.actions {
         ActionChoice::Auto => (0..visible).map(|v| Action::var(nvars, v)).collect(),
         ActionChoice::Unknowns(vs) => vs.iter().map(|&v| Action::var(nvars, v)).collect(),
+        ActionChoice::Inverse(v) => vec![Action::inverse_of_var(nvars, *v)],
         ActionChoice::Random => random(),
     };
+    // Laurent actions `1 / x_v` after the unknowns themselves (ties go to the unknown).
+    if opts.laurent_actions {
+        let inverses: Vec<Action> = first
+            .iter()
+            .filter_map(|a| a.single().map(|v| Action::inverse_of_var(nvars, v)))
+            .collect();
+        first.extend(inverses);
+    }
     // A monomial `nonzero`: the saturation inside the template (`saturated.rs`), in the
     // unknowns as declared. Where it gives a template, the search with the hidden unknown
     // (one variable more in every pool and basis) is not run.
@@ -324,7 +333,8 @@ fn search_actions<const P: u32>(
                 weights: &[],
                 max_pool: None,
             };
-            let r = build_template(eqs, basis, STANDARD, v, &search, distinct[k], opts);
+            let r = invertible(gb, basis, v, opts, deadline)
+                .and_then(|()| build_template(eqs, basis, STANDARD, v, &search, distinct[k], opts));
             (v.clone(), with_fold_count(r, constants))
         })
         .collect();
@@ -335,6 +345,28 @@ fn search_actions<const P: u32>(
         );
     }
     all
+}
+
+/// `Err` for a Laurent action `1 / x` whose `x` is zero on a solution of the quotient
+/// (normal forms of `gb` on `basis`), so that the search does not raise its degree for a
+/// template that cannot exist; `Ok` for every other action (and where the check runs out
+/// of `deadline`: the search stops on the same budget).
+fn invertible<const P: u32>(
+    gb: &GroebnerBasis<P>,
+    basis: &[Monomial],
+    action: &Action,
+    opts: &TemplateOptions,
+    deadline: &Deadline,
+) -> Result<(), TemplateError> {
+    if action.inverse_of().is_none() {
+        return Ok(());
+    }
+    match gb_action_matrix::<P>(gb, basis, action, Some(deadline)) {
+        Err(TemplateError::Singular { .. }) => Err(TemplateError::NotInvertible {
+            action: action.display_with(&opts.var_names),
+        }),
+        _ => Ok(()),
+    }
 }
 
 /// Whether `action`'s matrix on the quotient (normal forms of `gb` on `basis`) has

@@ -218,6 +218,10 @@ pub(super) fn saturated_templates<'a, const P: u32>(
     let mut all: PerAction = Vec::new();
     for (action, &distinct) in actions.iter().zip(&distinct) {
         let mut best: Option<Result<BuiltTemplate, TemplateError>> = None;
+        if let Err(e) = super::invertible(gb, basis, action, opts, deadline) {
+            all.push((action.clone(), Err(e)));
+            continue;
+        }
         for shift in &shifts {
             let (b, label) = shifted(&base, &weights, shift);
             let r = build(&b, &label, action, distinct, &[]);

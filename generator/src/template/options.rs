@@ -65,7 +65,10 @@ pub struct TemplateOptions {
     /// template of an unknown and of its inverse are compared like any two actions'. Off
     /// by default: on a quotient basis the inverse's template has not been smaller than the
     /// unknown's on any problem measured (docs/BENCHMARK.md), and it doubles the actions
-    /// searched. `option action = 1/x` asks for one alone.
+    /// searched. `option action = 1/x` asks for one alone. With
+    /// [`TemplateOptions::redundant_bases`] they are searched whatever this says: a
+    /// redundant basis grown on an inverse's template can be smaller than any grown on an
+    /// unknown's.
     pub laurent_actions: bool,
     /// Also build templates from the equations row-reduced on their data (see
     /// [`super::reduction`]; every action and basis again) and keep the smaller. On by

@@ -93,8 +93,9 @@ pub(crate) fn best_template_within(
         ActionChoice::Inverse(v) => vec![Action::inverse_of_var(nvars, *v)],
         ActionChoice::Random => random(),
     };
-    // Laurent actions `1 / x_v` after the unknowns themselves (ties go to the unknown).
-    if opts.laurent_actions {
+    // Laurent actions `1 / x_v` after the unknowns themselves (ties go to the unknown);
+    // with a redundant basis requested too, which grows further from some of them.
+    if opts.laurent_actions || opts.redundant_bases {
         let inverses: Vec<Action> = first
             .iter()
             .filter_map(|a| a.single().map(|v| Action::inverse_of_var(nvars, v)))
@@ -209,7 +210,7 @@ pub(crate) fn best_template_within(
     // The best of each equation set is refined, then the smaller kept (ties: the
     // equations as given): refinement can reorder them.
     let mut finalists = Vec::new();
-    if let Some(b) = choose(&all, opts) {
+    for b in starts(&all, opts) {
         // The equations as given may have rows to fold (`fold.rs`): every template was
         // compared by its area after the fold, counted in Z_p; the chosen one is folded.
         let b = refine(eqs, Some(constants), b, visible, opts, deadline);
@@ -231,25 +232,23 @@ pub(crate) fn best_template_within(
         }
         finalists.push(b);
     }
-    if let (Some((red, reduced)), Some(b)) = (&reduction, choose(&reduced_all, opts)) {
-        let r = refine(reduced, None, b, visible, opts, deadline);
-        let mut r = with_redundant_basis(reduced, None, r, visible, basis.len(), opts, deadline);
-        r.template.reduction = Some(red.clone());
-        if let Some(q) = &mut r.quotient_basis {
-            q.template.reduction = Some(red.clone());
+    if let Some((red, reduced)) = &reduction {
+        for b in starts(&reduced_all, opts) {
+            let r = refine(reduced, None, b, visible, opts, deadline);
+            let mut r =
+                with_redundant_basis(reduced, None, r, visible, basis.len(), opts, deadline);
+            r.template.reduction = Some(red.clone());
+            if let Some(q) = &mut r.quotient_basis {
+                q.template.reduction = Some(red.clone());
+            }
+            for a in &mut r.redundant_alternatives {
+                a.template.reduction = Some(red.clone());
+            }
+            finalists.push(r);
         }
-        for a in &mut r.redundant_alternatives {
-            a.template.reduction = Some(red.clone());
-        }
-        finalists.push(r);
     }
     merge_per_action(&mut all, reduced_all);
-    let best = finalists
-        .into_iter()
-        .enumerate()
-        .min_by_key(|(k, b)| (preference(b, opts), *k))
-        .map(|(_, b)| b);
-    match best {
+    match best_finalist(finalists, opts) {
         Some(b) => Ok((b, all)),
         None => Err(no_action(&all, opts)),
     }
@@ -272,6 +271,62 @@ fn choose(all: &PerAction, opts: &TemplateOptions) -> Option<BuiltTemplate> {
         .filter_map(|(k, (_, r))| r.as_ref().ok().map(|b| (k, b)))
         .min_by_key(|(k, b)| (preference(b, opts), *k))
         .map(|(_, b)| b.clone())
+}
+
+/// The preferred of the finalists (ties: the earlier). A finalist with a redundant basis
+/// stands for itself, its alternatives and the quotient-basis template it grew from; the
+/// chosen one gets every redundant template smaller than the preferred quotient-basis
+/// template, smallest first (itself, then its `redundant_alternatives`), and that template
+/// as its `quotient_basis`: what the plan falls back on when it drops them all.
+fn best_finalist(finalists: Vec<BuiltTemplate>, opts: &TemplateOptions) -> Option<BuiltTemplate> {
+    let mut quotients = Vec::new();
+    let mut redundant = Vec::new();
+    for mut f in finalists {
+        match f.quotient_basis.take() {
+            Some(q) => {
+                quotients.push(*q);
+                redundant.append(&mut f.redundant_alternatives);
+                redundant.push(f);
+            }
+            None => quotients.push(f),
+        }
+    }
+    let quotient = quotients
+        .into_iter()
+        .enumerate()
+        .min_by_key(|(k, b)| (preference(b, opts), *k))
+        .map(|(_, b)| b)?;
+    redundant.retain(|r| preference(r, opts) < preference(&quotient, opts));
+    redundant.sort_by_key(BuiltTemplate::folded_area);
+    redundant.dedup_by_key(|r| r.template.eliminated_size());
+    if redundant.is_empty() {
+        return Some(quotient);
+    }
+    let mut chosen = redundant.remove(0);
+    chosen.quotient_basis = Some(Box::new(quotient));
+    chosen.redundant_alternatives = redundant;
+    Some(chosen)
+}
+
+/// The templates of a search that are refined and, with `opts.redundant_bases`, grown into
+/// a redundant basis: the preferred one ([`choose`]), and with a redundant basis also the
+/// preferred one among the Laurent actions when that is another action (on a quotient
+/// basis the inverse's template is rarely smaller, but the basis grown on it can be).
+fn starts(all: &PerAction, opts: &TemplateOptions) -> Vec<BuiltTemplate> {
+    let mut out: Vec<BuiltTemplate> = choose(all, opts).into_iter().collect();
+    if opts.redundant_bases {
+        let laurent: PerAction = all
+            .iter()
+            .filter(|(a, _)| a.inverse_of().is_some())
+            .cloned()
+            .collect();
+        if let Some(l) = choose(&laurent, opts) {
+            if out.iter().all(|b| b.template.action != l.template.action) {
+                out.push(l);
+            }
+        }
+    }
+    out
 }
 
 /// Each action of `more` keeps, in `all`, the smaller of its two templates (ties: the one

@@ -161,15 +161,7 @@ pub fn resolve_options(problem: &Problem, options: &TemplateOptions) -> Template
     let mut out = options.clone();
     if let Some(a) = action {
         let names = ProblemSource::new(problem).var_names();
-        let inverse = a.strip_prefix("1/").map(str::trim);
-        out.actions = match (names.iter().position(|n| n == a), inverse) {
-            (Some(v), _) => ActionChoice::Unknowns(vec![v]),
-            (None, Some(i)) => match names.iter().position(|n| n == i) {
-                Some(v) => ActionChoice::Inverse(v),
-                None => ActionChoice::Random,
-            },
-            (None, None) => ActionChoice::Random,
-        };
+        out.actions = named_action(a, &names).unwrap_or(ActionChoice::Random);
     }
     if let Some(d) = extra {
         out.max_extra_degree = d;
@@ -189,6 +181,16 @@ pub fn resolve_options(problem: &Problem, options: &TemplateOptions) -> Template
         out.weighted_orders = n;
     }
     out
+}
+
+/// The action an `--action` / `option action` value names among the unknowns `names`: an
+/// unknown (`t1`) or its inverse (`1/t1`); `None` for anything else (`random`, a typo).
+fn named_action(value: &str, names: &[String]) -> Option<ActionChoice> {
+    let position = |n: &str| names.iter().position(|m| m == n);
+    match value.strip_prefix("1/") {
+        Some(inverse) => position(inverse.trim()).map(ActionChoice::Inverse),
+        None => position(value).map(|v| ActionChoice::Unknowns(vec![v])),
+    }
 }
 
 /// Parses and plans one problem file (the algebra of `inspect` and `generate`).
@@ -238,9 +240,7 @@ pub fn plan(
     let options = &resolve_options(&problem, options);
     if let Some(a) = &options.overrides.action {
         let names = ProblemSource::new(&problem).var_names();
-        let unknown = |n: &str| names.iter().any(|m| m == n);
-        let inverse = a.strip_prefix("1/").is_some_and(|i| unknown(i.trim()));
-        if a != "random" && !unknown(a) && !inverse {
+        if a != "random" && named_action(a, &names).is_none() {
             return Err(PipelineError::Option {
                 file: file.to_string(),
                 message: format!(

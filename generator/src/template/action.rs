@@ -128,7 +128,7 @@ impl Action {
         self.coefficients
             .iter()
             .enumerate()
-            .filter(move |(i, &c)| c != 0 && inverse.map_or(true, |v| b.0[*i] > 0 && v == *i))
+            .filter(move |(i, &c)| c != 0 && (inverse.is_none() || b.0[*i] > 0))
             .map(move |(i, &c)| {
                 let x = Monomial::var(self.nvars(), i);
                 match inverse {

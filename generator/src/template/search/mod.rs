@@ -18,7 +18,7 @@ use super::fold::{fold_constant_rows, foldable_rows, EquationConstants};
 use super::linalg::is_squarefree;
 use super::redundant::with_redundant_basis;
 use super::select::{basis_orders, BasisOrder};
-use super::validate::{gb_action_matrix, nf_action_charpoly};
+use super::validate::nf_action_charpoly;
 use super::weight_sample::{narrow_weights, neighbours, ones_and_twos, sampled_weights};
 use super::{Action, ActionChoice, EquationReduction, TemplateError, TemplateOptions};
 use crate::algebra::MonomialOrder;
@@ -154,7 +154,8 @@ pub(crate) fn best_template_within(
         let mut work = 0u64;
         // An action whose check runs out of budget counts as not distinct: the search
         // after it stops on the same budget.
-        let distinct_of = |a: &Action| distinct_eigenvalues(gb, basis, a, deadline);
+        let distinct_of =
+            |a: &Action| quotient_action(gb, basis, a, opts, deadline).unwrap_or(false);
         let starts = try_alternative_bases(
             eqs,
             constants,
@@ -364,10 +365,11 @@ fn search_actions<const P: u32>(
     // Basis selection costs most for actions that cannot be chosen anyway: with
     // `require_distinct_eigenvalues`, actions with a repeated eigenvalue get the standard
     // basis only, as long as some action has distinct eigenvalues.
-    let distinct: Vec<bool> = monomials
+    let checks: Vec<Result<bool, TemplateError>> = monomials
         .iter()
-        .map(|a| distinct_eigenvalues(gb, basis, a, deadline))
+        .map(|a| quotient_action(gb, basis, a, opts, deadline))
         .collect();
+    let distinct: Vec<bool> = checks.iter().map(|c| c.clone().unwrap_or(false)).collect();
     let skip_selection = opts.require_distinct_eigenvalues && distinct.iter().any(|&d| d);
     let starts: Vec<u32> = monomials
         .iter()
@@ -388,8 +390,9 @@ fn search_actions<const P: u32>(
                 weights: &[],
                 max_pool: None,
             };
-            let r = invertible(gb, basis, v, opts, deadline)
-                .and_then(|()| build_template(eqs, basis, STANDARD, v, &search, distinct[k], opts));
+            let r = checks[k].clone().and_then(|distinct| {
+                build_template(eqs, basis, STANDARD, v, &search, distinct, opts)
+            });
             (v.clone(), with_fold_count(r, constants))
         })
         .collect();
@@ -402,37 +405,26 @@ fn search_actions<const P: u32>(
     all
 }
 
-/// `Err` for a Laurent action `1 / x` whose `x` is zero on a solution of the quotient
-/// (normal forms of `gb` on `basis`), so that the search does not raise its degree for a
-/// template that cannot exist; `Ok` for every other action (and where the check runs out
-/// of `deadline`: the search stops on the same budget).
-fn invertible<const P: u32>(
+/// How `action` acts on the quotient (normal forms of `gb` on `basis`): whether its
+/// matrix has distinct eigenvalues (a check that runs out of `deadline` counts as not
+/// distinct), or `Err` for a Laurent action `1 / x` whose `x` is zero on a solution, so
+/// that the search does not raise its degree for a template that cannot exist.
+fn quotient_action<const P: u32>(
     gb: &GroebnerBasis<P>,
     basis: &[Monomial],
     action: &Action,
     opts: &TemplateOptions,
     deadline: &Deadline,
-) -> Result<(), TemplateError> {
-    if action.inverse_of().is_none() {
-        return Ok(());
+) -> Result<bool, TemplateError> {
+    match nf_action_charpoly::<P>(gb, basis, action, Some(deadline)) {
+        Ok(c) => Ok(is_squarefree::<P>(&c)),
+        Err(TemplateError::Singular { .. }) if action.inverse_of().is_some() => {
+            Err(TemplateError::NotInvertible {
+                action: action.display_with(&opts.var_names),
+            })
+        }
+        Err(_) => Ok(false),
     }
-    match gb_action_matrix::<P>(gb, basis, action, Some(deadline)) {
-        Err(TemplateError::Singular { .. }) => Err(TemplateError::NotInvertible {
-            action: action.display_with(&opts.var_names),
-        }),
-        _ => Ok(()),
-    }
-}
-
-/// Whether `action`'s matrix on the quotient (normal forms of `gb` on `basis`) has
-/// distinct eigenvalues; a check that runs out of `deadline` counts as not distinct.
-fn distinct_eigenvalues<const P: u32>(
-    gb: &GroebnerBasis<P>,
-    basis: &[Monomial],
-    action: &Action,
-    deadline: &Deadline,
-) -> bool {
-    nf_action_charpoly::<P>(gb, basis, action, Some(deadline)).is_ok_and(|c| is_squarefree::<P>(&c))
 }
 
 /// The adaptive part of [`best_template_within`]: candidate degrees beyond every action's

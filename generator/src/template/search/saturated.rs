@@ -211,15 +211,16 @@ pub(super) fn saturated_templates<'a, const P: u32>(
         let r = build_template(written, b, label, action, &search, distinct, opts);
         with_fold_count(r, constants)
     };
-    let distinct: Vec<bool> = actions
+    let checks: Vec<Result<bool, TemplateError>> = actions
         .iter()
-        .map(|a| super::distinct_eigenvalues(gb, basis, a, deadline))
+        .map(|a| super::quotient_action(gb, basis, a, opts, deadline))
         .collect();
+    let distinct: Vec<bool> = checks.iter().map(|c| c.clone().unwrap_or(false)).collect();
     let mut all: PerAction = Vec::new();
-    for (action, &distinct) in actions.iter().zip(&distinct) {
+    for ((action, &distinct), check) in actions.iter().zip(&distinct).zip(&checks) {
         let mut best: Option<Result<BuiltTemplate, TemplateError>> = None;
-        if let Err(e) = super::invertible(gb, basis, action, opts, deadline) {
-            all.push((action.clone(), Err(e)));
+        if let Err(e) = check {
+            all.push((action.clone(), Err(e.clone())));
             continue;
         }
         for shift in &shifts {

@@ -15,6 +15,7 @@
 
 use crate::algebra::{Monomial, Poly};
 use crate::eliminate::has_data_only_columns;
+use crate::template::shift::shifted_coordinates;
 use crate::template::{EliminationTemplate, ShapeError};
 use nalgebra::DMatrix;
 use std::collections::HashMap;
@@ -131,6 +132,7 @@ pub fn fill_template(
         .enumerate()
         .map(|(i, m)| (m, i))
         .collect();
+    let shift: Option<Vec<(Monomial, f64)>> = template.shift.as_ref().and_then(|s| s.terms_in());
     // The filled matrix; a fold then forms its Schur complement as the emitted solvers do.
     let (nr, nc) = template.filled_size();
     let mut m = vec![0.0; nr * nc];
@@ -149,8 +151,19 @@ pub fn fill_template(
                 expected: template.nvars,
             });
         }
-        for (mon, &c) in eq.terms() {
-            let prod = row.multiplier.mul(mon);
+        let product = eq.terms().map(|(mon, &c)| (row.multiplier.mul(mon), c));
+        let terms: Vec<(Monomial, f64)> = match &shift {
+            // A monomial outside the columns has coordinate zero mod p (the template was
+            // built so); in floating point it is what rounding left.
+            Some(s) => shifted_coordinates(product, s, |l| {
+                col.get(l).is_some_and(|&k| k >= template.n_excess)
+            })
+            .into_iter()
+            .filter(|(m, _)| col.contains_key(m))
+            .collect(),
+            None => product.collect(),
+        };
+        for (prod, c) in terms {
             let j = *col
                 .get(&prod)
                 .ok_or_else(|| InterpretError::TermOutsideColumns {
@@ -581,6 +594,7 @@ mod tests {
             unrolled: None,
             reduction: None,
             fold: None,
+            shift: None,
             spurious_eigenvalues: 0,
         };
         (template, vec![e0, e1])

@@ -69,7 +69,7 @@ pub(crate) fn substitute_affine_equations(
 ) -> Problem {
     const P: u32 = crate::algebra::P1;
     let layout = &problem.layout;
-    if !auto_eliminate_allowed(&problem, options) || problem.layout.hidden_count() > 0 {
+    if !auto_eliminate_allowed(&problem, options) {
         return problem;
     }
     let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(options.seed ^ 0x5b57);
@@ -83,6 +83,20 @@ pub(crate) fn substitute_affine_equations(
     else {
         return problem;
     };
+    // A `nonzero` stays as written (it saturates by a polynomial in the unknowns left):
+    // none of its unknowns may be substituted.
+    let n = layout.unknown_count();
+    let visible = n - layout.hidden_count();
+    let in_nonzero = |v: usize| {
+        equations.iter().any(|f| {
+            f.terms()
+                .any(|(m, _)| m.0[visible..].iter().any(|&e| e > 0))
+                && f.terms().any(|(m, _)| m.0[v] > 0)
+        })
+    };
+    if pivots.iter().any(|&v| in_nonzero(v)) {
+        return problem;
+    }
     let substituted = problem.with_substitution(pivots, used, implied);
     if system(&substituted, &data).is_err() {
         return problem;

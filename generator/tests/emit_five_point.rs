@@ -142,6 +142,7 @@ fn five_point_template() -> EliminationTemplate {
         unrolled: None,
         reduction: None,
         fold: None,
+        shift: None,
         spurious_eigenvalues: 0,
     }
 }
@@ -463,6 +464,7 @@ fn elimination_emission_parses() {
         unrolled: None,
         reduction: None,
         fold: None,
+        shift: None,
         spurious_eigenvalues: 0,
     };
     let cst = |c: Traced| Poly::constant(1, c);

@@ -59,6 +59,7 @@ fn five_point_template() -> EliminationTemplate {
         unrolled: None,
         reduction: None,
         fold: None,
+        shift: None,
         spurious_eigenvalues: 0,
     }
 }
@@ -285,6 +286,7 @@ fn audit_with_eliminated_unknowns() {
         unrolled: None,
         reduction: None,
         fold: None,
+        shift: None,
         spurious_eigenvalues: 0,
     };
     let widen = |p: &P| {

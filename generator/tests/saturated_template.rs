@@ -1,7 +1,9 @@
-//! Saturation by a monomial inside the template (`template/search/saturated.rs`): a
-//! `nonzero` monomial is not carried as a hidden unknown, the template reduces the
-//! shifted monomials `s R` onto `s B` with multiples of the equations as written, and the
-//! solver reads the unknowns relative to the entry of `s`.
+//! Saturation inside the template (`template/search/saturated.rs`): a `nonzero` monomial
+//! is not carried as a hidden unknown, the template reduces the shifted monomials `s R`
+//! onto `s B` with multiples of the equations as written, and the solver reads the
+//! unknowns relative to the entry of `s`; a `nonzero` polynomial with constant
+//! coefficients likewise, with columns that stand for multiples of a power of it
+//! (`template/shift.rs`).
 
 use mingen::__internal::audit::{audit_plan, audit_plan_planted, AuditOptions};
 use mingen::{plan, Problem, SolverPlan, TemplateOptions};
@@ -37,6 +39,29 @@ fn planted_instance(rng: &mut ChaCha8Rng) -> (Vec<f64>, Vec<f64>) {
     (d, vec![x, y, z])
 }
 
+/// `p` audits well on uniform data and recovers the planted solutions of `instance`.
+fn assert_solves(p: &SolverPlan, instance: fn(&mut ChaCha8Rng) -> (Vec<f64>, Vec<f64>)) {
+    let report = audit_plan(
+        p,
+        &AuditOptions {
+            instances: 200,
+            seed: 5,
+            ..Default::default()
+        },
+    );
+    assert!(report.median_log10_residual < -10.0, "{report}");
+    assert!(report.failures <= 2, "{report}");
+    let mut rng = ChaCha8Rng::seed_from_u64(9);
+    let (instances, solutions): (Vec<_>, Vec<_>) = (0..100).map(|_| instance(&mut rng)).unzip();
+    let planted = audit_plan_planted(p, &instances, Some(&solutions));
+    let recovered = planted
+        .planted
+        .as_ref()
+        .expect("planted solutions")
+        .recovered;
+    assert!(recovered >= 98, "{planted}");
+}
+
 #[test]
 fn a_monomial_saturation_is_built_into_the_template() {
     let p = planned(SPURIOUS_LINE);
@@ -60,26 +85,7 @@ fn a_monomial_saturation_is_built_into_the_template() {
         unit.0[0] >= 1 && unit.0[1..].iter().all(|&e| e == 0),
         "{unit:?}"
     );
-    let report = audit_plan(
-        &p,
-        &AuditOptions {
-            instances: 200,
-            seed: 5,
-            ..Default::default()
-        },
-    );
-    assert!(report.median_log10_residual < -10.0, "{report}");
-    assert!(report.failures <= 2, "{report}");
-    let mut rng = ChaCha8Rng::seed_from_u64(9);
-    let (instances, solutions): (Vec<_>, Vec<_>) =
-        (0..100).map(|_| planted_instance(&mut rng)).unzip();
-    let planted = audit_plan_planted(&p, &instances, Some(&solutions));
-    let recovered = planted
-        .planted
-        .as_ref()
-        .expect("planted solutions")
-        .recovered;
-    assert!(recovered >= 98, "{planted}");
+    assert_solves(&p, planted_instance);
 }
 
 #[test]
@@ -87,5 +93,62 @@ fn the_emitted_solver_reads_relative_to_the_shift() {
     let p = planned(SPURIOUS_LINE);
     let code = mingen::emit_plan_from(&p, "t.mp").unwrap_or_else(|e| panic!("{e}"));
     // The hidden unknown is not part of the solution.
+    assert!(code.contains("pub const UNKNOWNS: usize = 3;"), "{code}");
+}
+
+/// [`SPURIOUS_LINE`] with `x` replaced by the polynomial `s = x + y^2 + 1`: the spurious
+/// component is the line `s = y = 0` (`x = -1`, any `z`), and `nonzero x + y^2 + 1` is a
+/// saturation by a polynomial with constant coefficients.
+const SPURIOUS_CURVE: &str = "problem spurious_curve
+unknown x, y, z
+data a: vec3, b: vec3, c: vec3, d: scalar
+let s = x + y^2 + 1
+s*(z + a[0]) + y*(a[1]*z + a[2]) = 0
+s*(b[0]*y + b[1]*z + d) + y*(z^2 + b[2]) = 0
+s*(c[0]*x + c[1]*z) + y*(c[2] + z) = 0
+nonzero x + y^2 + 1
+";
+
+/// The solution count of [`SPURIOUS_CURVE`] (of the saturation; the analysis counts it
+/// with the hidden unknown, apart from any template).
+const COUNT_CURVE: usize = 7;
+
+/// A planted solution of [`SPURIOUS_CURVE`] and its data, as [`planted_instance`].
+fn planted_curve_instance(rng: &mut ChaCha8Rng) -> (Vec<f64>, Vec<f64>) {
+    let mut r = |lo: f64, hi: f64| rng.gen_range(lo..hi);
+    let (x, y, z) = (r(0.5, 2.0), r(0.5, 2.0), r(-2.0, 2.0));
+    let s = x + y * y + 1.0;
+    let mut d: Vec<f64> = (0..10).map(|_| r(-1.0, 1.0)).collect();
+    d[2] = -(s * (z + d[0]) + y * d[1] * z) / y;
+    d[5] = -s * (d[3] * y + d[4] * z + d[9]) / y - z * z;
+    d[8] = -s * (d[6] * x + d[7] * z) / y - z;
+    (d, vec![x, y, z])
+}
+
+#[test]
+fn a_polynomial_saturation_is_built_into_the_template() {
+    let p = planned(SPURIOUS_CURVE);
+    let built = &p.generated.built;
+    assert!(
+        built.basis_choice.contains("shifted by the polynomial"),
+        "{}",
+        built.basis_choice
+    );
+    let t = &built.template;
+    // The columns stand for multiples of a power of s; none has the hidden unknown.
+    let shift = t
+        .shift
+        .as_ref()
+        .expect("a template shifted by a polynomial");
+    assert!(shift.terms.len() > 1, "{shift:?}");
+    let visible = t.visible_vars();
+    assert!(t
+        .columns
+        .iter()
+        .all(|m| m.0[visible..].iter().all(|&e| e == 0)));
+    assert_eq!(p.solution_count(), COUNT_CURVE);
+    assert_solves(&p, planted_curve_instance);
+    // The emitted solver fills the same coordinates.
+    let code = mingen::emit_plan_from(&p, "t.mp").unwrap_or_else(|e| panic!("{e}"));
     assert!(code.contains("pub const UNKNOWNS: usize = 3;"), "{code}");
 }

@@ -191,7 +191,9 @@ fn print_plan(out: &mut String, plan: &SolverPlan) {
             .columns
             .iter()
             .any(|m| m.0[visible..].iter().any(|&e| e > 0));
-        let saturation = if plan.problem.is_saturated() && !hidden_in_template {
+        let saturation = if plan.problem.is_saturated() && t.shift.is_some() {
+            "kept, inside the template (its columns stand for multiples of a power of the polynomial; no hidden unknown in it)"
+        } else if plan.problem.is_saturated() && !hidden_in_template {
             "kept, inside the template (the basis shifted by the monomial; no hidden unknown in it)"
         } else if plan.problem.is_saturated() {
             "kept (a hidden unknown per nonzero)"

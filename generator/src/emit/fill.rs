@@ -11,6 +11,7 @@ use super::tokens::lit;
 use super::traced::Traced;
 use super::{CodeForm, EmitError};
 use crate::algebra::{Monomial, MonomialOrder};
+use crate::template::shift::shifted_coordinates;
 use crate::template::{ConstantFold, EliminationTemplate};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
@@ -47,15 +48,34 @@ impl Coefficients {
             None => {
                 let mut fill_pos: Vec<usize> = Vec::new();
                 let mut fill_vals: Vec<Traced> = Vec::new();
+                let shift: Option<Vec<(Monomial, Traced)>> = match &t.shift {
+                    Some(s) => Some(s.terms_in().ok_or_else(|| {
+                        EmitError::Unsupported("a shift polynomial outside the reals".into())
+                    })?),
+                    None => None,
+                };
                 for (i, row) in t.rows.iter().enumerate() {
-                    for (m, c) in spec.equations[row.equation].terms() {
+                    let product = spec.equations[row.equation]
+                        .terms()
+                        .map(|(m, c)| (row.multiplier.mul(m), c.clone()));
+                    let terms: Vec<(Monomial, Traced)> = match &shift {
+                        // Coordinates outside the columns are zero (the template was built
+                        // so); the traced arithmetic need not see them cancel.
+                        Some(s) => shifted_coordinates(product, s, |l| {
+                            plan.column_of.get(l).is_some_and(|&k| k >= t.n_excess)
+                        })
+                        .into_iter()
+                        .filter(|(m, _)| plan.column_of.contains_key(m))
+                        .collect(),
+                        None => product.collect(),
+                    };
+                    for (m, c) in terms {
                         // Dependent excess columns are not part of the eliminated matrix.
-                        let Some(col) = t.filled_column(plan.column_of[&row.multiplier.mul(m)])
-                        else {
+                        let Some(col) = t.filled_column(plan.column_of[&m]) else {
                             continue;
                         };
                         fill_pos.push(i * cols + col);
-                        fill_vals.push(c.clone());
+                        fill_vals.push(c);
                     }
                 }
                 (fill_pos, fill_vals)

@@ -91,7 +91,9 @@ fn validate_template(
             Some(r) => r[row.equation].iter().collect(),
             None => eq.terms().map(|(m, _)| m).collect(),
         };
-        for m in monomials {
+        // A shifted template's columns are coordinates, not its products' monomials
+        // (`crate::template::shift`).
+        for m in monomials.into_iter().filter(|_| t.shift.is_none()) {
             let p = row.multiplier.mul(m);
             if !column_of.contains_key(&p) {
                 return bad(format!("row {i}: monomial {p:?} is not a template column"));

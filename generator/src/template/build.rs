@@ -11,6 +11,7 @@ use super::candidates::{candidate_bytes, candidates, pool_size, Blocks, Candidat
 use super::exclude::exclude_and_shrink;
 use super::linalg::gauss_jordan;
 use super::select::{self, SelectedTemplate};
+use super::shift::{shifted_coordinates, ColumnShift};
 use super::shrink::shrink;
 use super::{Action, EliminationTemplate, TemplateError, TemplateOptions};
 use crate::algebra::{Field, Fp, Monomial, MonomialOrder, Poly};
@@ -75,6 +76,9 @@ pub(crate) struct DegreeSearch<'a> {
     /// The most candidate rows a pool may have: larger degrees are not tried (none:
     /// unbounded but for the budget).
     pub(crate) max_pool: Option<u64>,
+    /// The polynomial the reducible and basis columns stand for multiples of (a template
+    /// saturated by a polynomial, [`super::shift`]); `None`: columns are monomials.
+    pub(crate) shift: Option<&'a ColumnShift>,
 }
 
 /// The shrunk elimination template for `action` from the equations of one random instance
@@ -101,6 +105,7 @@ pub(crate) fn build_template<const P: u32>(
     let shifted = action.basis_for(basis);
     let basis = &shifted[..];
     let blocks = Blocks::new(basis, action, visible);
+    let shift: Option<Vec<(Monomial, Fp<P>)>> = search.shift.and_then(|s| s.terms_in());
     // Candidate families: all multiples up to degree d, optionally with every exponent of
     // the products capped; each family that reduces is shrunk, the smallest result kept.
     let maxdeg = eqs.iter().filter_map(|f| f.degree()).max().unwrap_or(0);
@@ -137,6 +142,10 @@ pub(crate) fn build_template<const P: u32>(
                     c.terms
                         .iter()
                         .all(|(m, _)| m.0.iter().all(|&e| e as u32 <= cap))
+                })
+                .map(|c| match &shift {
+                    Some(s) => shifted_candidate(c, s, &blocks),
+                    None => c,
                 })
                 .collect();
             let refs: Vec<&Candidate> = cands.iter().collect();
@@ -222,7 +231,8 @@ pub(crate) fn build_template<const P: u32>(
             exhausted,
         });
     };
-    let template = assemble::<P>(nvars, &blocks, &kept, action, opts.hidden_vars);
+    let mut template = assemble::<P>(nvars, &blocks, &kept, action, opts.hidden_vars);
+    template.shift = search.shift.cloned();
     debug_assert!(blocks.reducible_by::<P>(&kept.iter().collect::<Vec<_>>()));
     template.check_emittable(&opts.var_names)?;
     Ok(BuiltTemplate {
@@ -235,6 +245,24 @@ pub(crate) fn build_template<const P: u32>(
         quotient_basis: None,
         redundant_alternatives: Vec::new(),
     })
+}
+
+/// `c` with its terms in the coordinates of a template whose reducible and basis columns
+/// stand for multiples of `shift` ([`super::shift`]).
+fn shifted_candidate<const P: u32>(
+    c: Candidate,
+    shift: &[(Monomial, Fp<P>)],
+    blocks: &Blocks,
+) -> Candidate {
+    let terms = shifted_coordinates(
+        c.terms.into_iter().map(|(m, x)| (m, Fp::<P>(x))),
+        shift,
+        |l| blocks.red_set.contains(l) || blocks.basis_set.contains(l),
+    );
+    Candidate {
+        terms: terms.into_iter().map(|(m, x)| (m, x.0)).collect(),
+        ..c
+    }
 }
 
 /// Orders the final rows and columns into an [`EliminationTemplate`]: columns
@@ -304,6 +332,7 @@ pub(crate) fn assemble<const P: u32>(
         unrolled: None,
         reduction: None,
         fold: None,
+        shift: None,
         spurious_eigenvalues: 0,
     }
 }
@@ -337,14 +366,26 @@ impl EliminationTemplate {
             .enumerate()
             .map(|(i, m)| (m, i))
             .collect();
+        let shift: Option<Vec<(Monomial, C)>> = match &self.shift {
+            Some(s) => Some(s.terms_in().ok_or(TemplateError::ShiftNotInField)?),
+            None => None,
+        };
         self.rows
             .iter()
             .map(|r| {
                 let mut v = vec![C::zero(); self.columns.len()];
-                for (m, c) in eqs[r.equation].terms() {
-                    let p = m.mul(&r.multiplier);
+                let product = eqs[r.equation]
+                    .terms()
+                    .map(|(m, c)| (m.mul(&r.multiplier), c.clone()));
+                let terms: Vec<(Monomial, C)> = match &shift {
+                    Some(s) => shifted_coordinates(product, s, |l| {
+                        idx.get(l).is_some_and(|&k| k >= self.n_excess)
+                    }),
+                    None => product.collect(),
+                };
+                for (p, c) in terms {
                     match idx.get(&p) {
-                        Some(&k) => v[k] = c.clone(),
+                        Some(&k) => v[k] = c,
                         None => {
                             return Err(TemplateError::MissingColumn {
                                 equation: r.equation,

@@ -49,6 +49,10 @@ pub enum TemplateError {
         /// Rendered monomial.
         monomial: String,
     },
+    /// The polynomial a template's columns are shifted by has a denominator that vanishes
+    /// in the field of the instance.
+    #[error("the template's shift polynomial has a denominator divisible by the field's prime")]
+    ShiftNotInField,
     /// On some validation instance, a reducible column is not a pivot column.
     #[error("validation instance {instance}: reducible monomial {monomial} is not reducible by the template")]
     Singular {

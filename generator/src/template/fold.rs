@@ -386,7 +386,7 @@ fn choose_fold<F: Field>(
 /// How many rows [`fold_constant_rows`] would fold from `t`, counted in Z_p (no exact
 /// inverse: cheap enough for every template of a search).
 pub fn foldable_rows(t: &EliminationTemplate, equations: &[EquationConstants]) -> usize {
-    if t.reduction.is_some() || equations.is_empty() {
+    if t.reduction.is_some() || t.shift.is_some() || equations.is_empty() {
         return 0;
     }
     let entries = row_entries::<Fp<P1>>(t, equations);
@@ -401,7 +401,9 @@ pub fn foldable_rows(t: &EliminationTemplate, equations: &[EquationConstants]) -
 /// of equations row-reduced on the data.
 pub fn fold_constant_rows(t: &mut EliminationTemplate, equations: &[EquationConstants]) {
     t.fold = None;
-    if t.reduction.is_some() || equations.is_empty() {
+    // A shifted template's entries are combinations of its equations' coefficients, which
+    // the constants below do not describe.
+    if t.reduction.is_some() || t.shift.is_some() || equations.is_empty() {
         return;
     }
     let entries = row_entries::<Q>(t, equations);

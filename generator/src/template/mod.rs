@@ -71,6 +71,7 @@ mod redundant;
 pub mod search;
 pub mod select;
 mod shape;
+pub mod shift;
 pub mod shrink;
 pub mod sparse_order;
 pub mod validate;
@@ -83,6 +84,7 @@ pub use fold::{fold_constant_rows, ConstantFold, EquationConstants};
 pub use options::{ActionChoice, TemplateOptions};
 pub use reduction::{EquationReduction, ReductionError};
 pub use shape::ShapeError;
+pub use shift::ColumnShift;
 pub use sparse_order::{
     elimination_updates, order_for_sparse_elimination, SparseElimination, SPARSE_MIN_GAIN,
     SPARSE_MIN_PIVOTS, UNROLLED_MAX_UPDATES,
@@ -158,6 +160,11 @@ pub struct EliminationTemplate {
     /// many columns; the solver eliminates the Schur complement of the rest. `None`: the
     /// whole template is eliminated.
     pub fold: Option<ConstantFold>,
+    /// The polynomial `σ` whose multiples the reducible and basis columns stand for (a
+    /// template saturated by a polynomial, see [`shift`]): the column labelled `L m`, `L`
+    /// the leading monomial of `σ`, holds the coordinate of `σ m`. `None`: every column is
+    /// its monomial.
+    pub shift: Option<ColumnShift>,
 }
 
 /// The unit of a basis: the greatest common divisor of its monomials, `1` for a quotient

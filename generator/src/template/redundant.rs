@@ -287,7 +287,9 @@ pub(super) fn with_redundant_basis<const P: u32>(
     opts: &TemplateOptions,
     deadline: &Deadline,
 ) -> BuiltTemplate {
-    if !opts.redundant_bases {
+    // A shifted template's rows are not its products' monomials, which the constructions
+    // below grow from.
+    if !opts.redundant_bases || best.template.shift.is_some() {
         return best;
     }
     let t = &best.template;

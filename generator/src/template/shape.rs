@@ -260,6 +260,7 @@ mod tests {
             unrolled: None,
             reduction: None,
             fold: None,
+            shift: None,
             spurious_eigenvalues: 0,
         }
     }

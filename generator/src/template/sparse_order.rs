@@ -329,6 +329,11 @@ fn plan(
 /// ([`UNROLLED_MAX_UPDATES`]) and needs no more multiply-adds than the dense LU.
 pub fn order_for_sparse_elimination(t: &mut EliminationTemplate, supports: &[Vec<Monomial>]) {
     t.unrolled = None;
+    // A shifted template's pattern is not its products' monomials: the dense LU.
+    if t.shift.is_some() {
+        t.sparse = None;
+        return;
+    }
     if !order_by_markowitz(t, supports) {
         t.unrolled = plan_in_own_order(t, supports);
     }

@@ -20,7 +20,7 @@ use super::redundant::with_redundant_basis;
 use super::select::{basis_orders, BasisOrder};
 use super::validate::nf_action_charpoly;
 use super::weight_sample::{narrow_weights, neighbours, ones_and_twos, sampled_weights};
-use super::{Action, ActionChoice, EquationReduction, TemplateError, TemplateOptions};
+use super::{Action, ActionChoice, ColumnShift, EquationReduction, TemplateError, TemplateOptions};
 use crate::algebra::MonomialOrder;
 use crate::algebra::{Fp, Monomial, Poly, P1};
 use crate::budget::Deadline;
@@ -389,6 +389,7 @@ fn search_actions<const P: u32>(
                 exclude: false,
                 weights: &[],
                 max_pool: None,
+                shift: None,
             };
             let r = checks[k].clone().and_then(|distinct| {
                 build_template(eqs, basis, STANDARD, v, &search, distinct, opts)
@@ -398,7 +399,7 @@ fn search_actions<const P: u32>(
         .collect();
     if opts.adaptive_degree && all.iter().all(|(_, r)| r.is_err()) {
         raise_degree(
-            eqs, constants, basis, STANDARD, monomials, &starts, &distinct, opts, deadline,
+            eqs, constants, basis, STANDARD, None, monomials, &starts, &distinct, opts, deadline,
             &mut all,
         );
     }
@@ -437,6 +438,7 @@ fn raise_degree<const P: u32>(
     constants: Constants<'_>,
     basis: &[Monomial],
     label: &str,
+    shift: Option<&ColumnShift>,
     monomials: &[Action],
     starts: &[u32],
     distinct: &[bool],
@@ -473,6 +475,7 @@ fn raise_degree<const P: u32>(
                 exclude: false,
                 weights: &[],
                 max_pool: None,
+                shift,
             };
             let r = with_fold_count(
                 build_template(eqs, basis, label, a, &search, distinct[k], opts),
@@ -544,6 +547,7 @@ fn degree_window<'a, const P: u32>(
         exclude: false,
         weights,
         max_pool: None,
+        shift: None,
     }
 }
 
@@ -564,6 +568,7 @@ fn refine<const P: u32>(
     let weights = best.pool_weights.clone();
     let search = DegreeSearch {
         exclude: true,
+        shift: t.shift.as_ref(),
         ..degree_window(eqs, &t.basis, &t.action, visible, opts, deadline, &weights)
     };
     let label = best.basis_choice.clone();

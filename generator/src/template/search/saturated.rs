@@ -22,14 +22,16 @@
 //! gives such a basis.
 
 use super::{with_fold_count, Constants, PerAction};
-use crate::algebra::{Fp, Monomial, Poly};
+use crate::algebra::{Fp, Monomial, Poly, Q};
 use crate::budget::Deadline;
 use crate::groebner::{groebner_with, weights_fit, GroebnerBasis, GroebnerOptions};
 use crate::quotient::standard_monomials;
-use crate::template::build::{build_template, BuiltTemplate};
+use crate::template::build::{build_template, BuiltTemplate, DegreeSearch};
 use crate::template::candidates::start_degree;
 use crate::template::weight_sample::ones_and_twos;
+use crate::template::ColumnShift;
 use crate::template::{Action, TemplateError, TemplateOptions};
+use num_bigint::BigInt;
 
 /// The largest power `k` of the shift `s^k` tried.
 pub(crate) const MAX_SHIFT_POWER: u16 = 3;
@@ -44,65 +46,147 @@ const MAX_ALTERNATIVE_BASES: usize = 30;
 /// The largest weight of the hidden unknowns tried for a basis free of them.
 const MAX_HIDDEN_WEIGHT: u32 = 64;
 
-/// The monomial saturation of a system, where every hidden equation (those with a hidden
-/// unknown, the last ones) is `c u s + d` for one hidden unknown `u`, a monomial `s` in the
+/// The saturation of a system, where every hidden equation (those with a hidden unknown,
+/// the last ones) is `c u s + d` for one hidden unknown `u`, a polynomial `s` in the
 /// visible unknowns and non-zero numbers `c`, `d`.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub(crate) struct MonomialSaturation {
+pub(crate) struct Saturation {
     /// How many equations come before the hidden ones.
     pub(crate) equations: usize,
-    /// The product of the saturated monomials `s`.
-    pub(crate) shift: Monomial,
+    /// The product of the saturated polynomials `s`.
+    pub(crate) shift: Saturating,
 }
 
-/// The monomial saturation of `eqs` with `hidden` hidden unknowns (the last variables),
-/// `None` if there is none or some hidden equation is not of that form.
-pub(crate) fn monomial_saturation<const P: u32>(
-    eqs: &[Poly<Fp<P>>],
-    hidden: usize,
-) -> Option<MonomialSaturation> {
+/// What a system is saturated by.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Saturating {
+    /// A monomial: the basis is shifted by a monomial dividing a power of it.
+    Monomial(Monomial),
+    /// A polynomial with constant coefficients: the columns stand for multiples of a power
+    /// of it ([`crate::template::shift`]).
+    Polynomial(ColumnShift),
+}
+
+/// The saturation of `eqs` with `hidden` hidden unknowns (the last variables), `None` if
+/// there is none, some hidden equation is not of that form, or (for a polynomial) some
+/// coefficient of the product is not a small rational number: data, which the template's
+/// columns cannot hold.
+pub(crate) fn saturation<const P: u32>(eqs: &[Poly<Fp<P>>], hidden: usize) -> Option<Saturation> {
     let nvars = eqs.first()?.nvars();
     if hidden == 0 || hidden > nvars {
         return None;
     }
     let visible = nvars - hidden;
-    let has_hidden = |f: &Poly<Fp<P>>| {
-        f.terms()
-            .any(|(m, _)| m.0[visible..].iter().any(|&e| e > 0))
-    };
-    let equations = eqs.iter().position(has_hidden)?;
-    if eqs[equations..].len() != hidden || !eqs[equations..].iter().all(has_hidden) {
+    let has_hidden = |m: &Monomial| m.0[visible..].iter().any(|&e| e > 0);
+    let equations = eqs
+        .iter()
+        .position(|f| f.terms().any(|(m, _)| has_hidden(m)))?;
+    if eqs[equations..].len() != hidden
+        || !eqs[equations..]
+            .iter()
+            .all(|f| f.terms().any(|(m, _)| has_hidden(m)))
+    {
         return None;
     }
-    let mut shift = Monomial::one(nvars);
+    let mut product = Poly::constant(nvars, Fp::<P>::new(1));
     for f in &eqs[equations..] {
-        let terms: Vec<&Monomial> = f.terms().map(|(m, _)| m).collect();
-        let [a, b] = terms[..] else {
-            return None;
-        };
-        let (product, constant) = if a.is_one() { (b, a) } else { (a, b) };
-        let hidden_part = &product.0[visible..];
-        let single_hidden = hidden_part.iter().filter(|&&e| e == 1).count() == 1
-            && hidden_part.iter().all(|&e| e <= 1);
-        if !constant.is_one() || !single_hidden {
+        // c u s + d: the terms with the hidden unknown share it, to the first power; the
+        // one without is a non-zero number.
+        let mut hidden_var = None;
+        let mut s = Poly::zero(nvars);
+        let mut constant = None;
+        for (m, c) in f.terms() {
+            let h = &m.0[visible..];
+            if h.iter().all(|&e| e == 0) {
+                if !m.is_one() || constant.is_some() {
+                    return None;
+                }
+                constant = Some(*c);
+                continue;
+            }
+            let v = h.iter().position(|&e| e > 0)?;
+            if h[v] != 1 || h.iter().filter(|&&e| e > 0).count() != 1 {
+                return None;
+            }
+            if hidden_var.is_some_and(|u| u != v) {
+                return None;
+            }
+            hidden_var = Some(v);
+            let mut t = m.clone();
+            t.0[visible + v] = 0;
+            s.add_term(t, *c);
+        }
+        let d = constant?;
+        if s.is_zero() || s.terms().all(|(m, _)| m.is_one()) {
             return None;
         }
-        let mut s = product.clone();
-        s.0[visible..].iter_mut().for_each(|e| *e = 0);
-        if s.is_one() {
-            return None;
-        }
-        shift = shift.mul(&s);
+        // Normalised by -d (c u s = -d): only the zero set matters.
+        product = product.mul(&s.scale(&(-d)));
     }
-    Some(MonomialSaturation { equations, shift })
+    let shift = if product.len() == 1 {
+        let (m, _) = product.terms().next()?;
+        Saturating::Monomial(m.clone())
+    } else {
+        let terms: Option<Vec<(Monomial, Q)>> = product
+            .terms()
+            .map(|(m, c)| small_rational(*c).map(|q| (m.clone(), q)))
+            .collect();
+        Saturating::Polynomial(ColumnShift::new(terms?)?)
+    };
+    Some(Saturation { equations, shift })
 }
 
-/// The shifts tried, in increasing degree: any monomial `m` is sound (a template that
-/// reduces `m R` onto `m B` proves `m (r - sum c_j b_j) ∈ I`, so the relation holds in
-/// `I : m^∞ ⊆ I : s^∞` for `m` dividing a power of `s`, and `B` is a basis of the
-/// latter), so smaller ones than `s` are tried too: `1`, each variable of `s` to its
-/// power in `s`, then `s^k` for `k` up to [`MAX_SHIFT_POWER`].
-fn shifts(s: &Monomial) -> Vec<Monomial> {
+/// The largest denominator and numerator [`small_rational`] recognises.
+const SMALL_DENOMINATOR: i64 = 64;
+const SMALL_NUMERATOR: i64 = 1 << 16;
+
+/// The rational number `n / d` with `|n| <= 2^16`, `0 < d <= 64` congruent to `x`, if any:
+/// the coefficients of a `nonzero` written with numbers are such, a coefficient made of
+/// random data almost never (one chance in about 2^8 per coefficient).
+fn small_rational<const P: u32>(x: Fp<P>) -> Option<Q> {
+    (1..=SMALL_DENOMINATOR).find_map(|d| {
+        let n = (x.0 as i64 * d) % P as i64;
+        let n = if n > P as i64 / 2 { n - P as i64 } else { n };
+        (n.abs() <= SMALL_NUMERATOR).then(|| Q::new(BigInt::from(n), BigInt::from(d)))
+    })
+}
+
+/// One shift of the basis: the template reduces the reducible monomials times `unit`
+/// onto the basis times `unit`, the columns standing for multiples of `columns` when set
+/// (`unit` its leading monomial).
+#[derive(Clone, Debug)]
+struct Shift {
+    unit: Monomial,
+    columns: Option<ColumnShift>,
+}
+
+/// The shifts tried, in increasing degree. For a monomial `s`, any monomial `m` is sound
+/// (a template that reduces `m R` onto `m B` proves `m (r - sum c_j b_j) ∈ I`, so the
+/// relation holds in `I : m^∞ ⊆ I : s^∞` for `m` dividing a power of `s`, and `B` is a
+/// basis of the latter), so smaller ones than `s` are tried too: `1`, each variable of `s`
+/// to its power in `s`, then `s^k` for `k` up to [`MAX_SHIFT_POWER`]. For a polynomial
+/// `s`, its powers `s^k`.
+fn shifts(s: &Saturating) -> Vec<Shift> {
+    match s {
+        Saturating::Monomial(s) => monomial_shifts(s)
+            .into_iter()
+            .map(|unit| Shift {
+                unit,
+                columns: None,
+            })
+            .collect(),
+        Saturating::Polynomial(sigma) => (1..=MAX_SHIFT_POWER)
+            .filter_map(|k| sigma.pow(k))
+            .map(|power| Shift {
+                unit: power.leading().clone(),
+                columns: Some(power),
+            })
+            .collect(),
+    }
+}
+
+/// The monomial shifts of [`shifts`].
+fn monomial_shifts(s: &Monomial) -> Vec<Monomial> {
     let n = s.nvars();
     let mut out = vec![Monomial::one(n)];
     for (v, &e) in s.0.iter().enumerate() {
@@ -182,64 +266,76 @@ pub(super) fn saturated_templates<'a, const P: u32>(
     deadline: &Deadline,
     actions: &[Action],
 ) -> Option<(PerAction, &'a [Poly<Fp<P>>])> {
-    let sat = monomial_saturation(eqs, opts.hidden_vars)?;
+    let sat = saturation(eqs, opts.hidden_vars)?;
     let deadline = &deadline.portion(SATURATED_BUDGET_SHARE);
-    let nvars = sat.shift.nvars();
+    let nvars = eqs.first()?.nvars();
     let visible = nvars - opts.hidden_vars;
     let (base, weights) = basis_without_hidden(eqs, basis, &vec![1; visible], deadline)?;
     let written = &eqs[..sat.equations];
-    // A basis of the saturated quotient (of the order with `weights`) times `shift`, and
-    // its description.
-    let shifted = |base: &[Monomial], weights: &[u32], shift: &Monomial| {
+    // A basis of the saturated quotient (of the order with `weights`) times the shift's
+    // unit, and its description.
+    let shifted = |base: &[Monomial], weights: &[u32], shift: &Shift| {
         let order = if weights.is_empty() {
             "grevlex".to_string()
         } else {
             format!("weighted order, weights {weights:?}")
         };
+        let by = match &shift.columns {
+            None => shift.unit.display_with(&opts.var_names),
+            Some(sigma) => format!("the polynomial {}", sigma.display_with(&opts.var_names)),
+        };
         let label = format!(
-            "standard monomials ({order}) of the saturation, shifted by {} (saturated inside the template)",
-            shift.display_with(&opts.var_names)
+            "standard monomials ({order}) of the saturation, shifted by {by} (saturated inside the template)"
         );
-        let b: Vec<Monomial> = base.iter().map(|b| b.mul(shift)).collect();
+        let b: Vec<Monomial> = base.iter().map(|b| b.mul(&shift.unit)).collect();
         (b, label)
     };
     let shifts = shifts(&sat.shift);
     // The template of `action` on the basis `b` within its window of candidate degrees,
     // pools graded by `grading` (empty: total degree).
-    let build = |b: &[Monomial], label: &str, action: &Action, distinct, grading: &[u32]| {
-        let search = super::degree_window(written, b, action, visible, opts, deadline, grading);
-        let r = build_template(written, b, label, action, &search, distinct, opts);
-        with_fold_count(r, constants)
-    };
+    let build =
+        |b: &[Monomial], label: &str, shift: &Shift, action: &Action, distinct, grading: &[u32]| {
+            let search = DegreeSearch {
+                shift: shift.columns.as_ref(),
+                ..super::degree_window(written, b, action, visible, opts, deadline, grading)
+            };
+            let r = build_template(written, b, label, action, &search, distinct, opts);
+            with_fold_count(r, constants)
+        };
     let checks: Vec<Result<bool, TemplateError>> = actions
         .iter()
         .map(|a| super::quotient_action(gb, basis, a, opts, deadline))
         .collect();
     let distinct: Vec<bool> = checks.iter().map(|c| c.clone().unwrap_or(false)).collect();
     let mut all: PerAction = Vec::new();
+    let mut chosen_shift: Vec<Option<Shift>> = Vec::new();
     for ((action, &distinct), check) in actions.iter().zip(&distinct).zip(&checks) {
-        let mut best: Option<Result<BuiltTemplate, TemplateError>> = None;
+        let mut best: Option<(Result<BuiltTemplate, TemplateError>, Shift)> = None;
         if let Err(e) = check {
             all.push((action.clone(), Err(e.clone())));
+            chosen_shift.push(None);
             continue;
         }
         for shift in &shifts {
             let (b, label) = shifted(&base, &weights, shift);
-            let r = build(&b, &label, action, distinct, &[]);
+            let r = build(&b, &label, shift, action, distinct, &[]);
             let better = match (&r, &best) {
-                (Ok(new), Some(Ok(old))) => super::area(new) < super::area(old),
-                (_, Some(Ok(_))) => false,
+                (Ok(new), Some((Ok(old), _))) => super::area(new) < super::area(old),
+                (_, Some((Ok(_), _))) => false,
                 _ => r.is_ok() || best.is_none(),
             };
             if better {
-                best = Some(r);
+                best = Some((r, shift.clone()));
             }
             if deadline.check_time().is_err() {
                 break;
             }
         }
-        if let Some(r) = best {
+        if let Some((r, shift)) = best {
             all.push((action.clone(), r));
+            chosen_shift.push(Some(shift));
+        } else {
+            chosen_shift.push(None);
         }
     }
     // Other bases (weights 1 and 2 on the visible unknowns), for the best action and
@@ -249,7 +345,7 @@ pub(super) fn saturated_templates<'a, const P: u32>(
         .enumerate()
         .filter_map(|(k, (_, r))| r.as_ref().ok().map(|b| (k, b)))
         .min_by_key(|(k, b)| (super::area(b), *k))
-        .map(|(k, b)| (k, b.template.unit()));
+        .and_then(|(k, _)| chosen_shift[k].clone().map(|s| (k, s)));
     if let Some((k, shift)) = best {
         let mut seen = vec![base.clone()];
         for w in ones_and_twos(visible, MAX_ALTERNATIVE_BASES) {
@@ -267,7 +363,7 @@ pub(super) fn saturated_templates<'a, const P: u32>(
             // Pools graded by total degree, then by the basis's own weights (its basis and
             // reducible monomials are low in that grading).
             for grading in [&[][..], &weights[..]] {
-                let r = build(&b, &label, &actions[k], distinct[k], grading);
+                let r = build(&b, &label, &shift, &actions[k], distinct[k], grading);
                 if let (Ok(new), Ok(old)) = (&r, &all[k].1) {
                     if super::area(new) < super::area(old) {
                         all[k].1 = r;
@@ -276,15 +372,26 @@ pub(super) fn saturated_templates<'a, const P: u32>(
             }
         }
     }
-    // No action reduces within its window: raise the degree, shift `s`, all actions.
+    // No action reduces within its window: raise the degree, largest shift, all actions.
     if opts.adaptive_degree && all.iter().all(|(_, r)| r.is_err()) {
-        let (b, label) = shifted(&base, &weights, &sat.shift);
+        let shift = shifts.last()?;
+        let (b, label) = shifted(&base, &weights, shift);
         let starts: Vec<u32> = actions
             .iter()
             .map(|a| start_degree(written, &b, a, visible, &[]))
             .collect();
         super::raise_degree(
-            written, constants, &b, &label, actions, &starts, &distinct, opts, deadline, &mut all,
+            written,
+            constants,
+            &b,
+            &label,
+            shift.columns.as_ref(),
+            actions,
+            &starts,
+            &distinct,
+            opts,
+            deadline,
+            &mut all,
         );
     }
     Some((all, written))
@@ -305,26 +412,41 @@ mod tests {
     }
 
     #[test]
-    fn a_monomial_nonzero_is_found_and_a_polynomial_one_is_not() {
+    fn a_monomial_nonzero_shifts_the_basis_and_a_polynomial_one_the_columns() {
         // x^2 + y - 3, x y - 2, u x y - 1 (nonzero x*y).
         let f = poly(&[(&[2, 0, 0], 1), (&[0, 1, 0], 1), (&[0, 0, 0], P1 - 3)]);
         let g = poly(&[(&[1, 1, 0], 1), (&[0, 0, 0], P1 - 2)]);
         let sat = poly(&[(&[1, 1, 1], 1), (&[0, 0, 0], P1 - 1)]);
-        let found = monomial_saturation(&[f.clone(), g.clone(), sat], 1);
+        let found = saturation(&[f.clone(), g.clone(), sat], 1);
         assert_eq!(
             found,
-            Some(MonomialSaturation {
+            Some(Saturation {
                 equations: 2,
-                shift: Monomial(vec![1, 1, 0]),
+                shift: Saturating::Monomial(Monomial(vec![1, 1, 0])),
             })
         );
-        // u (x + y) - 1 (nonzero x + y) is not a monomial saturation.
-        let poly_sat = poly(&[(&[1, 0, 1], 1), (&[0, 1, 1], 1), (&[0, 0, 0], P1 - 1)]);
+        // u (2 x + y) - 1 (nonzero 2 x + y): the columns shift by x + y / 2.
+        let poly_sat = poly(&[(&[1, 0, 1], 2), (&[0, 1, 1], 1), (&[0, 0, 0], P1 - 1)]);
+        let half = Q::new(BigInt::from(1), BigInt::from(2));
+        let expected = ColumnShift::new([
+            (Monomial(vec![1, 0, 0]), Q::from_integer(BigInt::from(1))),
+            (Monomial(vec![0, 1, 0]), half),
+        ]);
         assert_eq!(
-            monomial_saturation(&[f.clone(), g.clone(), poly_sat], 1),
-            None
+            saturation(&[f.clone(), g.clone(), poly_sat], 1),
+            Some(Saturation {
+                equations: 2,
+                shift: Saturating::Polynomial(expected.unwrap()),
+            })
         );
+        // A coefficient that is no small rational (data) is not taken for a number.
+        let data_sat = poly(&[
+            (&[1, 0, 1], 1_234_567_891),
+            (&[0, 1, 1], 1),
+            (&[0, 0, 0], P1 - 1),
+        ]);
+        assert_eq!(saturation(&[f.clone(), g.clone(), data_sat], 1), None);
         // No hidden unknown, nothing to saturate.
-        assert_eq!(monomial_saturation(&[f, g], 0), None);
+        assert_eq!(saturation(&[f, g], 0), None);
     }
 }

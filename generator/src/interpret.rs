@@ -15,7 +15,7 @@
 
 use crate::algebra::{Monomial, Poly};
 use crate::eliminate::has_data_only_columns;
-use crate::template::shift::shifted_coordinates;
+use crate::template::shift::row_coordinates;
 use crate::template::{EliminationTemplate, ShapeError};
 use nalgebra::DMatrix;
 use std::collections::HashMap;
@@ -151,18 +151,17 @@ pub fn fill_template(
                 expected: template.nvars,
             });
         }
-        let product = eq.terms().map(|(mon, &c)| (row.multiplier.mul(mon), c));
-        let terms: Vec<(Monomial, f64)> = match &shift {
-            // A monomial outside the columns has coordinate zero mod p (the template was
-            // built so); in floating point it is what rounding left.
-            Some(s) => shifted_coordinates(product, s, |l| {
-                col.get(l).is_some_and(|&k| k >= template.n_excess)
-            })
-            .into_iter()
-            .filter(|(m, _)| col.contains_key(m))
-            .collect(),
-            None => product.collect(),
-        };
+        // A monomial outside the columns has coordinate zero mod p (the template was built
+        // so); in floating point it is what rounding left.
+        let terms = row_coordinates(
+            &row.multiplier,
+            eq,
+            shift.as_deref(),
+            template.n_excess,
+            |m| col.get(m).copied(),
+        )
+        .into_iter()
+        .filter(|(m, _)| shift.is_none() || col.contains_key(m));
         for (prod, c) in terms {
             let j = *col
                 .get(&prod)

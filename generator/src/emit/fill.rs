@@ -11,7 +11,7 @@ use super::tokens::lit;
 use super::traced::Traced;
 use super::{CodeForm, EmitError};
 use crate::algebra::{Monomial, MonomialOrder};
-use crate::template::shift::shifted_coordinates;
+use crate::template::shift::row_coordinates;
 use crate::template::{ConstantFold, EliminationTemplate};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
@@ -55,20 +55,17 @@ impl Coefficients {
                     None => None,
                 };
                 for (i, row) in t.rows.iter().enumerate() {
-                    let product = spec.equations[row.equation]
-                        .terms()
-                        .map(|(m, c)| (row.multiplier.mul(m), c.clone()));
-                    let terms: Vec<(Monomial, Traced)> = match &shift {
-                        // Coordinates outside the columns are zero (the template was built
-                        // so); the traced arithmetic need not see them cancel.
-                        Some(s) => shifted_coordinates(product, s, |l| {
-                            plan.column_of.get(l).is_some_and(|&k| k >= t.n_excess)
-                        })
-                        .into_iter()
-                        .filter(|(m, _)| plan.column_of.contains_key(m))
-                        .collect(),
-                        None => product.collect(),
-                    };
+                    // Coordinates outside the columns are zero (the template was built so);
+                    // the traced arithmetic need not see them cancel.
+                    let terms = row_coordinates(
+                        &row.multiplier,
+                        &spec.equations[row.equation],
+                        shift.as_deref(),
+                        t.n_excess,
+                        |m| plan.column_of.get(m).copied(),
+                    )
+                    .into_iter()
+                    .filter(|(m, _)| shift.is_none() || plan.column_of.contains_key(m));
                     for (m, c) in terms {
                         // Dependent excess columns are not part of the eliminated matrix.
                         let Some(col) = t.filled_column(plan.column_of[&m]) else {

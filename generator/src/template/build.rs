@@ -11,7 +11,7 @@ use super::candidates::{candidate_bytes, candidates, pool_size, Blocks, Candidat
 use super::exclude::exclude_and_shrink;
 use super::linalg::gauss_jordan;
 use super::select::{self, SelectedTemplate};
-use super::shift::{shifted_coordinates, ColumnShift};
+use super::shift::{row_coordinates, shifted_coordinates, ColumnShift};
 use super::shrink::shrink;
 use super::{Action, EliminationTemplate, TemplateError, TemplateOptions};
 use crate::algebra::{Field, Fp, Monomial, MonomialOrder, Poly};
@@ -374,15 +374,13 @@ impl EliminationTemplate {
             .iter()
             .map(|r| {
                 let mut v = vec![C::zero(); self.columns.len()];
-                let product = eqs[r.equation]
-                    .terms()
-                    .map(|(m, c)| (m.mul(&r.multiplier), c.clone()));
-                let terms: Vec<(Monomial, C)> = match &shift {
-                    Some(s) => shifted_coordinates(product, s, |l| {
-                        idx.get(l).is_some_and(|&k| k >= self.n_excess)
-                    }),
-                    None => product.collect(),
-                };
+                let terms = row_coordinates(
+                    &r.multiplier,
+                    &eqs[r.equation],
+                    shift.as_deref(),
+                    self.n_excess,
+                    |m| idx.get(m).copied(),
+                );
                 for (p, c) in terms {
                     match idx.get(&p) {
                         Some(&k) => v[k] = c,

@@ -136,6 +136,24 @@ pub fn shifted_coordinates<C: Ring>(
         .collect()
 }
 
+/// The terms of the template row `multiplier * eq` in the template's column coordinates:
+/// its products' monomials, or with `shift` (the template's [`ColumnShift::terms_in`]) their
+/// [`shifted_coordinates`], where `column` gives a monomial's column and the reducible and
+/// basis columns (from `n_excess` on) stand for multiples of the shift.
+pub(crate) fn row_coordinates<C: Ring>(
+    multiplier: &Monomial,
+    eq: &Poly<C>,
+    shift: Option<&[(Monomial, C)]>,
+    n_excess: usize,
+    column: impl Fn(&Monomial) -> Option<usize>,
+) -> Vec<(Monomial, C)> {
+    let product = eq.terms().map(|(m, c)| (multiplier.mul(m), c.clone()));
+    match shift {
+        Some(s) => shifted_coordinates(product, s, |l| column(l).is_some_and(|k| k >= n_excess)),
+        None => product.collect(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

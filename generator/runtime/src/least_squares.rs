@@ -35,10 +35,11 @@ pub struct LeastSquares<const R: usize, const K: usize> {
 impl<const R: usize, const K: usize> LeastSquares<R, K> {
     /// Factors `a`; `None` if `K == 0`, `R < K`, an entry is not finite, `a` is zero (or
     /// its largest entry subnormal), or its rank is below `K`. Never panics.
+    #[inline]
     pub fn new(a: &[[f64; K]; R]) -> Option<Self> {
         let mut qr = *a;
         let mut reflections = [(0.0, 0.0, 0.0); K];
-        let inv_scale = factor(qr.as_flattened_mut(), R, K, &mut reflections)?;
+        let inv_scale = factor(&mut qr, R, K, &mut reflections)?;
         Some(LeastSquares {
             qr,
             reflections,
@@ -48,11 +49,12 @@ impl<const R: usize, const K: usize> LeastSquares<R, K> {
 
     /// The `n` minimising `|A n + b|` (for consistent equations, `A n = -b`); `None` if a
     /// value is not finite. Never panics.
+    #[inline]
     pub fn solve(&self, b: &[f64; R]) -> Option<[f64; K]> {
         let mut work = *b;
         let mut n = [0.0; K];
         solve(
-            self.qr.as_flattened(),
+            &self.qr,
             R,
             K,
             &self.reflections,
@@ -71,7 +73,10 @@ pub fn least_squares_dyn(a: &[f64], rows: usize, k: usize, b: &[f64]) -> Option<
     if a.len() != rows * k || b.len() != rows {
         return None;
     }
-    let mut qr = a.to_vec();
+    let mut qr = RowMajor {
+        entries: a.to_vec(),
+        cols: k,
+    };
     let mut reflections = vec![(0.0, 0.0, 0.0); k];
     let inv_scale = factor(&mut qr, rows, k, &mut reflections)?;
     let mut work = b.to_vec();
@@ -79,52 +84,102 @@ pub fn least_squares_dyn(a: &[f64], rows: usize, k: usize, b: &[f64]) -> Option<
     solve(&qr, rows, k, &reflections, inv_scale, &mut work, &mut n).then_some(n)
 }
 
-/// Scales the row-major `r x k` matrix `a` by the power of two at or below its largest
-/// `|a_ij|` and overwrites it with its Householder QR (see [`LeastSquares::qr`]); returns
-/// the scale's reciprocal, `None` if the matrix is not of full column rank (or not
-/// finite, or its largest entry zero or subnormal, or `r < k`, or `k == 0`). Inlined, so
-/// that [`LeastSquares`]'s fixed sizes unroll its loops.
+/// Entry access shared by the fixed-size array (whose indices the compiler checks once and
+/// whose loops it unrolls) and the run-time-sized row-major matrix, so that both run the
+/// same operations in the same order.
+trait Grid {
+    fn get(&self, i: usize, j: usize) -> f64;
+    fn get_mut(&mut self, i: usize, j: usize) -> &mut f64;
+    /// Every entry, for the scaling pass.
+    fn entries_mut(&mut self) -> &mut [f64];
+}
+
+impl<const R: usize, const K: usize> Grid for [[f64; K]; R] {
+    #[inline(always)]
+    fn get(&self, i: usize, j: usize) -> f64 {
+        self[i][j]
+    }
+    #[inline(always)]
+    fn get_mut(&mut self, i: usize, j: usize) -> &mut f64 {
+        &mut self[i][j]
+    }
+    #[inline(always)]
+    fn entries_mut(&mut self) -> &mut [f64] {
+        self.as_flattened_mut()
+    }
+}
+
+/// A row-major matrix of `cols` columns.
+struct RowMajor {
+    entries: Vec<f64>,
+    cols: usize,
+}
+
+impl Grid for RowMajor {
+    fn get(&self, i: usize, j: usize) -> f64 {
+        self.entries[i * self.cols + j]
+    }
+    fn get_mut(&mut self, i: usize, j: usize) -> &mut f64 {
+        &mut self.entries[i * self.cols + j]
+    }
+    fn entries_mut(&mut self) -> &mut [f64] {
+        &mut self.entries
+    }
+}
+
+/// Scales the `r x k` matrix `a` by the power of two at or below its largest `|a_ij|` and
+/// overwrites it with its Householder QR (see [`LeastSquares::qr`]); returns the scale's
+/// reciprocal, `None` if the matrix is not of full column rank (or not finite, or its
+/// largest entry zero or subnormal, or `r < k`, or `k == 0`). Inlined, so that
+/// [`LeastSquares`]'s fixed sizes unroll its loops.
 #[inline(always)]
-fn factor(a: &mut [f64], r: usize, k: usize, reflections: &mut [Reflection]) -> Option<f64> {
+#[allow(clippy::needless_range_loop)] // indices shared with `Grid`'s (i, j)
+fn factor<G: Grid>(a: &mut G, r: usize, k: usize, reflections: &mut [Reflection]) -> Option<f64> {
     if k == 0 || r < k {
         return None;
     }
     let mut max = 0.0f64;
-    for x in a.iter() {
-        if !x.is_finite() {
-            return None;
-        }
+    let mut finite = true;
+    for x in a.entries_mut().iter() {
+        finite &= x.is_finite();
         max = max.max(x.abs());
     }
-    if !max.is_normal() {
+    if !finite || !max.is_normal() {
         return None;
     }
     // 2^floor(log2 max): the exponent bits alone. Its reciprocal is exact.
     let inv_scale = 1.0 / f64::from_bits(max.to_bits() & 0x7ff0_0000_0000_0000);
-    a.iter_mut().for_each(|x| *x *= inv_scale);
-    let at = |i: usize, j: usize| i * k + j;
+    a.entries_mut().iter_mut().for_each(|x| *x *= inv_scale);
     for j in 0..k {
-        let norm = (j..r)
-            .map(|i| a[at(i, j)] * a[at(i, j)])
-            .sum::<f64>()
-            .sqrt();
+        // The sums in the order of the iterator sums they replace (the same bits).
+        let ajj = a.get(j, j);
+        let mut column = -0.0 + ajj * ajj;
+        let mut below = -0.0;
+        for i in j + 1..r {
+            column += a.get(i, j) * a.get(i, j);
+            below += a.get(i, j) * a.get(i, j);
+        }
+        let norm = column.sqrt();
         if norm.is_nan() || norm <= RANK_TOL {
             return None;
         }
         // Reflection mapping a[j.., j] to (alpha, 0, ...): v = a[j.., j] - alpha e_1.
-        let alpha = if a[at(j, j)] > 0.0 { -norm } else { norm };
-        let v0 = a[at(j, j)] - alpha;
-        let vtv = v0 * v0 + (j + 1..r).map(|i| a[at(i, j)] * a[at(i, j)]).sum::<f64>();
-        let beta = 2.0 / vtv;
+        let alpha = if ajj > 0.0 { -norm } else { norm };
+        let v0 = ajj - alpha;
+        let beta = 2.0 / (v0 * v0 + below);
         for c in j + 1..k {
-            let d = v0 * a[at(j, c)] + (j + 1..r).map(|i| a[at(i, j)] * a[at(i, c)]).sum::<f64>();
-            let f = beta * d;
-            a[at(j, c)] -= f * v0;
+            let mut d = -0.0;
             for i in j + 1..r {
-                a[at(i, c)] -= f * a[at(i, j)];
+                d += a.get(i, j) * a.get(i, c);
+            }
+            let f = beta * (v0 * a.get(j, c) + d);
+            *a.get_mut(j, c) -= f * v0;
+            for i in j + 1..r {
+                let aij = a.get(i, j);
+                *a.get_mut(i, c) -= f * aij;
             }
         }
-        a[at(j, j)] = alpha;
+        *a.get_mut(j, j) = alpha;
         reflections[j] = (v0, beta, 1.0 / alpha);
     }
     Some(inv_scale)
@@ -133,8 +188,9 @@ fn factor(a: &mut [f64], r: usize, k: usize, reflections: &mut [Reflection]) -> 
 /// `n = -R⁻¹ (Qᵀ (b · inv_scale))[..k]` from the factorisation of [`factor`]; `b` is work
 /// space.
 #[inline(always)]
-fn solve(
-    qr: &[f64],
+#[allow(clippy::needless_range_loop)] // indices shared with `Grid`'s (i, j)
+fn solve<G: Grid>(
+    qr: &G,
     r: usize,
     k: usize,
     reflections: &[Reflection],
@@ -142,19 +198,24 @@ fn solve(
     b: &mut [f64],
     n: &mut [f64],
 ) -> bool {
-    let at = |i: usize, j: usize| i * k + j;
     b.iter_mut().for_each(|x| *x *= inv_scale);
-    for (j, &(v0, beta, _)) in reflections.iter().enumerate() {
-        let d = v0 * b[j] + (j + 1..r).map(|i| qr[at(i, j)] * b[i]).sum::<f64>();
-        let f = beta * d;
+    for (j, &(v0, beta, _)) in reflections.iter().enumerate().take(k) {
+        let mut d = -0.0;
+        for i in j + 1..r {
+            d += qr.get(i, j) * b[i];
+        }
+        let f = beta * (v0 * b[j] + d);
         b[j] -= f * v0;
         for i in j + 1..r {
-            b[i] -= f * qr[at(i, j)];
+            b[i] -= f * qr.get(i, j);
         }
     }
     for i in (0..k).rev() {
-        let s: f64 = b[i] + (i + 1..k).map(|l| qr[at(i, l)] * n[l]).sum::<f64>();
-        n[i] = -s * reflections[i].2;
+        let mut s = -0.0;
+        for l in i + 1..k {
+            s += qr.get(i, l) * n[l];
+        }
+        n[i] = -(b[i] + s) * reflections[i].2;
     }
     n.iter().all(|x| x.is_finite())
 }

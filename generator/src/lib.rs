@@ -56,7 +56,7 @@ pub use polishing::{
     AutoPolishing, AUTO_POLISH_FAILURE_RATE, AUTO_POLISH_INSTANCES, AUTO_POLISH_MEDIAN,
     AUTO_POLISH_MORE_INSTANCES, AUTO_POLISH_P99, AUTO_POLISH_STEPS, AUTO_POLISH_STEP_CHOICES,
 };
-pub use problem::ProblemOptions;
+pub use problem::{PolynomialSaturation, ProblemOptions};
 pub use redundancy::{
     RedundantCheck, REDUNDANT_CHECK_INSTANCES, REDUNDANT_EXTRA_FAILURES,
     REDUNDANT_MIN_REAL_SOLUTIONS, REDUNDANT_REAL_TOLERANCE,

@@ -180,6 +180,9 @@ pub fn resolve_options(problem: &Problem, options: &TemplateOptions) -> Template
     if let Some(n) = o.weighted_orders.or(file.weighted_orders) {
         out.weighted_orders = n;
     }
+    if let Some(s) = o.saturation.or(file.saturation) {
+        out.polynomial_saturation = s;
+    }
     out
 }
 

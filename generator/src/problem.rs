@@ -226,12 +226,43 @@ pub struct ProblemOptions {
     /// weighted monomial orders the template search samples for other quotient bases (0:
     /// none); more can find smaller templates at the cost of planning time.
     pub weighted_orders: Option<usize>,
+    /// `option saturation = smaller|template|unknown` (default `smaller`): how a `nonzero`
+    /// polynomial with constant coefficients is saturated: inside the template (its
+    /// columns standing for multiples of a power of it, `template/shift.rs`), by a hidden
+    /// unknown `u` with `u s - 1 = 0`, or both searched and the smaller template kept.
+    pub saturation: Option<PolynomialSaturation>,
 }
 
 impl ProblemOptions {
     /// The Gauss-Newton steps of `option newton`, [`DEFAULT_NEWTON_STEPS`] if not given.
     pub fn newton_steps(&self) -> u32 {
         self.newton.unwrap_or(DEFAULT_NEWTON_STEPS)
+    }
+}
+
+/// How a `nonzero` polynomial with constant coefficients is saturated (`option saturation`,
+/// [`ProblemOptions::saturation`]); a monomial is always saturated inside the template.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PolynomialSaturation {
+    /// Both ways searched, the smaller template (after the fold) kept: the hidden unknown's
+    /// equation `u s - 1` has numeric coefficients, and its multiples often fold away.
+    #[default]
+    Smaller,
+    /// Inside the template only (the search is shorter).
+    Template,
+    /// By the hidden unknown only.
+    Unknown,
+}
+
+impl PolynomialSaturation {
+    /// The value of `option saturation` / `--saturation` (`smaller`, `template`, `unknown`).
+    pub fn parse(value: &str) -> Option<PolynomialSaturation> {
+        match value {
+            "smaller" => Some(PolynomialSaturation::Smaller),
+            "template" => Some(PolynomialSaturation::Template),
+            "unknown" => Some(PolynomialSaturation::Unknown),
+            _ => None,
+        }
     }
 }
 

@@ -127,7 +127,7 @@ fn planted_curve_instance(rng: &mut ChaCha8Rng) -> (Vec<f64>, Vec<f64>) {
 
 #[test]
 fn a_polynomial_saturation_is_built_into_the_template() {
-    let p = planned(SPURIOUS_CURVE);
+    let p = planned(&format!("{SPURIOUS_CURVE}option saturation = template\n"));
     let built = &p.generated.built;
     assert!(
         built.basis_choice.contains("shifted by the polynomial"),
@@ -147,8 +147,43 @@ fn a_polynomial_saturation_is_built_into_the_template() {
         .iter()
         .all(|m| m.0[visible..].iter().all(|&e| e == 0)));
     assert_eq!(p.solution_count(), COUNT_CURVE);
+    // Its structure (the shifted coordinates' pattern) gives it an elimination plan, which
+    // the emitted solver follows (the classic corpus's `p2p2pl` and `p35pf` recover their
+    // planted poses through the sparse one: tests/tests/corpus.rs).
+    assert!(t.unrolled.is_some() || t.sparse.is_some());
     assert_solves(&p, planted_curve_instance);
     // The emitted solver fills the same coordinates.
     let code = mingen::emit_plan_from(&p, "t.mp").unwrap_or_else(|e| panic!("{e}"));
     assert!(code.contains("pub const UNKNOWNS: usize = 3;"), "{code}");
+}
+
+#[test]
+fn a_polynomial_saturation_keeps_the_smaller_of_the_template_and_the_hidden_unknown() {
+    let route = |value: &str| planned(&format!("{SPURIOUS_CURVE}option saturation = {value}\n"));
+    let (template, unknown) = (route("template"), route("unknown"));
+    assert!(template.generated.built.template.shift.is_some());
+    // The hidden unknown's template has it in its columns.
+    let t = &unknown.generated.built.template;
+    assert!(t.shift.is_none());
+    let visible = t.visible_vars();
+    assert!(t
+        .columns
+        .iter()
+        .any(|m| m.0[visible..].iter().any(|&e| e > 0)));
+    // The default searches both and keeps the smaller (after the fold).
+    let smaller = planned(SPURIOUS_CURVE);
+    let area = |p: &SolverPlan| p.generated.built.folded_area();
+    assert_eq!(area(&smaller), area(&template).min(area(&unknown)));
+    for p in [&smaller, &unknown] {
+        assert_eq!(p.solution_count(), COUNT_CURVE);
+        assert_solves(p, planted_curve_instance);
+    }
+    let bad = Problem::parse(
+        &format!("{SPURIOUS_CURVE}option saturation = maybe\n"),
+        "t.mp",
+    )
+    .err()
+    .map(|e| e.to_string())
+    .unwrap_or_default();
+    assert!(bad.contains("option saturation: expected"), "{bad}");
 }

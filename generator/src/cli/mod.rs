@@ -201,6 +201,12 @@ struct SearchArgs {
     /// templates and take longer.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(0..=1024))]
     weighted_orders: Option<u64>,
+    /// How a `nonzero` polynomial with constant coefficients is saturated: inside the
+    /// template (`template`), by a hidden unknown (`unknown`), or both searched and the
+    /// smaller template kept (`smaller`, the default; the longer search); default: the
+    /// file's `option saturation`.
+    #[arg(long, value_name = "smaller|template|unknown", value_parser = ["smaller", "template", "unknown"])]
+    saturation: Option<String>,
     /// A weighted monomial order to try before all others: one positive weight per unknown
     /// of the system, in the order `inspect` lists them, comma-separated (e.g. `4,2,3,2`);
     /// may be given several times.
@@ -245,6 +251,10 @@ impl SearchArgs {
                 sign_symmetry: self.sign_symmetry.as_deref().map(|v| v == "yes"),
                 redundant_basis: self.redundant_basis.as_deref().map(|v| v == "yes"),
                 weighted_orders: self.weighted_orders.map(|n| n as usize),
+                saturation: self
+                    .saturation
+                    .as_deref()
+                    .and_then(mingen::PolynomialSaturation::parse),
             },
             weights: self.weights.iter().map(|w| w.0.clone()).collect(),
             ..TemplateOptions::default()

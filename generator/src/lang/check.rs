@@ -13,7 +13,9 @@ pub use super::ir::{Checked, Node, NodeId, Op, ScalarEquation, Shape, MAX_DEGREE
 use super::lexer::Pos;
 use super::names::{check_problem_name, FieldNames};
 use super::LangError;
-use crate::problem::{DataKind, DataSymbol, ProblemLayout, UnknownSymbol, MAX_WEIGHTED_ORDERS};
+use crate::problem::{
+    DataKind, DataSymbol, PolynomialSaturation, ProblemLayout, UnknownSymbol, MAX_WEIGHTED_ORDERS,
+};
 use expr::q_int;
 use std::collections::HashMap;
 
@@ -408,11 +410,19 @@ impl Checker {
                         ))
                     }
                 },
+                "saturation" => match PolynomialSaturation::parse(&v) {
+                    Some(s) => o.saturation.replace(s).is_some(),
+                    None => {
+                        return bad(&format!(
+                            "option saturation: expected 'smaller', 'template' or 'unknown', found '{v}'"
+                        ))
+                    }
+                },
                 other => {
                     return Err(LangError::new(
                         name.pos,
                         format!(
-                            "unknown option '{other}' (the options are action, extra_degree, basis, newton, auto_eliminate, reduce_equations, sign_symmetry, redundant_basis, weighted_orders)"
+                            "unknown option '{other}' (the options are action, extra_degree, basis, newton, auto_eliminate, reduce_equations, sign_symmetry, redundant_basis, weighted_orders, saturation)"
                         ),
                     ))
                 }

@@ -1,7 +1,7 @@
 //! The options of the template search, read by every stage of it.
 
 use crate::budget::Budget;
-use crate::problem::ProblemOptions;
+use crate::problem::{PolynomialSaturation, ProblemOptions};
 
 /// Options of template construction.
 #[derive(Clone, Debug)]
@@ -74,6 +74,9 @@ pub struct TemplateOptions {
     /// [`super::reduction`]; every action and basis again) and keep the smaller. On by
     /// default.
     pub reduce_equations: bool,
+    /// How a `nonzero` polynomial with constant coefficients is saturated (see
+    /// [`PolynomialSaturation`]); both ways, the smaller kept, by default.
+    pub polynomial_saturation: PolynomialSaturation,
     /// Seed of all random choices (instances).
     pub seed: u64,
     /// Options that override those of the problem file (`option NAME = VALUE`) when the
@@ -105,6 +108,7 @@ impl Default for TemplateOptions {
             redundant_bases: false,
             laurent_actions: false,
             reduce_equations: true,
+            polynomial_saturation: PolynomialSaturation::Smaller,
             seed: 2024,
             hidden_vars: 0,
             overrides: ProblemOptions::default(),

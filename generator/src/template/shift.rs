@@ -75,6 +75,42 @@ impl ColumnShift {
     }
 }
 
+/// A coefficient known only as structurally zero or possibly non-zero: the ring in which
+/// [`shifted_coordinates`] gives a row's pattern for every instance at once (sums and
+/// products of possibly non-zero values are possibly non-zero; no cancellation is assumed).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Structural(pub bool);
+
+impl Ring for Structural {
+    fn zero() -> Self {
+        Structural(false)
+    }
+    fn one() -> Self {
+        Structural(true)
+    }
+    fn is_zero(&self) -> bool {
+        !self.0
+    }
+    fn add(&self, other: &Self) -> Self {
+        Structural(self.0 || other.0)
+    }
+    fn sub(&self, other: &Self) -> Self {
+        Structural(self.0 || other.0)
+    }
+    fn mul(&self, other: &Self) -> Self {
+        Structural(self.0 && other.0)
+    }
+    fn neg(&self) -> Self {
+        *self
+    }
+    fn from_rational(q: &Q) -> Option<Self> {
+        Some(Structural(q != &Q::from_integer(0.into())))
+    }
+    fn is_one(&self) -> bool {
+        false
+    }
+}
+
 /// A monomial ordered by grevlex.
 #[derive(Clone, PartialEq, Eq)]
 struct Grevlex(Monomial);

@@ -18,6 +18,7 @@
 //! in its column), without the dense LU's operations on entries that are zero for every
 //! instance, its index arithmetic or its loops.
 
+use super::shift::{shifted_coordinates, Structural};
 use super::{EliminationTemplate, TemplateRow};
 use crate::algebra::Monomial;
 use std::collections::HashMap;
@@ -134,11 +135,30 @@ fn structure(t: &EliminationTemplate, supports: &[Vec<Monomial>]) -> Option<Bits
     let kt = t.fold.as_ref().map_or(0, |f| f.pivot_inv.len());
     let column: HashMap<&Monomial, usize> =
         t.columns.iter().enumerate().map(|(i, m)| (m, i)).collect();
+    // A shifted template's row holds its product's coordinates in the shifted columns
+    // (`shift::shifted_coordinates`), found for every instance at once in the structural
+    // ring; coordinates outside the columns are dropped, as the fill drops them.
+    let shift: Option<Vec<(Monomial, Structural)>> = match &t.shift {
+        Some(s) => Some(s.terms_in()?),
+        None => None,
+    };
     // The constant block's complement: the pivot rows and columns first.
     let mut bits = Bits::new(rows + kt, cols + kt);
     for (i, row) in t.rows.iter().enumerate().skip(k) {
-        for mono in supports.get(row.equation)? {
-            let c = *column.get(&row.multiplier.mul(mono))?;
+        let support = supports.get(row.equation)?;
+        let products = support.iter().map(|m| row.multiplier.mul(m));
+        let monomials: Vec<Monomial> = match &shift {
+            None => products.collect(),
+            Some(s) => shifted_coordinates(products.map(|m| (m, Structural(true))), s, |l| {
+                column.get(l).is_some_and(|&c| c >= t.n_excess)
+            })
+            .into_iter()
+            .map(|(m, _)| m)
+            .filter(|m| column.contains_key(m))
+            .collect(),
+        };
+        for mono in &monomials {
+            let c = *column.get(mono)?;
             match (t.filled_column(c), &t.fold) {
                 // A folded column: the complement's row gains `M11⁻¹`'s reach into `M12`.
                 (Some(p), Some(f)) if p < k => {
@@ -329,11 +349,6 @@ fn plan(
 /// ([`UNROLLED_MAX_UPDATES`]) and needs no more multiply-adds than the dense LU.
 pub fn order_for_sparse_elimination(t: &mut EliminationTemplate, supports: &[Vec<Monomial>]) {
     t.unrolled = None;
-    // A shifted template's pattern is not its products' monomials: the dense LU.
-    if t.shift.is_some() {
-        t.sparse = None;
-        return;
-    }
     if !order_by_markowitz(t, supports) {
         t.unrolled = plan_in_own_order(t, supports);
     }

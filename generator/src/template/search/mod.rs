@@ -26,6 +26,7 @@ use crate::algebra::{Fp, Monomial, Poly, P1};
 use crate::budget::Deadline;
 use crate::groebner::GroebnerBasis;
 use crate::groebner::{groebner_with, weights_fit, GroebnerError, GroebnerOptions};
+use crate::problem::PolynomialSaturation;
 use crate::quotient::{standard_monomials, Analysis};
 use orders::{
     alternative_bases, climb_weights, narrow_bases, try_alternative_bases, AlternativeBasis,
@@ -102,17 +103,27 @@ pub(crate) fn best_template_within(
             .collect();
         first.extend(inverses);
     }
-    // A monomial `nonzero`: the saturation inside the template (`saturated.rs`), in the
-    // unknowns as declared. Where it gives a template, the search with the hidden unknown
-    // (one variable more in every pool and basis) is not run.
+    // A `nonzero`: the saturation inside the template (`saturated.rs`), in the unknowns as
+    // declared. Where a monomial's gives a template, the search with the hidden unknown
+    // (one variable more in every pool and basis) is not run. A polynomial's template
+    // cannot fold (its columns are not monomials), while the hidden unknown's equation
+    // `w s - 1` has numeric coefficients and its multiples often fold away: both are
+    // searched and the smaller kept. The saturated template's rows refer to the equations
+    // before the hidden ones, which keep their indices in `eqs`.
     let saturated =
         saturated::saturated_templates(eqs, Some(constants), basis, gb, opts, deadline, &first);
+    let mut saturated_finalist = None;
     if let Some((b, written, saturated)) =
         saturated.and_then(|(all, written)| choose(&all, opts).map(|b| (b, written, all)))
     {
         let mut b = refine(written, Some(constants), b, visible, opts, deadline);
         fold_constant_rows(&mut b.template, constants);
-        return Ok((b, saturated));
+        if b.template.shift.is_none()
+            || opts.polynomial_saturation == PolynomialSaturation::Template
+        {
+            return Ok((b, saturated));
+        }
+        saturated_finalist = Some((b, saturated));
     }
     // The equations as given, then (when it changes their monomials) their row reduction
     // on the instance's data: the same ideal, so the same bases and Gröbner basis.
@@ -249,6 +260,10 @@ pub(crate) fn best_template_within(
         }
     }
     merge_per_action(&mut all, reduced_all);
+    if let Some((b, saturated)) = saturated_finalist {
+        finalists.push(b);
+        merge_per_action(&mut all, saturated);
+    }
     match best_finalist(finalists, opts) {
         Some(b) => Ok((b, all)),
         None => Err(no_action(&all, opts)),

@@ -25,6 +25,7 @@ use super::{with_fold_count, Constants, PerAction};
 use crate::algebra::{Fp, Monomial, Poly, Q};
 use crate::budget::Deadline;
 use crate::groebner::{groebner_with, weights_fit, GroebnerBasis, GroebnerOptions};
+use crate::problem::PolynomialSaturation;
 use crate::quotient::standard_monomials;
 use crate::template::build::{build_template, BuiltTemplate, DegreeSearch};
 use crate::template::candidates::start_degree;
@@ -267,6 +268,11 @@ pub(super) fn saturated_templates<'a, const P: u32>(
     actions: &[Action],
 ) -> Option<(PerAction, &'a [Poly<Fp<P>>])> {
     let sat = saturation(eqs, opts.hidden_vars)?;
+    if matches!(sat.shift, Saturating::Polynomial(_))
+        && opts.polynomial_saturation == PolynomialSaturation::Unknown
+    {
+        return None;
+    }
     let deadline = &deadline.portion(SATURATED_BUDGET_SHARE);
     let nvars = eqs.first()?.nvars();
     let visible = nvars - opts.hidden_vars;

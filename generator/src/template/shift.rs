@@ -243,4 +243,45 @@ mod tests {
             ]
         );
     }
+
+    #[test]
+    fn the_structural_coordinates_bound_every_instance() {
+        // σ = x^2 + x y + y + 1; rows of random coefficients on random supports, every
+        // monomial of degree at least 2 shifted: the coordinates over Z_p lie within those
+        // in the ring of structural zeros, which the sparse elimination's pattern reads.
+        let sigma = ColumnShift::new([
+            (m(&[2, 0]), Q::from_integer(1.into())),
+            (m(&[1, 1]), Q::from_integer(1.into())),
+            (m(&[0, 1]), Q::from_integer(1.into())),
+            (m(&[0, 0]), Q::from_integer(1.into())),
+        ])
+        .unwrap();
+        let numeric: Vec<(Monomial, F)> = sigma.terms_in().unwrap();
+        let structural: Vec<(Monomial, Structural)> = sigma.terms_in().unwrap();
+        let shifted = |l: &Monomial| l.0[0] + l.0[1] >= 2;
+        let mut state = 17u64;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            state >> 33
+        };
+        for _ in 0..200 {
+            let support: Vec<Monomial> = (0..6)
+                .map(|_| m(&[(next() % 4) as u16, (next() % 4) as u16]))
+                .collect();
+            let poly = support
+                .iter()
+                .map(|mono| (mono.clone(), F::new((next() % 7) as i64)));
+            let got = shifted_coordinates(poly, &numeric, shifted);
+            let bound = shifted_coordinates(
+                support.iter().map(|mono| (mono.clone(), Structural(true))),
+                &structural,
+                shifted,
+            );
+            for (mono, _) in &got {
+                assert!(bound.iter().any(|(b, _)| b == mono), "{mono:?} {bound:?}");
+            }
+        }
+    }
 }

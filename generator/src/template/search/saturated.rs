@@ -31,6 +31,7 @@ use crate::template::build::{build_template, BuiltTemplate, DegreeSearch};
 use crate::template::candidates::start_degree;
 use crate::template::weight_sample::ones_and_twos;
 use crate::template::ColumnShift;
+use crate::template::EquationConstants;
 use crate::template::{Action, TemplateError, TemplateOptions};
 use num_bigint::BigInt;
 
@@ -70,9 +71,16 @@ pub(crate) enum Saturating {
 
 /// The saturation of `eqs` with `hidden` hidden unknowns (the last variables), `None` if
 /// there is none, some hidden equation is not of that form, or (for a polynomial) some
-/// coefficient of the product is not a small rational number: data, which the template's
-/// columns cannot hold.
-pub(crate) fn saturation<const P: u32>(eqs: &[Poly<Fp<P>>], hidden: usize) -> Option<Saturation> {
+/// coefficient of the product depends on the data, which the template's columns cannot
+/// hold. `constants` (the equations' terms with their exact coefficients where those are
+/// numbers, traced from the problem) decide that exactly; without them (equations
+/// row-reduced on the data) a coefficient counts as a number when it is a small rational
+/// ([`small_rational`]).
+pub(crate) fn saturation<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    hidden: usize,
+    constants: Constants<'_>,
+) -> Option<Saturation> {
     let nvars = eqs.first()?.nvars();
     if hidden == 0 || hidden > nvars {
         return None;
@@ -128,13 +136,51 @@ pub(crate) fn saturation<const P: u32>(eqs: &[Poly<Fp<P>>], hidden: usize) -> Op
         let (m, _) = product.terms().next()?;
         Saturating::Monomial(m.clone())
     } else {
-        let terms: Option<Vec<(Monomial, Q)>> = product
-            .terms()
-            .map(|(m, c)| small_rational(*c).map(|q| (m.clone(), q)))
-            .collect();
-        Saturating::Polynomial(ColumnShift::new(terms?)?)
+        let terms: Vec<(Monomial, Q)> = match constants {
+            Some(c) => {
+                let exact = exact_product(c.get(equations..)?, visible)?;
+                // The instance's product has the same monomials (its coefficients are the
+                // exact ones mod p, up to the normalisation).
+                let same = exact.len() == product.len()
+                    && exact
+                        .iter()
+                        .all(|(m, _)| product.terms().any(|(n, _)| n == m));
+                same.then_some(exact)?
+            }
+            None => product
+                .terms()
+                .map(|(m, c)| small_rational(*c).map(|q| (m.clone(), q)))
+                .collect::<Option<_>>()?,
+        };
+        Saturating::Polynomial(ColumnShift::new(terms)?)
     };
     Some(Saturation { equations, shift })
+}
+
+/// The product of the polynomials `s` of the hidden equations `c u s + d` from their exact
+/// terms (`hidden`: each equation's, the hidden unknowns from variable `visible` on);
+/// `None` if a coefficient of some `s` depends on the data.
+fn exact_product(hidden: &[EquationConstants], visible: usize) -> Option<Vec<(Monomial, Q)>> {
+    let nvars = hidden.first()?.first()?.0.nvars();
+    let mut product = Poly::constant(nvars, Q::from_integer(BigInt::from(1)));
+    for terms in hidden {
+        let mut s = Poly::zero(nvars);
+        for (m, c) in terms {
+            if m.0[visible..].iter().all(|&e| e == 0) {
+                continue;
+            }
+            let mut t = m.clone();
+            t.0[visible..].iter_mut().for_each(|e| *e = 0);
+            s.add_term(t, c.clone()?);
+        }
+        product = product.mul(&s);
+    }
+    Some(
+        product
+            .terms()
+            .map(|(m, c)| (m.clone(), c.clone()))
+            .collect(),
+    )
 }
 
 /// The largest denominator and numerator [`small_rational`] recognises.
@@ -267,7 +313,7 @@ pub(super) fn saturated_templates<'a, const P: u32>(
     deadline: &Deadline,
     actions: &[Action],
 ) -> Option<(PerAction, &'a [Poly<Fp<P>>])> {
-    let sat = saturation(eqs, opts.hidden_vars)?;
+    let sat = saturation(eqs, opts.hidden_vars, constants)?;
     if matches!(sat.shift, Saturating::Polynomial(_))
         && opts.polynomial_saturation == PolynomialSaturation::Unknown
     {
@@ -406,7 +452,7 @@ pub(super) fn saturated_templates<'a, const P: u32>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::algebra::P1;
+    use crate::algebra::{Ring, P1};
 
     fn poly(terms: &[(&[u16], u32)]) -> Poly<Fp<P1>> {
         Poly::from_terms(
@@ -423,7 +469,7 @@ mod tests {
         let f = poly(&[(&[2, 0, 0], 1), (&[0, 1, 0], 1), (&[0, 0, 0], P1 - 3)]);
         let g = poly(&[(&[1, 1, 0], 1), (&[0, 0, 0], P1 - 2)]);
         let sat = poly(&[(&[1, 1, 1], 1), (&[0, 0, 0], P1 - 1)]);
-        let found = saturation(&[f.clone(), g.clone(), sat], 1);
+        let found = saturation(&[f.clone(), g.clone(), sat], 1, None);
         assert_eq!(
             found,
             Some(Saturation {
@@ -439,7 +485,7 @@ mod tests {
             (Monomial(vec![0, 1, 0]), half),
         ]);
         assert_eq!(
-            saturation(&[f.clone(), g.clone(), poly_sat], 1),
+            saturation(&[f.clone(), g.clone(), poly_sat], 1, None),
             Some(Saturation {
                 equations: 2,
                 shift: Saturating::Polynomial(expected.unwrap()),
@@ -451,8 +497,44 @@ mod tests {
             (&[0, 1, 1], 1),
             (&[0, 0, 0], P1 - 1),
         ]);
-        assert_eq!(saturation(&[f.clone(), g.clone(), data_sat], 1), None);
+        assert_eq!(saturation(&[f.clone(), g.clone(), data_sat], 1, None), None);
         // No hidden unknown, nothing to saturate.
-        assert_eq!(saturation(&[f, g], 0), None);
+        assert_eq!(saturation(&[f.clone(), g.clone()], 0, None), None);
+        // With the exact terms: a number that is no small rational (x + y / 100) is a
+        // number, and a data coefficient is data whatever its value mod p.
+        let hundredth = Q::new(BigInt::from(1), BigInt::from(100));
+        let one = Q::from_integer(BigInt::from(1));
+        let exact = |c: Option<Q>| -> Vec<EquationConstants> {
+            vec![
+                Vec::new(),
+                Vec::new(),
+                vec![
+                    (Monomial(vec![1, 0, 1]), Some(one.clone())),
+                    (Monomial(vec![0, 1, 1]), c),
+                    (Monomial(vec![0, 0, 0]), Some(-one.clone())),
+                ],
+            ]
+        };
+        let p = Fp::<P1>::from_rational(&hundredth).unwrap();
+        let sat = Poly::from_terms(
+            3,
+            [
+                (Monomial(vec![1, 0, 1]), Fp::<P1>::new(1)),
+                (Monomial(vec![0, 1, 1]), p),
+                (Monomial(vec![0, 0, 0]), Fp::<P1>::new(-1)),
+            ],
+        );
+        let eqs = [f, g, sat];
+        assert_eq!(saturation(&eqs, 1, None), None);
+        let found = saturation(&eqs, 1, Some(&exact(Some(hundredth.clone()))));
+        let expected = ColumnShift::new([
+            (Monomial(vec![1, 0, 0]), one.clone()),
+            (Monomial(vec![0, 1, 0]), hundredth),
+        ]);
+        assert_eq!(
+            found.map(|s| s.shift),
+            Some(Saturating::Polynomial(expected.unwrap()))
+        );
+        assert_eq!(saturation(&eqs, 1, Some(&exact(None))), None);
     }
 }

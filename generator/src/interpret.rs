@@ -15,7 +15,7 @@
 
 use crate::algebra::{Monomial, Poly};
 use crate::eliminate::has_data_only_columns;
-use crate::template::shift::row_coordinates;
+use crate::template::shift::column_coordinates;
 use crate::template::{EliminationTemplate, ShapeError};
 use nalgebra::DMatrix;
 use std::collections::HashMap;
@@ -151,17 +151,13 @@ pub fn fill_template(
                 expected: template.nvars,
             });
         }
-        // A monomial outside the columns has coordinate zero mod p (the template was built
-        // so); in floating point it is what rounding left.
-        let terms = row_coordinates(
+        let terms = column_coordinates(
             &row.multiplier,
             eq,
             shift.as_deref(),
             template.n_excess,
             |m| col.get(m).copied(),
-        )
-        .into_iter()
-        .filter(|(m, _)| shift.is_none() || col.contains_key(m));
+        );
         for (prod, c) in terms {
             let j = *col
                 .get(&prod)

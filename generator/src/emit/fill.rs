@@ -11,7 +11,7 @@ use super::tokens::lit;
 use super::traced::Traced;
 use super::{CodeForm, EmitError};
 use crate::algebra::{Monomial, MonomialOrder};
-use crate::template::shift::row_coordinates;
+use crate::template::shift::column_coordinates;
 use crate::template::{ConstantFold, EliminationTemplate};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
@@ -55,17 +55,13 @@ impl Coefficients {
                     None => None,
                 };
                 for (i, row) in t.rows.iter().enumerate() {
-                    // Coordinates outside the columns are zero (the template was built so);
-                    // the traced arithmetic need not see them cancel.
-                    let terms = row_coordinates(
+                    let terms = column_coordinates(
                         &row.multiplier,
                         &spec.equations[row.equation],
                         shift.as_deref(),
                         t.n_excess,
                         |m| plan.column_of.get(m).copied(),
-                    )
-                    .into_iter()
-                    .filter(|(m, _)| shift.is_none() || plan.column_of.contains_key(m));
+                    );
                     for (m, c) in terms {
                         // Dependent excess columns are not part of the eliminated matrix.
                         let Some(col) = t.filled_column(plan.column_of[&m]) else {

@@ -190,6 +190,24 @@ pub(crate) fn row_coordinates<C: Ring>(
     }
 }
 
+/// [`row_coordinates`] as the solvers fill them: for a shifted template, coordinates
+/// outside the columns are left out (zero mod p by construction; in floating point, what
+/// rounding left, and in a traced or structural ring, cancellations it does not see).
+/// Without a shift every product is returned, so that one outside the columns still shows.
+pub(crate) fn column_coordinates<C: Ring>(
+    multiplier: &Monomial,
+    eq: &Poly<C>,
+    shift: Option<&[(Monomial, C)]>,
+    n_excess: usize,
+    column: impl Fn(&Monomial) -> Option<usize>,
+) -> Vec<(Monomial, C)> {
+    let mut terms = row_coordinates(multiplier, eq, shift, n_excess, &column);
+    if shift.is_some() {
+        terms.retain(|(m, _)| column(m).is_some());
+    }
+    terms
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -201,15 +219,15 @@ mod tests {
         Monomial(e.to_vec())
     }
 
+    /// The sum of the monomials with exponents `terms`, normalised.
+    fn sigma(terms: &[&[u16]]) -> ColumnShift {
+        ColumnShift::new(terms.iter().map(|e| (m(e), Q::from_integer(1.into())))).unwrap()
+    }
+
     #[test]
     fn a_multiple_of_the_shift_has_one_coordinate() {
         // σ = x^2 + y + 1 (grevlex leading x^2); σ * x y = x^3 y + x y^2 + x y.
-        let sigma = ColumnShift::new([
-            (m(&[0, 1]), Q::from_integer(1.into())),
-            (m(&[2, 0]), Q::from_integer(1.into())),
-            (m(&[0, 0]), Q::from_integer(1.into())),
-        ])
-        .unwrap();
+        let sigma = sigma(&[&[0, 1], &[2, 0], &[0, 0]]);
         assert_eq!(sigma.leading(), &m(&[2, 0]));
         let s: Vec<(Monomial, F)> = sigma.terms_in().unwrap();
         let poly = [
@@ -227,11 +245,7 @@ mod tests {
     #[test]
     fn coordinates_walk_down_through_shifted_terms() {
         // σ = x + 1; x^2 = σ x - x = σ x - σ + 1 when both x^2 and x stand for σ-multiples.
-        let sigma = ColumnShift::new([
-            (m(&[1]), Q::from_integer(1.into())),
-            (m(&[0]), Q::from_integer(1.into())),
-        ])
-        .unwrap();
+        let sigma = sigma(&[&[1], &[0]]);
         let s: Vec<(Monomial, F)> = sigma.terms_in().unwrap();
         let c = shifted_coordinates([(m(&[2]), F::one())], &s, |l| l.0[0] >= 1);
         assert_eq!(
@@ -249,13 +263,7 @@ mod tests {
         // σ = x^2 + x y + y + 1; rows of random coefficients on random supports, every
         // monomial of degree at least 2 shifted: the coordinates over Z_p lie within those
         // in the ring of structural zeros, which the sparse elimination's pattern reads.
-        let sigma = ColumnShift::new([
-            (m(&[2, 0]), Q::from_integer(1.into())),
-            (m(&[1, 1]), Q::from_integer(1.into())),
-            (m(&[0, 1]), Q::from_integer(1.into())),
-            (m(&[0, 0]), Q::from_integer(1.into())),
-        ])
-        .unwrap();
+        let sigma = sigma(&[&[2, 0], &[1, 1], &[0, 1], &[0, 0]]);
         let numeric: Vec<(Monomial, F)> = sigma.terms_in().unwrap();
         let structural: Vec<(Monomial, Structural)> = sigma.terms_in().unwrap();
         let shifted = |l: &Monomial| l.0[0] + l.0[1] >= 2;

@@ -18,9 +18,9 @@
 //! in its column), without the dense LU's operations on entries that are zero for every
 //! instance, its index arithmetic or its loops.
 
-use super::shift::{shifted_coordinates, Structural};
+use super::shift::{column_coordinates, Structural};
 use super::{EliminationTemplate, TemplateRow};
-use crate::algebra::Monomial;
+use crate::algebra::{Monomial, Poly};
 use std::collections::HashMap;
 
 /// The sparse elimination is used only when the dense LU needs at least this many times
@@ -135,29 +135,27 @@ fn structure(t: &EliminationTemplate, supports: &[Vec<Monomial>]) -> Option<Bits
     let kt = t.fold.as_ref().map_or(0, |f| f.pivot_inv.len());
     let column: HashMap<&Monomial, usize> =
         t.columns.iter().enumerate().map(|(i, m)| (m, i)).collect();
-    // A shifted template's row holds its product's coordinates in the shifted columns
-    // (`shift::shifted_coordinates`), found for every instance at once in the structural
-    // ring; coordinates outside the columns are dropped, as the fill drops them.
+    // Each row's entries are its coordinates as the fill computes them, for every instance
+    // at once: on the equations' generic supports, in the ring of structural zeros.
     let shift: Option<Vec<(Monomial, Structural)>> = match &t.shift {
         Some(s) => Some(s.terms_in()?),
         None => None,
     };
+    let generic: Vec<Poly<Structural>> = supports
+        .iter()
+        .map(|s| Poly::from_terms(t.nvars, s.iter().map(|m| (m.clone(), Structural(true)))))
+        .collect();
     // The constant block's complement: the pivot rows and columns first.
     let mut bits = Bits::new(rows + kt, cols + kt);
     for (i, row) in t.rows.iter().enumerate().skip(k) {
-        let support = supports.get(row.equation)?;
-        let products = support.iter().map(|m| row.multiplier.mul(m));
-        let monomials: Vec<Monomial> = match &shift {
-            None => products.collect(),
-            Some(s) => shifted_coordinates(products.map(|m| (m, Structural(true))), s, |l| {
-                column.get(l).is_some_and(|&c| c >= t.n_excess)
-            })
-            .into_iter()
-            .map(|(m, _)| m)
-            .filter(|m| column.contains_key(m))
-            .collect(),
-        };
-        for mono in &monomials {
+        let entries = column_coordinates(
+            &row.multiplier,
+            generic.get(row.equation)?,
+            shift.as_deref(),
+            t.n_excess,
+            |m| column.get(m).copied(),
+        );
+        for (mono, _) in &entries {
             let c = *column.get(mono)?;
             match (t.filled_column(c), &t.fold) {
                 // A folded column: the complement's row gains `M11⁻¹`'s reach into `M12`.

@@ -107,7 +107,7 @@ pub(crate) fn best_template_within(
     // declared. Where a monomial's gives a template, the search with the hidden unknown
     // (one variable more in every pool and basis) is not run. A polynomial's template
     // cannot fold (its columns are not monomials), while the hidden unknown's equation
-    // `w s - 1` has numeric coefficients and its multiples often fold away: both are
+    // `u s - 1` has numeric coefficients and its multiples often fold away: both are
     // searched and the smaller kept. The saturated template's rows refer to the equations
     // before the hidden ones, which keep their indices in `eqs`.
     let saturated =
@@ -384,7 +384,7 @@ fn search_actions<const P: u32>(
         .iter()
         .map(|a| quotient_action(gb, basis, a, opts, deadline))
         .collect();
-    let distinct: Vec<bool> = checks.iter().map(|c| c.clone().unwrap_or(false)).collect();
+    let distinct: Vec<bool> = checks.iter().map(|c| matches!(c, Ok(true))).collect();
     let skip_selection = opts.require_distinct_eigenvalues && distinct.iter().any(|&d| d);
     let starts: Vec<u32> = monomials
         .iter()

@@ -358,7 +358,7 @@ pub(super) fn saturated_templates<'a, const P: u32>(
         .iter()
         .map(|a| super::quotient_action(gb, basis, a, opts, deadline))
         .collect();
-    let distinct: Vec<bool> = checks.iter().map(|c| c.clone().unwrap_or(false)).collect();
+    let distinct: Vec<bool> = checks.iter().map(|c| matches!(c, Ok(true))).collect();
     let mut all: PerAction = Vec::new();
     let mut chosen_shift: Vec<Option<Shift>> = Vec::new();
     for ((action, &distinct), check) in actions.iter().zip(&distinct).zip(&checks) {
@@ -386,8 +386,6 @@ pub(super) fn saturated_templates<'a, const P: u32>(
         if let Some((r, shift)) = best {
             all.push((action.clone(), r));
             chosen_shift.push(Some(shift));
-        } else {
-            chosen_shift.push(None);
         }
     }
     // Other bases (weights 1 and 2 on the visible unknowns), for the best action and

@@ -78,6 +78,15 @@ YD = i -> Rq*(XD_i - XD_0) + l*rayD(0);
 I = ideal(apply({1,2,3}, i->(rayD(i))_(1,0)*(YD(i))_(2,0) - (rayD(i))_(2,0)*(YD(i))_(1,0))) + ideal(apply({1,2}, i->(rayD(i))_(2,0)*(YD(i))_(0,0) - (rayD(i))_(0,0)*(YD(i))_(2,0))) + ideal(z*(1+b^2+c^2+d^2)-1);
 report("p35pf", I);
 
+-- p35pf_nullspace (P = N [x, 1]: the four quadrics of M M' and the cubics of M' diag(1,1,f^2) M)
+R = QQ[x1,x2,x3,x4]; ND = sub(matrix table(12,5,(i,j)->rq()), R);
+pD = ND * matrix{{x1},{x2},{x3},{x4},{1_R}};
+rowD = k -> matrix{{pD_(k,0)},{pD_(k+3,0)},{pD_(k+6,0)}};
+aD = rowD(0); bD = rowD(1); cD = rowD(2);
+HD = aD * transpose aD + bD * transpose bD - sc(transpose bD * bD) * id_(R^3);
+I = ideal(sc(transpose aD * bD), sc(transpose aD * cD), sc(transpose bD * cD), sc(transpose aD * aD - transpose bD * bD)) + ideal flatten apply(3, i -> apply({{0,1},{0,2},{1,2}}, jk -> HD_(i,jk_0) * cD_(jk_1,0) - HD_(i,jk_1) * cD_(jk_0,0)));
+report("p35pf_nullspace", I);
+
 -- p2p2pl (quaternion, z saturation), count only
 R = QQ[b,c,d,l,z];
 Rq = matrix{{1+b^2-c^2-d^2, 2*(b*c-d), 2*(b*d+c)},{2*(b*c+d), 1-b^2+c^2-d^2, 2*(c*d-b)},{2*(b*d-c), 2*(c*d+b), 1-b^2-c^2+d^2}};

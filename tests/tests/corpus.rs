@@ -342,6 +342,64 @@ fn p35pf_finds_the_planted_pose_and_focal_length() {
     });
 }
 
+/// The five-dimensional null space of the seven linear equations of P3.5Pf on the
+/// projection matrix `P` (`u_i P_3 X_i = P_1 X_i` and `v_i P_3 X_i = P_2 X_i` for
+/// homogeneous world points, all but `v_3`), `P`'s entries column by column: an
+/// orthonormal basis from the SVD, padded with zero rows to 12 x 12.
+fn p35pf_null_space(image: &[[f64; 2]], world: &[Vector3<f64>]) -> Vec<[f64; 12]> {
+    let mut a = mingen_runtime::nalgebra::SMatrix::<f64, 12, 12>::zeros();
+    let mut row = 0;
+    for (i, (uv, x)) in image.iter().zip(world).enumerate() {
+        let h = [x.x, x.y, x.z, 1.0];
+        for (axis, &coordinate) in uv.iter().enumerate() {
+            if i == 3 && axis == 1 {
+                continue;
+            }
+            // Entry (r, c) of P is p[3 c + r].
+            for (c, hc) in h.iter().enumerate() {
+                a[(row, 3 * c + axis)] = -hc;
+                a[(row, 3 * c + 2)] = coordinate * hc;
+            }
+            row += 1;
+        }
+    }
+    let svd = a.svd(false, true);
+    let vt = svd.v_t.expect("V requested");
+    let mut order: Vec<usize> = (0..12).collect();
+    order.sort_by(|&i, &j| svd.singular_values[i].total_cmp(&svd.singular_values[j]));
+    order[..5]
+        .iter()
+        .map(|&i| std::array::from_fn(|k| vt[(i, k)]))
+        .collect()
+}
+
+#[test]
+fn p35pf_nullspace_finds_the_planted_camera() {
+    check(23, 1e-8, 1e-4, |rng| {
+        let (r, cam, world) = absolute_scene(rng, 4);
+        let f = rng.gen_range(0.5..2.0);
+        let image: Vec<[f64; 2]> = cam.iter().map(|y| [f * y.x / y.z, f * y.y / y.z]).collect();
+        let basis = p35pf_null_space(&image, &world);
+        // The camera P = diag(f, f, 1) [R | t] with t = y_0 - R X_0, column by column.
+        let t = cam[0] - r * world[0];
+        let k = Vector3::new(f, f, 1.0);
+        let p: [f64; 12] = std::array::from_fn(|e| {
+            let (row, col) = (e % 3, e / 3);
+            k[row] * if col < 3 { r[(row, col)] } else { t[row] }
+        });
+        let v: Vec<f64> = basis
+            .iter()
+            .map(|b| b.iter().zip(&p).map(|(x, y)| x * y).sum())
+            .collect();
+        // The data: N (12 x 5, row-major), basis vector j in column j.
+        let flat: Vec<f64> = (0..12)
+            .flat_map(|e| basis.iter().map(move |b| b[e]))
+            .collect();
+        let truth = (0..4).map(|j| v[j] / v[4]).collect();
+        solve_flat::<ex::p35pf_nullspace::Solver>(&flat, &[truth])
+    });
+}
+
 #[test]
 fn p2p2pl_finds_the_planted_pose() {
     check(22, 1e-7, 1e-3, |rng| {

@@ -87,6 +87,13 @@ HD = aD * transpose aD + bD * transpose bD - sc(transpose bD * bD) * id_(R^3);
 I = ideal(sc(transpose aD * bD), sc(transpose aD * cD), sc(transpose bD * cD), sc(transpose aD * aD - transpose bD * bD)) + ideal flatten apply(3, i -> apply({{0,1},{0,2},{1,2}}, jk -> HD_(i,jk_0) * cD_(jk_1,0) - HD_(i,jk_1) * cD_(jk_0,0)));
 report("p35pf_nullspace", I);
 
+-- p2p2pl_canonical (the canonical frames: R = Ry(c) Rx(b), t = (0, 0, (u (1 - c^2) + 2 c) / (1 + c^2)))
+R = QQ[b,c]; uD = sub(rq(),R); xD = apply(2,i->sub(v3(),R)); XD = apply(2,i->sub(v3(),R)); VD = apply(2,i->sub(v3(),R));
+Rx = matrix{{1+b^2,0,0},{0,1-b^2,-2*b},{0,2*b,1-b^2}}; Ry = matrix{{1-c^2,0,2*c},{0,1+c^2,0},{-2*c,0,1-c^2}}; Rq = Ry*Rx;
+e3 = matrix{{0_R},{0_R},{1_R}}; cr = (a, v) -> sk(a) * v;
+I = ideal apply(2, j -> sc(transpose xD_j * ((1+c^2) * Rq * cr(XD_j, VD_j) + (uD*(1-c^2) + 2*c) * cr(e3, Rq*VD_j))));
+report("p2p2pl_canonical", I);
+
 -- p2p2pl (quaternion, z saturation), count only
 R = QQ[b,c,d,l,z];
 Rq = matrix{{1+b^2-c^2-d^2, 2*(b*c-d), 2*(b*d+c)},{2*(b*c+d), 1-b^2+c^2-d^2, 2*(c*d-b)},{2*(b*d-c), 2*(c*d+b), 1-b^2-c^2+d^2}};

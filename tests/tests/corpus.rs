@@ -423,6 +423,35 @@ fn p2p2pl_finds_the_planted_pose() {
     });
 }
 
+#[test]
+fn p2p2pl_canonical_finds_the_planted_pose() {
+    use mingen_runtime::nalgebra::{Rotation3, Vector2};
+    check(24, 1e-8, 1e-4, |rng| {
+        let (r, cam, world) = absolute_scene(rng, 4);
+        // Points 0 and 1 are 2D-3D point matches; points 2 and 3 lie on world lines.
+        let dirs: Vec<Vector3<f64>> = (0..2).map(|_| unit(rng)).collect();
+        let on_lines: Vec<Vector3<f64>> = (0..2)
+            .map(|j| world[2 + j] + dirs[j] * rng.gen_range(-1.0..1.0))
+            .collect();
+        // The world frame: point 0 at the origin, point 1 at (1, 0, 0).
+        let (t0, s0) = (world[0], (world[1] - world[0]).norm());
+        let r0 = Rotation3::rotation_between(&(world[1] - t0), &Vector3::x()).unwrap();
+        // The camera frame: bearing 0 along z, bearing 1 in the x-z plane.
+        let r1 = Rotation3::rotation_between(&cam[0], &Vector3::z()).unwrap();
+        let y1 = r1 * cam[1];
+        let a = Vector2::new(y1.x, y1.y).normalize();
+        let rc = Matrix3::new(a.x, a.y, 0.0, -a.y, a.x, 0.0, 0.0, 0.0, 1.0) * r1.matrix();
+        let y1 = rc * cam[1];
+        let mut flat = vec![y1.z / y1.x];
+        (0..2).for_each(|j| push_vec(&mut flat, &(rc * cam[2 + j])));
+        (0..2).for_each(|j| push_vec(&mut flat, &(r0 * ((on_lines[j] - t0) / s0))));
+        (0..2).for_each(|j| push_vec(&mut flat, &(r0 * dirs[j])));
+        // The rotation between the frames, whose quaternion is (1, b, c, -b c).
+        let [b, c, _] = quaternion_bcd(&(rc * r * r0.matrix().transpose()));
+        solve_flat::<ex::p2p2pl_canonical::Solver>(&flat, &[vec![b, c]])
+    });
+}
+
 /// A rolling-shutter camera under the linearised model of `r6p`: small `v`, `w`, `t`, a
 /// centre term `C` that puts the points ahead, and each image point on its own row (the
 /// row `u` solves `u P_z(u) = P_y(u)`, a quadratic since `P` is linear in `u`).

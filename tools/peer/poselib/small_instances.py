@@ -21,6 +21,8 @@ PROBLEM (templates/classic/PROBLEM.mp)       PoseLib          peer line (x y z e
              lambda y = R (P + mu V) + t, 2 lines              y[2] (unit), P[2], V[2]
   p35pf      lambda (u/f, v/f, 1) = R X + t   p35pf            (u v)[4], X[4]: our line
              (7 of the 8 equations of 4 points)
+  p35pf_nullspace  the same scene; our data the null space N of the camera's seven
+             linear equations (12 x 5)       p35pf            (u v)[4], X[4], N
 
 Geometry: camera-frame points with x, y uniform in [-1, 1] and depth in [2, 6] (in front
 of every camera), rotations uniform (a normalised Gaussian quaternion; about the y axis,
@@ -264,20 +266,66 @@ def p2p2pl(rng):
     return ours, peer, [b, c, d, s * xc[0][2]]
 
 
-def p35pf(rng):
+def p35pf_scene(rng):
     f = rng.uniform(0.5, 2.0)
     q = quaternion(rng)
     R, t = rotation(q), [rng.gauss(0, 1) for _ in range(3)]
     xc = [in_front(rng) for _ in range(4)]
     X = [tmul(R, sub(p, t)) for p in xc]
+    return f, q, R, t, xc, X
+
+
+def p35pf(rng):
+    f, q, R, t, xc, X = p35pf_scene(rng)
     b, c, d = q[1] / q[0], q[2] / q[0], q[3] / q[0]
     s = 1 + b * b + c * c + d * d
     ours = [v for p in xc for v in (f * p[0] / p[2], f * p[1] / p[2])] + [v for p in X for v in p]
     return ours, ours, [b, c, d, s * xc[0][2] / f, f]
 
 
+def orthonormal_mix(rng, vectors):
+    """An orthonormal basis of the span of `vectors` in a random orientation (as an SVD
+    gives one; an echelon basis has exact zeros and can be far from orthogonal)."""
+    k, basis = len(vectors), []
+    for _ in range(k):
+        mix = [rng.gauss(0, 1) for _ in range(k)]
+        v = [sum(m * u[e] for m, u in zip(mix, vectors)) for e in range(len(vectors[0]))]
+        for u in basis:
+            dot = sum(x * y for x, y in zip(u, v))
+            v = [x - dot * y for x, y in zip(v, u)]
+        basis.append(unit(v))
+    return basis
+
+
+def p35pf_nullspace(rng):
+    # The scene of p35pf; our data the null space of the camera P's seven linear equations
+    # (u_i P_3 X_i = P_1 X_i and v_i P_3 X_i = P_2 X_i, all but v_3) with P's entries column
+    # by column, as an orthonormal basis N (12 x 5, row-major); the truth x = v[0..4] / v[4]
+    # for the coordinates v of P = diag(f, f, 1) [R | t] in it.
+    f, _, R, t, xc, X = p35pf_scene(rng)
+    uv = [(f * p[0] / p[2], f * p[1] / p[2]) for p in xc]
+    rows = []
+    for i in range(4):
+        h = X[i] + [1.0]
+        for axis in (0, 1):
+            if (i, axis) == (3, 1):
+                continue
+            row = [0.0] * 12
+            for c in range(4):
+                row[3 * c + axis] = -h[c]
+                row[3 * c + 2] = uv[i][axis] * h[c]
+            rows.append(row)
+    basis = orthonormal_mix(rng, null_space(rows, 12))
+    k = [f, f, 1.0]
+    P = [k[e % 3] * (R[e % 3][e // 3] if e < 9 else t[e % 3]) for e in range(12)]
+    v = [sum(x * y for x, y in zip(b, P)) for b in basis]
+    ours = [basis[j][e] for e in range(12) for j in range(5)]
+    peer = [c for p in uv for c in p] + [c for p in X for c in p] + ours
+    return ours, peer, [v[j] / v[4] for j in range(4)]
+
+
 PROBLEMS = {f.__name__: f for f in (p3p, gp3p, up2p_elim, relpose_upright_3pt_elim, p3ll,
-                                    relpose_6pt_focal, p2p2pl, p35pf)}
+                                    relpose_6pt_focal, p2p2pl, p35pf, p35pf_nullspace)}
 
 
 def main():

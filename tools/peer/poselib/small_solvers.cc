@@ -10,13 +10,15 @@
 //
 // PROBLEM: p3p, gp3p, up2p_elim (PoseLib's up2p), relpose_upright_3pt_elim (PoseLib's
 // relpose_upright_3pt), p3ll, relpose_6pt_focal (PoseLib's relpose_6pt_shared_focal),
-// p2p2pl, p35pf. Work per call: PoseLib's poses (rotation and translation; with the focal
+// p2p2pl, p35pf, p35pf_nullspace (PoseLib's p35pf). Work per call: PoseLib's poses (rotation and translation; with the focal
 // length for relpose_6pt_focal and p35pf); ours returns what its problem file solves for
 // (depths for p3p and gp3p; the rotation alone for p3ll; for relpose_6pt_focal the
 // fundamental matrix in the null-space basis and the focal length, from that basis as
 // data, whose computation PoseLib's time includes and ours does not; for p2p2pl the
 // rotation and the scaled depth of point 0; for p35pf those and the positive focal
-// length, and PoseLib's time includes scaling the image points, ours does not).
+// length, and PoseLib's time includes scaling the image points, ours does not; for
+// p35pf_nullspace the projection matrix's coordinates in the null-space basis of its seven
+// linear equations, from that basis as data, which PoseLib computes within its call).
 #include <PoseLib/poselib.h>
 
 #include "rows.h"
@@ -190,6 +192,25 @@ bool problem(const std::string &name, Problem *p) {
                   double depth = pose.apply(Vec3(r[8], r[9], r[10])).z();
                   return std::vector<double>{s[0], s[1], s[2], s[3] * depth / f, f};
               }};
+    } else if (name == "p35pf_nullspace") {
+        // PoseLib's p35pf on the same points; a line also holds our data N (12 x 5,
+        // row-major) after them, to express PoseLib's cameras in our unknowns.
+        *p = {80, 4, nullptr, nullptr, {}, nullptr, nullptr,
+              [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out, std::vector<double> *focals) {
+                  Points X;
+                  for (int i = 0; i < 4; ++i) X.emplace_back(r[8 + 3 * i], r[9 + 3 * i], r[10 + 3 * i]);
+                  poselib::p35pf(image_points(r, 4), X, out, focals);
+              },
+              [](const std::vector<double> &r, const poselib::CameraPose &pose, double f) {
+                  // P = diag(f, f, 1) [R | t] column by column in N's basis: x = v[0..4] / v[4].
+                  Eigen::Matrix<double, 3, 4> P;
+                  P << pose.R(), pose.t;
+                  P.topRows(2) *= f;
+                  double v[5] = {0, 0, 0, 0, 0};
+                  for (int e = 0; e < 12; ++e)
+                      for (int j = 0; j < 5; ++j) v[j] += r[20 + 5 * e + j] * P(e % 3, e / 3);
+                  return std::vector<double>{v[0] / v[4], v[1] / v[4], v[2] / v[4], v[3] / v[4]};
+              }};
     } else {
         return false;
     }
@@ -202,7 +223,7 @@ int main(int argc, char **argv) {
     Problem p;
     if (argc < 4 || !problem(argv[1], &p)) {
         std::fprintf(stderr,
-                     "usage: %s p3p|gp3p|up2p_elim|relpose_upright_3pt_elim|p3ll|relpose_6pt_focal|p2p2pl|p35pf "
+                     "usage: %s p3p|gp3p|up2p_elim|relpose_upright_3pt_elim|p3ll|relpose_6pt_focal|p2p2pl|p35pf|p35pf_nullspace "
                      "PEER SOLUTIONS\n",
                      argv[0]);
         return 2;

@@ -90,8 +90,8 @@ report("p35pf_nullspace", I);
 -- p2p2pl_canonical (the canonical frames: R = Ry(c) Rx(b), t = (0, 0, (u (1 - c^2) + 2 c) / (1 + c^2)))
 R = QQ[b,c]; uD = sub(rq(),R); xD = apply(2,i->sub(v3(),R)); XD = apply(2,i->sub(v3(),R)); VD = apply(2,i->sub(v3(),R));
 Rx = matrix{{1+b^2,0,0},{0,1-b^2,-2*b},{0,2*b,1-b^2}}; Ry = matrix{{1-c^2,0,2*c},{0,1+c^2,0},{-2*c,0,1-c^2}}; Rq = Ry*Rx;
-e3 = matrix{{0_R},{0_R},{1_R}}; cr = (a, v) -> sk(a) * v;
-I = ideal apply(2, j -> sc(transpose xD_j * ((1+c^2) * Rq * cr(XD_j, VD_j) + (uD*(1-c^2) + 2*c) * cr(e3, Rq*VD_j))));
+ez = matrix{{0_R},{0_R},{1_R}}; cr = (a, v) -> sk(a) * v;
+I = ideal apply(2, j -> sc(transpose xD_j * ((1+c^2) * Rq * cr(XD_j, VD_j) + (uD*(1-c^2) + 2*c) * cr(ez, Rq*VD_j))));
 report("p2p2pl_canonical", I);
 
 -- p2p2pl (quaternion, z saturation), count only

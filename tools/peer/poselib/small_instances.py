@@ -19,6 +19,8 @@ PROBLEM (templates/classic/PROBLEM.mp)       PoseLib          peer line (x y z e
              of the six epipolar constraints (27 numbers, row-major)
   p2p2pl     lambda x = R X + t, 2 points;    p2p2pl           x[2] (unit), X[2],
              lambda y = R (P + mu V) + t, 2 lines              y[2] (unit), P[2], V[2]
+  p2p2pl_canonical  the same scene in PoseLib's canonical frames   p2p2pl  as p2p2pl, then
+             the frames' rotations rc, r0 (row-major)
   p35pf      lambda (u/f, v/f, 1) = R X + t   p35pf            (u v)[4], X[4]: our line
              (7 of the 8 equations of 4 points)
   p35pf_nullspace  the same scene; our data the null space N of the camera's seven
@@ -245,7 +247,7 @@ def relpose_6pt_focal(rng):
     return ours, peer, [x, y, 1 / (f * f)]
 
 
-def p2p2pl(rng):
+def p2p2pl_scene(rng):
     # Two points seen at x_i; two lines, each through a point seen at y_j, given by another
     # point P_j on it (mu_j along V_j away from the seen one) and its unit direction V_j.
     q = quaternion(rng)
@@ -256,14 +258,64 @@ def p2p2pl(rng):
     V = [unit([rng.gauss(0, 1) for _ in range(3)]) for _ in range(2)]
     mu = [rng.gauss(0, 1) for _ in range(2)]
     P = [sub(tmul(R, sub(p, t)), [m * x for x in v]) for p, v, m in zip(yc, V, mu)]
+    peer = [v for p in xc for v in unit(p)] + [v for p in X for v in p]
+    peer += [v for p in yc for v in unit(p)] + [v for p in P for v in p] + [v for w in V for v in w]
+    return q, R, xc, yc, X, V, P, peer
+
+
+def p2p2pl(rng):
+    q, _, xc, yc, X, V, P, peer = p2p2pl_scene(rng)
     b, c, d = q[1] / q[0], q[2] / q[0], q[3] / q[0]
     s = 1 + b * b + c * c + d * d
     ours = [v for p in xc for v in (p[0] / p[2], p[1] / p[2])] + [v for p in X for v in p]
     ours += [v for p in yc for v in (p[0] / p[2], p[1] / p[2])] + [v for p in P for v in p]
     ours += [v for w in V for v in w]
-    peer = [v for p in xc for v in unit(p)] + [v for p in X for v in p]
-    peer += [v for p in yc for v in unit(p)] + [v for p in P for v in p] + [v for w in V for v in w]
     return ours, peer, [b, c, d, s * xc[0][2]]
+
+
+def matmul(a, b):
+    return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+
+
+def transpose(a):
+    return [[a[j][i] for j in range(3)] for i in range(3)]
+
+
+def rotation_between(a, b):
+    """The rotation about a x b taking the unit vector a to the unit vector b."""
+    v, c = cross(a, b), sum(x * y for x, y in zip(a, b))
+    k = [[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]]
+    k2 = matmul(k, k)
+    return [[(i == j) + k[i][j] + k2[i][j] / (1 + c) for j in range(3)] for i in range(3)]
+
+
+def quaternion_of(r):
+    """(w, x, y, z) of the rotation matrix r (w >= 0 branch; r is far from a half-turn)."""
+    w = math.sqrt(max(0.0, 1 + r[0][0] + r[1][1] + r[2][2])) / 2
+    return [w, (r[2][1] - r[1][2]) / (4 * w), (r[0][2] - r[2][0]) / (4 * w), (r[1][0] - r[0][1]) / (4 * w)]
+
+
+def p2p2pl_canonical(rng):
+    # The scene of p2p2pl in PoseLib's canonical frames (templates/classic/p2p2pl_canonical.mp):
+    # world point 0 at the origin and point 1 at (1, 0, 0) (translation, scale s0, rotation
+    # r0); bearing 0 along z and bearing 1 in the x-z plane (rotation rc). The truth: (b, c)
+    # of the rotation rc R r0' between the frames, quaternion (1, b, c, -b c). A peer line
+    # also holds rc and r0 (row-major) to express PoseLib's poses in our unknowns.
+    _, R, xc, yc, X, V, P, peer = p2p2pl_scene(rng)
+    d1 = sub(X[1], X[0])
+    s0 = math.sqrt(sum(x * x for x in d1))
+    r0 = rotation_between(unit(d1), [1.0, 0.0, 0.0])
+    r1 = rotation_between(unit(xc[0]), [0.0, 0.0, 1.0])
+    y1 = mul(r1, unit(xc[1]))
+    a = unit([y1[0], y1[1]])
+    rc = matmul([[a[0], a[1], 0.0], [-a[1], a[0], 0.0], [0.0, 0.0, 1.0]], r1)
+    y1 = mul(rc, xc[1])
+    ours = [y1[2] / y1[0]] + [v for p in yc for v in mul(rc, p)]
+    ours += [v for p in P for v in mul(r0, [x / s0 for x in sub(p, X[0])])]
+    ours += [v for w in V for v in mul(r0, w)]
+    q = quaternion_of(matmul(matmul(rc, R), transpose(r0)))
+    peer += [v for row in rc for v in row] + [v for row in r0 for v in row]
+    return ours, peer, [q[1] / q[0], q[2] / q[0]]
 
 
 def p35pf_scene(rng):
@@ -325,7 +377,8 @@ def p35pf_nullspace(rng):
 
 
 PROBLEMS = {f.__name__: f for f in (p3p, gp3p, up2p_elim, relpose_upright_3pt_elim, p3ll,
-                                    relpose_6pt_focal, p2p2pl, p35pf, p35pf_nullspace)}
+                                    relpose_6pt_focal, p2p2pl, p2p2pl_canonical, p35pf,
+                                    p35pf_nullspace)}
 
 
 def main():

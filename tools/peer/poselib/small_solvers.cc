@@ -10,7 +10,8 @@
 //
 // PROBLEM: p3p, gp3p, up2p_elim (PoseLib's up2p), relpose_upright_3pt_elim (PoseLib's
 // relpose_upright_3pt), p3ll, relpose_6pt_focal (PoseLib's relpose_6pt_shared_focal),
-// p2p2pl, p35pf, p35pf_nullspace (PoseLib's p35pf). Work per call: PoseLib's poses (rotation and translation; with the focal
+// p2p2pl, p2p2pl_canonical (PoseLib's p2p2pl), p35pf, p35pf_nullspace (PoseLib's p35pf).
+// Work per call: PoseLib's poses (rotation and translation; with the focal
 // length for relpose_6pt_focal and p35pf); ours returns what its problem file solves for
 // (depths for p3p and gp3p; the rotation alone for p3ll; for relpose_6pt_focal the
 // fundamental matrix in the null-space basis and the focal length, from that basis as
@@ -18,7 +19,9 @@
 // rotation and the scaled depth of point 0; for p35pf those and the positive focal
 // length, and PoseLib's time includes scaling the image points, ours does not; for
 // p35pf_nullspace the projection matrix's coordinates in the null-space basis of its seven
-// linear equations, from that basis as data, which PoseLib computes within its call).
+// linear equations, from that basis as data, which PoseLib computes within its call; for
+// p2p2pl_canonical the rotation's (b, c) in the canonical frames, from data moved to them,
+// which PoseLib does within its call).
 #include <PoseLib/poselib.h>
 
 #include "rows.h"
@@ -178,6 +181,24 @@ bool problem(const std::string &name, Problem *p) {
                   return std::vector<double>{s[0], s[1], s[2], s[3] * depth};
               },
               {}};
+    } else if (name == "p2p2pl_canonical") {
+        // PoseLib's p2p2pl on the given frames; a line also holds the canonical frames'
+        // rotations rc (camera) and r0 (world), row-major, after them: our unknowns are
+        // (b, c) of rc R r0', whose quaternion is (1, b, c, -b c).
+        *p = {48, 2,
+              [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out) {
+                  poselib::p2p2pl(block(r, 0, 2), block(r, 1, 2), block(r, 2, 2), block(r, 3, 2), block(r, 4, 2), out);
+              },
+              [](const std::vector<double> &r, const poselib::CameraPose &pose) {
+                  Eigen::Matrix3d rc, r0;
+                  for (int k = 0; k < 9; ++k) {
+                      rc(k / 3, k % 3) = r[30 + k];
+                      r0(k / 3, k % 3) = r[39 + k];
+                  }
+                  Eigen::Quaterniond q(Eigen::Matrix3d(rc * pose.R() * r0.transpose()));
+                  return std::vector<double>{q.x() / q.w(), q.y() / q.w()};
+              },
+              {}};
     } else if (name == "p35pf") {
         *p = {20, 5, nullptr, nullptr, {}, nullptr, nullptr,
               [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out, std::vector<double> *focals) {
@@ -223,7 +244,8 @@ int main(int argc, char **argv) {
     Problem p;
     if (argc < 4 || !problem(argv[1], &p)) {
         std::fprintf(stderr,
-                     "usage: %s p3p|gp3p|up2p_elim|relpose_upright_3pt_elim|p3ll|relpose_6pt_focal|p2p2pl|p35pf|p35pf_nullspace "
+                     "usage: %s p3p|gp3p|up2p_elim|relpose_upright_3pt_elim|p3ll|relpose_6pt_focal|p2p2pl|p2p2pl_canonical|p35pf|"
+                     "p35pf_nullspace "
                      "PEER SOLUTIONS\n",
                      argv[0]);
         return 2;

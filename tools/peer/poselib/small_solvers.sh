@@ -7,7 +7,7 @@
 #
 # Builds PoseLib as run.sh does and the driver small_solvers.cc (our code) against it; per
 # problem (default: p3p gp3p up2p_elim relpose_upright_3pt_elim p3ll relpose_6pt_focal
-# p2p2pl p35pf p35pf_nullspace) writes INSTANCES instances (default 1000; small_instances.py, seed 7) in
+# p2p2pl p2p2pl_canonical p35pf p35pf_nullspace) writes INSTANCES instances (default 1000; small_instances.py, seed 7) in
 # both forms, builds our solver in a crate of its own (tools/emitted_solver/run.sh, the
 # plan's defaults; p2p2pl and p35pf plan for a minute or more and compile for minutes),
 # alternates the two programs ROUNDS times (default 9), each pinned to one core, and
@@ -25,7 +25,8 @@
 # do; both return the positive focal length only, ours by its file's `positive f`;
 # p35pf_nullspace: the camera's coordinates in the null-space basis of its seven linear
 # equations, given as data, which PoseLib computes within its call and our time does not
-# include).
+# include; p2p2pl_canonical: the rotation's (b, c) in PoseLib's canonical frames from the
+# data moved to them, which PoseLib does within its call and our time does not include).
 set -euo pipefail
 poselib="$(cd "${1:?usage: $0 POSELIB_CHECKOUT [ROUNDS] [INSTANCES] [PROBLEM...]}" && pwd)"
 shift
@@ -35,7 +36,7 @@ count=${1:-1000}
 [[ $# -gt 0 ]] && shift
 problems=("$@")
 [[ ${#problems[@]} -eq 0 ]] && problems=(p3p gp3p up2p_elim relpose_upright_3pt_elim p3ll relpose_6pt_focal
-  p2p2pl p35pf p35pf_nullspace)
+  p2p2pl p2p2pl_canonical p35pf p35pf_nullspace)
 here="$(cd "$(dirname "$0")" && pwd)"
 repo="$(cd "$here/../../.." && pwd)"
 work="$(mktemp -d)"

@@ -32,6 +32,11 @@ Ry = matrix{{c,0,s},{0,1,0},{-s,0,c}}; tD = matrix{{t1},{t2},{t3}};
 I = ideal(apply(3,k->sc(transpose x2D_k * sk(tD) * Ry * x1D_k))) + ideal(c^2+s^2-1, t1^2+t2^2+t3^2-1);
 report("relpose_upright_3pt", I);
 report("relpose_upright_3pt_elim (t eliminated)", eliminate({t1,t2,t3}, I));
+-- relpose_upright_3pt_tan (q = tan of the half yaw, t eliminated, saturated by 1 + q^2)
+R = QQ[q,t1,t2,t3]; x1D = apply(3,i->sub(pt(),R)); x2D = apply(3,i->sub(pt(),R));
+Ryq = matrix{{1-q^2,0,2*q},{0,1+q^2,0},{-2*q,0,1-q^2}}; tD = matrix{{t1},{t2},{t3}};
+I = ideal(apply(3,k->sc(transpose x2D_k * sk(tD) * Ryq * x1D_k))) + ideal(t1^2+t2^2+t3^2-1);
+report("relpose_upright_3pt_tan (t eliminated, saturated, in q)", sub(saturate(eliminate({t1,t2,t3}, I), ideal(1+q^2)), QQ[q]));
 
 -- relpose_5pt
 R = QQ[x,y,z]; E = x*sub(m3(),R) + y*sub(m3(),R) + z*sub(m3(),R) + sub(m3(),R);

@@ -127,6 +127,16 @@ fn relpose_upright_3pt_elim_finds_the_planted_pose() {
     });
 }
 
+#[test]
+fn relpose_upright_3pt_tan_finds_the_planted_pose() {
+    check(41, 1e-9, 1e-5, |rng| {
+        let (flat, cs, t) = upright_instance(rng);
+        // q = tan(a / 2) = sin a / (1 + cos a) of the yaw a.
+        let q = cs[1] / (1.0 + cs[0]);
+        solve_flat::<ex::relpose_upright_3pt_tan::Solver>(&flat, &with_t_either_sign(&[q], &t))
+    });
+}
+
 /// Two world points seen by a camera with a yaw rotation: the data of `up2p` and the
 /// planted solution (c, s, t).
 fn upright_absolute_instance(rng: &mut ChaCha8Rng) -> (Vec<f64>, Vec<f64>) {

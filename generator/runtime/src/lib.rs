@@ -66,6 +66,7 @@ pub use nalgebra;
 
 mod closed_form;
 mod coefficient_table;
+mod companion;
 mod constant_fold;
 mod distinct;
 mod dynamic;

@@ -21,7 +21,9 @@
 //!
 //! A 2x2 matrix takes none of these steps: its eigenpairs are formulas
 //! ([`super::closed_form`]), unless its eigenvalues are (nearly) double or a pair's residual
-//! is not at rounding level.
+//! is not at rounding level. Nor does a 3x3 or 4x4 companion matrix (the action of a
+//! univariate problem on its power basis), unless its roots are (nearly) double: its
+//! characteristic polynomial is its first row ([`super::companion`]).
 //!
 //! Every loop is bounded. The QR back end takes over when the Sturm sequence degenerates
 //! (a remainder vanishes exactly: multiple roots or special structure), when a root is not
@@ -30,6 +32,7 @@
 //! when two roots converge to one eigenvalue.
 
 use super::closed_form::{eigenpairs_2x2, monic_real_roots};
+use super::companion::companion_eigenpairs;
 use super::hessenberg::{
     balance, eigenvector_by_recurrence, hessenberg_of_columns, hyman_newton_step,
     inverse_iteration, normalise, subdiagonal_reciprocals, transpose,
@@ -72,6 +75,9 @@ pub fn real_eigenpairs_sturm<const N: usize>(
             }
             return out;
         }
+    }
+    if let Some(pairs) = companion_eigenpairs(m) {
+        return pairs;
     }
     #[cfg(target_arch = "x86_64")]
     let found = if std::arch::is_x86_feature_detected!("avx2") {

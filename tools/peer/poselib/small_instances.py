@@ -12,6 +12,7 @@ PROBLEM (templates/classic/PROBLEM.mp)       PoseLib          peer line (x y z e
   up2p_elim  lambda x = R X + t, R about y    up2p             x[2] (unit), X[2]
   relpose_upright_3pt_elim                    relpose_upright_3pt  x1[3], x2[3] (unit)
              lambda2 x2 = R lambda1 x1 + t, R about y, |t| = 1
+  relpose_upright_3pt_tan  the same, the yaw a as q = tan(a / 2)
   p3ll       l' (R (X + mu V) + t) = 0        p3ll             l[3], X[3], V[3]
   relpose_6pt_focal  x2' F x1 = 0, F = K^-T [t]x R K^-1, K = diag(f, f, 1)
                                               relpose_6pt_shared_focal  x1[6], x2[6]
@@ -146,6 +147,12 @@ def relpose_upright_3pt_elim(rng):
     ours = [v for p in x1 + x2 for v in (p[0] / p[2], p[1] / p[2])]
     peer = [v for p in x1 + x2 for v in unit(p)]
     return ours, peer, [math.cos(angle), math.sin(angle)] + unit(t)
+
+
+def relpose_upright_3pt_tan(rng):
+    # The scene of relpose_upright_3pt_elim; the yaw as q = tan(angle / 2).
+    ours, peer, (c, s, *t) = relpose_upright_3pt_elim(rng)
+    return ours, peer, [s / (1 + c)] + t
 
 
 def p3ll(rng):
@@ -376,7 +383,8 @@ def p35pf_nullspace(rng):
     return ours, peer, [v[j] / v[4] for j in range(4)]
 
 
-PROBLEMS = {f.__name__: f for f in (p3p, gp3p, up2p_elim, relpose_upright_3pt_elim, p3ll,
+PROBLEMS = {f.__name__: f for f in (p3p, gp3p, up2p_elim, relpose_upright_3pt_elim,
+                                    relpose_upright_3pt_tan, p3ll,
                                     relpose_6pt_focal, p2p2pl, p2p2pl_canonical, p35pf,
                                     p35pf_nullspace)}
 

@@ -8,8 +8,8 @@
 //
 //   small_solvers PROBLEM PEER SOLUTIONS
 //
-// PROBLEM: p3p, gp3p, up2p_elim (PoseLib's up2p), relpose_upright_3pt_elim (PoseLib's
-// relpose_upright_3pt), p3ll, relpose_6pt_focal (PoseLib's relpose_6pt_shared_focal),
+// PROBLEM: p3p, gp3p, up2p_elim (PoseLib's up2p), relpose_upright_3pt_elim and
+// relpose_upright_3pt_tan (PoseLib's relpose_upright_3pt), p3ll, relpose_6pt_focal (PoseLib's relpose_6pt_shared_focal),
 // p2p2pl, p2p2pl_canonical (PoseLib's p2p2pl), p35pf, p35pf_nullspace (PoseLib's p35pf).
 // Work per call: PoseLib's poses (rotation and translation; with the focal
 // length for relpose_6pt_focal and p35pf); ours returns what its problem file solves for
@@ -137,6 +137,18 @@ bool problem(const std::string &name, Problem *p) {
                   return std::vector<double>{R(0, 0), R(0, 2), t(0), t(1), t(2)};
               },
               {2, 3, 4}};
+    } else if (name == "relpose_upright_3pt_tan") {
+        *p = {18, 4,
+              [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out) {
+                  poselib::relpose_upright_3pt(block(r, 0, 3), block(r, 1, 3), out);
+              },
+              [](const std::vector<double> &, const poselib::CameraPose &pose) {
+                  // q = tan(a / 2) = sin a / (1 + cos a) of the yaw a.
+                  Eigen::Matrix3d R = pose.R();
+                  Vec3 t = pose.t.normalized();
+                  return std::vector<double>{R(0, 2) / (1.0 + R(0, 0)), t(0), t(1), t(2)};
+              },
+              {1, 2, 3}};
     } else if (name == "p3ll") {
         *p = {27, 4,
               [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out) {
@@ -244,7 +256,7 @@ int main(int argc, char **argv) {
     Problem p;
     if (argc < 4 || !problem(argv[1], &p)) {
         std::fprintf(stderr,
-                     "usage: %s p3p|gp3p|up2p_elim|relpose_upright_3pt_elim|p3ll|relpose_6pt_focal|p2p2pl|p2p2pl_canonical|p35pf|"
+                     "usage: %s p3p|gp3p|up2p_elim|relpose_upright_3pt_elim|relpose_upright_3pt_tan|p3ll|relpose_6pt_focal|p2p2pl|p2p2pl_canonical|p35pf|"
                      "p35pf_nullspace "
                      "PEER SOLUTIONS\n",
                      argv[0]);

@@ -6,7 +6,7 @@
 #   tools/peer/poselib/small_solvers.sh POSELIB_CHECKOUT [ROUNDS] [INSTANCES] [PROBLEM...]
 #
 # Builds PoseLib as run.sh does and the driver small_solvers.cc (our code) against it; per
-# problem (default: p3p gp3p up2p_elim relpose_upright_3pt_elim p3ll relpose_6pt_focal
+# problem (default: p3p gp3p up2p_elim relpose_upright_3pt_elim relpose_upright_3pt_tan p3ll relpose_6pt_focal
 # p2p2pl p2p2pl_canonical p35pf p35pf_nullspace) writes INSTANCES instances (default 1000; small_instances.py, seed 7) in
 # both forms, builds our solver in a crate of its own (tools/emitted_solver/run.sh, the
 # plan's defaults; p2p2pl and p35pf plan for a minute or more and compile for minutes),
@@ -35,7 +35,7 @@ rounds=${1:-9}
 count=${1:-1000}
 [[ $# -gt 0 ]] && shift
 problems=("$@")
-[[ ${#problems[@]} -eq 0 ]] && problems=(p3p gp3p up2p_elim relpose_upright_3pt_elim p3ll relpose_6pt_focal
+[[ ${#problems[@]} -eq 0 ]] && problems=(p3p gp3p up2p_elim relpose_upright_3pt_elim relpose_upright_3pt_tan p3ll relpose_6pt_focal
   p2p2pl p2p2pl_canonical p35pf p35pf_nullspace)
 here="$(cd "$(dirname "$0")" && pwd)"
 repo="$(cd "$here/../../.." && pwd)"
@@ -51,6 +51,7 @@ for p in "${problems[@]}"; do
   python3 "$here/small_instances.py" "$p" "$count" 7 "$work/$p.ours" "$work/$p.peer" "$work/$p.sol"
   sign_free=()
   [[ $p == relpose_upright_3pt_elim ]] && sign_free=(2,3,4)
+  [[ $p == relpose_upright_3pt_tan ]] && sign_free=(1,2,3)
   "$repo/tools/emitted_solver/run.sh" "$repo/templates/classic/$p.mp" "$work/$p.ours" \
     "$work/$p.sol" "${sign_free[@]}" >/dev/null
   ours="${CARGO_TARGET_DIR:-$repo/target/emitted-solver/target}/release/emitted-solver-$p"

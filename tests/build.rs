@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 /// `inline` and `table` modules): one with a large template and Newton polishing, one
 /// whose affine equations planning substitutes into the others, one whose constant rows'
 /// fold the inline form writes out as code (the table form walks the fold's plan).
-const BOTH_FORMS: [&str; 3] = ["p35pf", "relpose_5pt_entries", "p3ll"];
+const BOTH_FORMS: [&str; 3] = ["p35pf", "relpose_5pt_entries", "relpose_upright_3pt"];
 
 /// Threads planning the corpus: its plans are independent, and planning is most of this
 /// script's time.

@@ -62,12 +62,13 @@ I = ideal(apply(3,k->sc(transpose x2D_k * sk(tD) * (I3 + v2D_k*sk(w2D)) * R0 * (
 report("grsrp_gravity_lin", I);
 report("grsrp_gravity_lin_elim (t eliminated)", eliminate({t1,t2,t3}, I));
 
--- p3ll (quaternion (1,b,c,d), z saturates 1 + b^2 + c^2 + d^2)
-R = QQ[b,c,d,z];
+-- p3ll (quaternion (1,b,c,d); saturating by 1 + b^2 + c^2 + d^2 changes nothing)
+R = QQ[b,c,d];
 Rq = matrix{{1+b^2-c^2-d^2, 2*(b*c-d), 2*(b*d+c)},{2*(b*c+d), 1-b^2+c^2-d^2, 2*(c*d-b)},{2*(b*d-c), 2*(c*d+b), 1-b^2-c^2+d^2}};
 lD = apply(3,i->sub(v3(),R)); VD = apply(3,i->sub(v3(),R));
-I = ideal(apply(3,j->sc(transpose lD_j * Rq * VD_j))) + ideal(z*(1+b^2+c^2+d^2)-1);
+I = ideal(apply(3,j->sc(transpose lD_j * Rq * VD_j)));
 report("p3ll", I);
+report("p3ll (saturated by 1 + b^2 + c^2 + d^2)", saturate(I, ideal(1+b^2+c^2+d^2)));
 
 -- rotation_2pt_focal
 R = QQ[w]; pD = apply(2,i->sub(pt(),R)); qD = apply(2,i->sub(pt(),R));

@@ -21,9 +21,10 @@ pub mod inline {
     pub mod relpose_5pt_entries {
         include!(concat!(env!("OUT_DIR"), "/inline/relpose_5pt_entries.rs"));
     }
-    /// `templates/classic/p3ll.mp` in inline form (its fold written out as code).
-    pub mod p3ll {
-        include!(concat!(env!("OUT_DIR"), "/inline/p3ll.rs"));
+    /// `templates/classic/relpose_upright_3pt.mp` in inline form (its fold written out as
+    /// code).
+    pub mod relpose_upright_3pt {
+        include!(concat!(env!("OUT_DIR"), "/inline/relpose_upright_3pt.rs"));
     }
 }
 
@@ -39,8 +40,9 @@ pub mod table {
     pub mod relpose_5pt_entries {
         include!(concat!(env!("OUT_DIR"), "/table/relpose_5pt_entries.rs"));
     }
-    /// `templates/classic/p3ll.mp` in table form (its fold by the runtime's plan).
-    pub mod p3ll {
-        include!(concat!(env!("OUT_DIR"), "/table/p3ll.rs"));
+    /// `templates/classic/relpose_upright_3pt.mp` in table form (its fold by the runtime's
+    /// plan).
+    pub mod relpose_upright_3pt {
+        include!(concat!(env!("OUT_DIR"), "/table/relpose_upright_3pt.rs"));
     }
 }

@@ -1,8 +1,8 @@
 //! The table form of emitted solvers (`mingen::CodeForm::Table`, the form large
 //! templates get) computes the same bits as the inline form: both solvers of each problem
-//! run on the same random data and must return identical solutions. For `p3ll` that also
-//! holds the inline form's fold of the constant rows, written out as code, to the
-//! runtime's `fold_constant_rows`, which the table form calls.
+//! run on the same random data and must return identical solutions. For
+//! `relpose_upright_3pt` that also holds the inline form's fold of the constant rows,
+//! written out as code, to the runtime's `fold_constant_rows`, which the table form calls.
 
 use mingen_runtime::{FlatValues, MinimalSolver};
 use rand::{Rng, SeedableRng};
@@ -69,8 +69,11 @@ fn relpose_5pt_entries_table_form_is_bit_identical() {
 }
 
 #[test]
-fn p3ll_fold_written_out_is_bit_identical() {
-    let found = same_solutions::<ex::inline::p3ll::Solver, ex::table::p3ll::Solver>(33, 2000);
+fn relpose_upright_3pt_fold_written_out_is_bit_identical() {
+    let found = same_solutions::<
+        ex::inline::relpose_upright_3pt::Solver,
+        ex::table::relpose_upright_3pt::Solver,
+    >(33, 2000);
     assert!(
         found > 2000,
         "random instances have real solutions ({found})"

@@ -236,9 +236,7 @@ fn p3ll_finds_the_planted_rotation() {
         let mut flat = Vec::new();
         normals.iter().for_each(|n| push_vec(&mut flat, n));
         directions.iter().for_each(|v| push_vec(&mut flat, v));
-        let [b, c, d] = quaternion_bcd(&r);
-        let truth = vec![b, c, d, 1.0 / (1.0 + b * b + c * c + d * d)];
-        solve_flat::<ex::p3ll::Solver>(&flat, &[truth])
+        solve_flat::<ex::p3ll::Solver>(&flat, &[quaternion_bcd(&r).to_vec()])
     });
 }
 

@@ -33,7 +33,7 @@ the angle uniform, for the upright problems), translations with entries N(0, 1)
 (N(0, 0.5) between the two views of the relative pose). Solutions: p3p depths along
 (x, y, 1); gp3p distances along unit rays from the origins p; up2p (cos, sin, t);
 relative pose (cos, sin, t / |t|); p3ll the rotation as (b, c, d) = (x, y, z) / w of its
-quaternion and z = 1 / (1 + b^2 + c^2 + d^2); relpose_6pt_focal (x, y, w) with
+quaternion; relpose_6pt_focal (x, y, w) with
 F ∝ x F1 + y F2 + F3 and w = 1 / f^2 (f uniform in [0.5, 2], a rotation near the
 identity, t entries N(0, 0.5)). Our solver's data is the null-space basis: its time does
 not include computing it, PoseLib's does. p2p2pl and p35pf: (b, c, d) = (x, y, z) / w of
@@ -166,7 +166,7 @@ def p3ll(rng):
     b, c, d = q[1] / q[0], q[2] / q[0], q[3] / q[0]
     ours = [v for l in lines for v in l] + [v for w in V for v in w]
     peer = [v for l in lines for v in l] + [v for x in X for v in x] + [v for w in V for v in w]
-    return ours, peer, [b, c, d, 1 / (1 + b * b + c * c + d * d)]
+    return ours, peer, [b, c, d]
 
 
 def solve_linear(a, b):

@@ -150,13 +150,13 @@ bool problem(const std::string &name, Problem *p) {
               },
               {1, 2, 3}};
     } else if (name == "p3ll") {
-        *p = {27, 4,
+        *p = {27, 3,
               [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out) {
                   poselib::p3ll(block(r, 0, 3), block(r, 1, 3), block(r, 2, 3), out);
               },
               [](const std::vector<double> &, const poselib::CameraPose &pose) {
-                  double w = pose.q(0), b = pose.q(1) / w, c = pose.q(2) / w, d = pose.q(3) / w;
-                  return std::vector<double>{b, c, d, 1.0 / (1.0 + b * b + c * c + d * d)};
+                  double w = pose.q(0);
+                  return std::vector<double>{pose.q(1) / w, pose.q(2) / w, pose.q(3) / w};
               },
               {}};
     } else if (name == "relpose_6pt_focal") {

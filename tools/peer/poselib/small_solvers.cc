@@ -9,9 +9,9 @@
 //   small_solvers PROBLEM PEER SOLUTIONS
 //
 // PROBLEM: p3p, gp3p, up2p_elim (PoseLib's up2p), relpose_upright_3pt_elim and
-// relpose_upright_3pt_tan (PoseLib's relpose_upright_3pt), p3ll, relpose_6pt_focal (PoseLib's relpose_6pt_shared_focal),
-// p2p2pl, p2p2pl_canonical (PoseLib's p2p2pl), p35pf, p35pf_nullspace (PoseLib's p35pf).
-// Work per call: PoseLib's poses (rotation and translation; with the focal
+// relpose_upright_3pt_tan (PoseLib's relpose_upright_3pt), p3ll, relpose_6pt_focal
+// (PoseLib's relpose_6pt_shared_focal), p2p2pl and p2p2pl_canonical (PoseLib's p2p2pl),
+// p35pf and p35pf_nullspace (PoseLib's p35pf). Work per call: PoseLib's poses (rotation and translation; with the focal
 // length for relpose_6pt_focal and p35pf); ours returns what its problem file solves for
 // (depths for p3p and gp3p; the rotation alone for p3ll; for relpose_6pt_focal the
 // fundamental matrix in the null-space basis and the focal length, from that basis as
@@ -90,6 +90,21 @@ Eigen::Matrix3d skew(const Vec3 &t) {
     return m;
 }
 
+// PoseLib's calls shared by two problems each (the same peer line, our unknowns differ).
+void upright_3pt(const std::vector<double> &r, std::vector<poselib::CameraPose> *out) {
+    poselib::relpose_upright_3pt(block(r, 0, 3), block(r, 1, 3), out);
+}
+
+void p2p2pl(const std::vector<double> &r, std::vector<poselib::CameraPose> *out) {
+    poselib::p2p2pl(block(r, 0, 2), block(r, 1, 2), block(r, 2, 2), block(r, 3, 2), block(r, 4, 2), out);
+}
+
+void p35pf(const std::vector<double> &r, std::vector<poselib::CameraPose> *out, std::vector<double> *focals) {
+    Points X;
+    for (int i = 0; i < 4; ++i) X.emplace_back(r[8 + 3 * i], r[9 + 3 * i], r[10 + 3 * i]);
+    poselib::p35pf(image_points(r, 4), X, out, focals);
+}
+
 bool problem(const std::string &name, Problem *p) {
     if (name == "p3p") {
         *p = {18, 3,
@@ -128,9 +143,7 @@ bool problem(const std::string &name, Problem *p) {
               {}};
     } else if (name == "relpose_upright_3pt_elim") {
         *p = {18, 5,
-              [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out) {
-                  poselib::relpose_upright_3pt(block(r, 0, 3), block(r, 1, 3), out);
-              },
+              upright_3pt,
               [](const std::vector<double> &, const poselib::CameraPose &pose) {
                   Eigen::Matrix3d R = pose.R();
                   Vec3 t = pose.t.normalized();
@@ -139,9 +152,7 @@ bool problem(const std::string &name, Problem *p) {
               {2, 3, 4}};
     } else if (name == "relpose_upright_3pt_tan") {
         *p = {18, 4,
-              [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out) {
-                  poselib::relpose_upright_3pt(block(r, 0, 3), block(r, 1, 3), out);
-              },
+              upright_3pt,
               [](const std::vector<double> &, const poselib::CameraPose &pose) {
                   // q = tan(a / 2) = sin a / (1 + cos a) of the yaw a.
                   Eigen::Matrix3d R = pose.R();
@@ -183,9 +194,7 @@ bool problem(const std::string &name, Problem *p) {
               }};
     } else if (name == "p2p2pl") {
         *p = {30, 4,
-              [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out) {
-                  poselib::p2p2pl(block(r, 0, 2), block(r, 1, 2), block(r, 2, 2), block(r, 3, 2), block(r, 4, 2), out);
-              },
+              p2p2pl,
               [](const std::vector<double> &r, const poselib::CameraPose &pose) {
                   // l: the depth of point 0 scaled like Rq, (1 + b^2 + c^2 + d^2) z_0.
                   auto s = quaternion_bcd(pose);
@@ -198,9 +207,7 @@ bool problem(const std::string &name, Problem *p) {
         // rotations rc (camera) and r0 (world), row-major, after them: our unknowns are
         // (b, c) of rc R r0', whose quaternion is (1, b, c, -b c).
         *p = {48, 2,
-              [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out) {
-                  poselib::p2p2pl(block(r, 0, 2), block(r, 1, 2), block(r, 2, 2), block(r, 3, 2), block(r, 4, 2), out);
-              },
+              p2p2pl,
               [](const std::vector<double> &r, const poselib::CameraPose &pose) {
                   Eigen::Matrix3d rc, r0;
                   for (int k = 0; k < 9; ++k) {
@@ -213,11 +220,7 @@ bool problem(const std::string &name, Problem *p) {
               {}};
     } else if (name == "p35pf") {
         *p = {20, 5, nullptr, nullptr, {}, nullptr, nullptr,
-              [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out, std::vector<double> *focals) {
-                  Points X;
-                  for (int i = 0; i < 4; ++i) X.emplace_back(r[8 + 3 * i], r[9 + 3 * i], r[10 + 3 * i]);
-                  poselib::p35pf(image_points(r, 4), X, out, focals);
-              },
+              p35pf,
               [](const std::vector<double> &r, const poselib::CameraPose &pose, double f) {
                   // l: the depth of point 0 scaled like Rq and divided by f (its ray is
                   // (u, v, f)), (1 + b^2 + c^2 + d^2) z_0 / f.
@@ -229,11 +232,7 @@ bool problem(const std::string &name, Problem *p) {
         // PoseLib's p35pf on the same points; a line also holds our data N (12 x 5,
         // row-major) after them, to express PoseLib's cameras in our unknowns.
         *p = {80, 4, nullptr, nullptr, {}, nullptr, nullptr,
-              [](const std::vector<double> &r, std::vector<poselib::CameraPose> *out, std::vector<double> *focals) {
-                  Points X;
-                  for (int i = 0; i < 4; ++i) X.emplace_back(r[8 + 3 * i], r[9 + 3 * i], r[10 + 3 * i]);
-                  poselib::p35pf(image_points(r, 4), X, out, focals);
-              },
+              p35pf,
               [](const std::vector<double> &r, const poselib::CameraPose &pose, double f) {
                   // P = diag(f, f, 1) [R | t] column by column in N's basis: x = v[0..4] / v[4].
                   Eigen::Matrix<double, 3, 4> P;
@@ -256,9 +255,8 @@ int main(int argc, char **argv) {
     Problem p;
     if (argc < 4 || !problem(argv[1], &p)) {
         std::fprintf(stderr,
-                     "usage: %s p3p|gp3p|up2p_elim|relpose_upright_3pt_elim|relpose_upright_3pt_tan|p3ll|relpose_6pt_focal|p2p2pl|p2p2pl_canonical|p35pf|"
-                     "p35pf_nullspace "
-                     "PEER SOLUTIONS\n",
+                     "usage: %s p3p|gp3p|up2p_elim|relpose_upright_3pt_elim|relpose_upright_3pt_tan|p3ll|"
+                     "relpose_6pt_focal|p2p2pl|p2p2pl_canonical|p35pf|p35pf_nullspace PEER SOLUTIONS\n",
                      argv[0]);
         return 2;
     }

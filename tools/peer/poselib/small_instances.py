@@ -214,6 +214,21 @@ def null_space(rows, n):
     return basis
 
 
+def orthonormal_mix(rng, vectors):
+    """An orthonormal basis of the span of `vectors` in a random orientation (as an SVD
+    gives one; an echelon basis has exact zeros and can be far from orthogonal)."""
+    k, basis = len(vectors), []
+    for _ in range(k):
+        mix = [rng.gauss(0, 1) for _ in range(k)]
+        v = [sum(m * u[e] for m, u in zip(mix, vectors)) for e in range(len(vectors[0]))]
+        for u in basis:
+            dot = sum(x * y for x, y in zip(u, v))
+            v = [x - dot * y for x, y in zip(v, u)]
+        basis.append(unit(v))
+    return basis
+
+
+
 def relpose_6pt_focal(rng):
     # Both cameras K = diag(f, f, 1); the second at R, t with R near the first.
     while True:
@@ -228,18 +243,7 @@ def relpose_6pt_focal(rng):
     x2 = [[f * p[0] / p[2], f * p[1] / p[2], 1.0] for p in cam2]
     # F1, F2, F3 span the null space of the epipolar constraints x2' F x1 = 0 (F row-major).
     rows = [[b[i] * a[j] for i in range(3) for j in range(3)] for a, b in zip(x1, x2)]
-    # An orthonormal basis in a random orientation, as an SVD gives one: the echelon basis
-    # has exact zeros (its free entries) and can be far from orthogonal.
-    echelon = null_space(rows, 9)
-    mix = [[rng.gauss(0, 1) for _ in range(3)] for _ in range(3)]
-    basis = []
-    for a in range(3):
-        v = [sum(mix[a][b] * echelon[b][k] for b in range(3)) for k in range(9)]
-        for u in basis:
-            d = sum(x * y for x, y in zip(u, v))
-            v = [x - d * y for x, y in zip(v, u)]
-        n = math.sqrt(sum(x * x for x in v))
-        basis.append([x / n for x in v])
+    basis = orthonormal_mix(rng, null_space(rows, 9))
     # The truth F = K^-T [t]x R K^-1 in that basis: lambda F - x F1 - y F2 = F3.
     tx = [[0.0, -t[2], t[1]], [t[2], 0.0, -t[0]], [-t[1], t[0], 0.0]]
     E = [[sum(tx[i][k] * R[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
@@ -340,20 +344,6 @@ def p35pf(rng):
     s = 1 + b * b + c * c + d * d
     ours = [v for p in xc for v in (f * p[0] / p[2], f * p[1] / p[2])] + [v for p in X for v in p]
     return ours, ours, [b, c, d, s * xc[0][2] / f, f]
-
-
-def orthonormal_mix(rng, vectors):
-    """An orthonormal basis of the span of `vectors` in a random orientation (as an SVD
-    gives one; an echelon basis has exact zeros and can be far from orthogonal)."""
-    k, basis = len(vectors), []
-    for _ in range(k):
-        mix = [rng.gauss(0, 1) for _ in range(k)]
-        v = [sum(m * u[e] for m, u in zip(mix, vectors)) for e in range(len(vectors[0]))]
-        for u in basis:
-            dot = sum(x * y for x, y in zip(u, v))
-            v = [x - dot * y for x, y in zip(v, u)]
-        basis.append(unit(v))
-    return basis
 
 
 def p35pf_nullspace(rng):

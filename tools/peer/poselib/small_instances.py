@@ -228,7 +228,6 @@ def orthonormal_mix(rng, vectors):
     return basis
 
 
-
 def relpose_6pt_focal(rng):
     # Both cameras K = diag(f, f, 1); the second at R, t with R near the first.
     while True:

@@ -353,9 +353,9 @@ fn p35pf_finds_the_planted_pose_and_focal_length() {
 /// The five-dimensional null space of the seven linear equations of P3.5Pf on the
 /// projection matrix `P` (`u_i P_3 X_i = P_1 X_i` and `v_i P_3 X_i = P_2 X_i` for
 /// homogeneous world points, all but `v_3`), `P`'s entries column by column: an
-/// orthonormal basis from the SVD, padded with zero rows to 12 x 12.
+/// orthonormal basis from the SVD.
 fn p35pf_null_space(image: &[[f64; 2]], world: &[Vector3<f64>]) -> Vec<[f64; 12]> {
-    let mut a = mingen_runtime::nalgebra::SMatrix::<f64, 12, 12>::zeros();
+    let mut a = mingen_runtime::nalgebra::DMatrix::<f64>::zeros(12, 12);
     let mut row = 0;
     for (i, (uv, x)) in image.iter().zip(world).enumerate() {
         let h = [x.x, x.y, x.z, 1.0];
@@ -371,13 +371,9 @@ fn p35pf_null_space(image: &[[f64; 2]], world: &[Vector3<f64>]) -> Vec<[f64; 12]
             row += 1;
         }
     }
-    let svd = a.svd(false, true);
-    let vt = svd.v_t.expect("V requested");
-    let mut order: Vec<usize> = (0..12).collect();
-    order.sort_by(|&i, &j| svd.singular_values[i].total_cmp(&svd.singular_values[j]));
-    order[..5]
-        .iter()
-        .map(|&i| std::array::from_fn(|k| vt[(i, k)]))
+    null_space(a, 5)
+        .into_iter()
+        .map(|v| v.try_into().expect("12 entries"))
         .collect()
 }
 

@@ -2,7 +2,7 @@
 
 #![allow(dead_code)]
 
-use mingen_runtime::nalgebra::{Matrix3, Rotation3, SMatrix, UnitQuaternion, Vector3};
+use mingen_runtime::nalgebra::{DMatrix, Matrix3, Rotation3, UnitQuaternion, Vector3};
 use mingen_runtime::{FlatValues, MinimalSolver};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -84,26 +84,36 @@ pub fn skew(v: &Vector3<f64>) -> Matrix3<f64> {
     Matrix3::new(0.0, -v.z, v.y, v.z, 0.0, -v.x, -v.y, v.x, 0.0)
 }
 
+/// The `dim` right singular vectors of the square `a` with the smallest singular values:
+/// an orthonormal basis of the null space of its rows (zero rows pad a shorter system to
+/// square, so that the SVD has the whole right null space), by increasing singular value.
+pub fn null_space(a: DMatrix<f64>, dim: usize) -> Vec<Vec<f64>> {
+    let n = a.ncols();
+    let svd = a.svd(false, true);
+    let vt = svd.v_t.expect("V requested");
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&i, &j| svd.singular_values[i].total_cmp(&svd.singular_values[j]));
+    order[..dim]
+        .iter()
+        .map(|&i| vt.row(i).iter().copied().collect())
+        .collect()
+}
+
 /// An orthonormal basis of the null space of the epipolar constraints `q^T M p = 0`
 /// (`M` row-major as a 9-vector), ordered by increasing singular value.
 pub fn epipolar_null_space(
     pairs: &[(Vector3<f64>, Vector3<f64>)],
     dim: usize,
 ) -> Vec<Matrix3<f64>> {
-    // Zero rows pad the system to 9 x 9 so that the SVD has the whole right null space.
-    let mut a = SMatrix::<f64, 9, 9>::zeros();
+    let mut a = DMatrix::<f64>::zeros(9, 9);
     for (row, (p, q)) in pairs.iter().enumerate() {
         for k in 0..9 {
             a[(row, k)] = q[k / 3] * p[k % 3];
         }
     }
-    let svd = a.svd(false, true);
-    let vt = svd.v_t.expect("V requested");
-    let mut order: Vec<usize> = (0..9).collect();
-    order.sort_by(|&i, &j| svd.singular_values[i].total_cmp(&svd.singular_values[j]));
-    order[..dim]
+    null_space(a, dim)
         .iter()
-        .map(|&i| Matrix3::from_fn(|r, c| vt[(i, 3 * r + c)]))
+        .map(|v| Matrix3::from_fn(|r, c| v[3 * r + c]))
         .collect()
 }
 

@@ -57,6 +57,7 @@ impl Budget {
         Deadline {
             started: Instant::now(),
             budget: self,
+            stated_seconds: self.max_seconds,
         }
     }
 }
@@ -99,6 +100,9 @@ impl fmt::Display for Exhausted {
 pub struct Deadline {
     started: Instant,
     budget: Budget,
+    /// The wall-clock budget as the caller stated it, which a [`Deadline::portion`] keeps
+    /// and errors report.
+    stated_seconds: f64,
 }
 
 impl Deadline {
@@ -106,12 +110,17 @@ impl Deadline {
     pub fn budget(&self) -> Budget {
         self.budget
     }
+    /// The wall-clock budget the caller stated (a [`Deadline::portion`] keeps it).
+    pub fn stated_seconds(&self) -> f64 {
+        self.stated_seconds
+    }
     /// Seconds since the start.
     pub fn elapsed(&self) -> f64 {
         self.started.elapsed().as_secs_f64()
     }
     /// The same start with `fraction` (in `(0, 1]`) of the wall-clock budget: a step that
-    /// may stop early without starving the steps after it.
+    /// may stop early without starving the steps after it. Its errors still name the
+    /// whole budget (the one a user can raise).
     pub fn portion(&self, fraction: f64) -> Deadline {
         Deadline {
             started: self.started,
@@ -119,12 +128,14 @@ impl Deadline {
                 max_seconds: self.budget.max_seconds * fraction.clamp(0.0, 1.0),
                 ..self.budget
             },
+            stated_seconds: self.stated_seconds,
         }
     }
-    /// `Err` once the wall-clock budget has run out.
+    /// `Err` once the wall-clock budget has run out (reported as the budget the caller
+    /// stated, also for a portion of it).
     pub fn check_time(&self) -> Result<(), Exhausted> {
         if self.elapsed() > self.budget.max_seconds {
-            Err(Exhausted::Time(self.budget.max_seconds))
+            Err(Exhausted::Time(self.stated_seconds))
         } else {
             Ok(())
         }
@@ -161,5 +172,15 @@ mod tests {
         let d = Budget::new(0.0, 1).start();
         std::thread::sleep(std::time::Duration::from_millis(2));
         assert_eq!(d.check_time(), Err(Exhausted::Time(0.0)));
+    }
+
+    #[test]
+    fn a_portion_runs_out_first_and_names_the_whole_budget() {
+        let d = Budget::new(60.0, 1).start();
+        let part = d.portion(1e-5);
+        std::thread::sleep(std::time::Duration::from_millis(2));
+        assert!(d.check_time().is_ok());
+        assert_eq!(part.check_time(), Err(Exhausted::Time(60.0)));
+        assert_eq!(part.stated_seconds(), 60.0);
     }
 }

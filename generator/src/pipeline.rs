@@ -148,6 +148,9 @@ pub struct SolverPlan {
     pub redundant_check: Option<RedundantCheck>,
 }
 
+/// The share of a plan's wall-clock budget the template search may use (see [`plan`]).
+const SEARCH_BUDGET_SHARE: f64 = 0.8;
+
 /// The template options for `problem`: `options` with the problem file's `option` lines
 /// applied, then `options.overrides` (the command line's) over them. An action name is an
 /// unknown scalar of the system (after elimination); `random` is a random linear
@@ -322,10 +325,13 @@ pub fn plan(
     // The equations' generic monomials serve the template search (its fold of constant
     // rows) and the sparse elimination order alike.
     let supports = equation_supports(&problem, options.seed ^ SUPPORT_SEED);
+    // The search stops with the best template so far when its share of the budget runs
+    // out; the steps after it (the fold, the sparse order, the polishing measurement) are
+    // not interruptible and keep the rest.
     let generated = find_template_within(
         &ProblemSource::with_supports(&problem, &supports),
         options,
-        deadline,
+        deadline.portion(SEARCH_BUDGET_SHARE),
     )
     .map_err(|source| PipelineError::Template {
         file: file.to_string(),

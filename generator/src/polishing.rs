@@ -17,14 +17,15 @@
 //! are that close to failing, so failures at a rate it cannot resolve are to be expected.
 //! Otherwise it does not polish, since polishing costs a few evaluations of the equations
 //! and their gradients per solution, up to several times a small template's solve.
-//! Where it polishes, the same instances are solved again polished: if two steps leave
+//! Where it polishes, the same instances are measured polished (two steps on a copy of
+//! each solution of the same solves, four and eight solved again): if two steps leave
 //! the sample failing by the same tests (the failure rate or the 99th percentile), four
 //! and then eight are tried ([`AUTO_POLISH_STEP_CHOICES`]; a solution at rounding level
 //! takes no step, so only the poor ones pay for them), and the fewest steps that pass, or
 //! else that fail the fewest instances, are chosen. The instances are seeded, so the
 //! choice, like the template, is the same on every run.
 
-use crate::audit::{audit_plan, AuditOptions};
+use crate::audit::{audit_plan, AuditOptions, COMPARISON_NEWTON_STEPS};
 use crate::emit::polish::check_polishable;
 use crate::instance::random_data_f64;
 use crate::pipeline::SolverPlan;
@@ -76,14 +77,18 @@ pub(crate) fn choose(plan: &mut SolverPlan) -> Option<AutoPolishing> {
     }
     let given = plan.problem.layout.options.newton;
     plan.problem.layout.options.newton = Some(0);
-    let unpolished = measure(plan);
+    let (unpolished, two_steps) = measure(plan);
     let mut steps = 0;
     if unpolished.median_log10_residual > AUTO_POLISH_MEDIAN || unpolished.fails() {
         // The fewest steps that pass, else those that fail the fewest instances.
         let mut best: Option<(usize, u32)> = None;
+        let mut two_steps = two_steps;
         for k in AUTO_POLISH_STEP_CHOICES {
             plan.problem.layout.options.newton = Some(k);
-            let polished = measure(plan);
+            let polished = match two_steps.take() {
+                Some(s) if k as usize == COMPARISON_NEWTON_STEPS => s,
+                _ => measure(plan).0,
+            };
             let passes = !polished.fails();
             if passes || best.map_or(true, |(f, _)| polished.failures < f) {
                 best = Some((polished.failures, k));
@@ -123,7 +128,13 @@ impl Sample {
 /// Solves the plan's [`AUTO_POLISH_INSTANCES`] seeded instances, and when exactly one
 /// fails [`AUTO_POLISH_MORE_INSTANCES`] more (one failure in 100 tells a rate above the
 /// threshold from one below it no better than none does).
-fn measure(plan: &SolverPlan) -> Sample {
+///
+/// Solved unpolished, the same solves give the sample polished by
+/// [`COMPARISON_NEWTON_STEPS`] too (the audit's comparison polishes a copy of each
+/// solution, as the solver would): returned second, with its own rule for the further
+/// instances, so that the template is solved once for both. Not for a redundant basis,
+/// whose spurious read-outs are told apart after polishing.
+fn measure(plan: &SolverPlan) -> (Sample, Option<Sample>) {
     let run = |instances, seed| {
         audit_plan(
             plan,
@@ -135,18 +146,47 @@ fn measure(plan: &SolverPlan) -> Sample {
         )
     };
     let report = run(AUTO_POLISH_INSTANCES, AUTO_POLISH_SEED);
-    let (mut instances, mut failures) = (report.instances, report.failures);
-    if failures == 1 {
-        let more = run(AUTO_POLISH_MORE_INSTANCES, AUTO_POLISH_SEED + 1);
-        instances += more.instances;
-        failures += more.failures;
-    }
-    Sample {
-        instances,
-        median_log10_residual: report.median_log10_residual,
-        p99_log10_residual: report.p99_log10_residual,
-        failures,
-    }
+    let comparable = plan.problem.layout.options.newton == Some(0)
+        && plan.generated.built.template.spurious_eigenvalues == 0;
+    let polished = report
+        .other_polishing
+        .as_ref()
+        .filter(|o| comparable && o.newton_steps == COMPARISON_NEWTON_STEPS);
+    let first_failures = report.failures;
+    let polished_failures = polished.map(|o| o.failures);
+    let more = (first_failures == 1 || polished_failures == Some(1))
+        .then(|| run(AUTO_POLISH_MORE_INSTANCES, AUTO_POLISH_SEED + 1));
+    let sample = |failures: usize, more_failures: Option<usize>, median, p99| {
+        let (extra_instances, extra_failures) = match (failures == 1, &more) {
+            (true, Some(m)) => (m.instances, more_failures.unwrap_or(usize::MAX)),
+            _ => (0, 0),
+        };
+        Sample {
+            instances: report.instances + extra_instances,
+            median_log10_residual: median,
+            p99_log10_residual: p99,
+            failures: failures.saturating_add(extra_failures),
+        }
+    };
+    let unpolished = sample(
+        first_failures,
+        more.as_ref().map(|m| m.failures),
+        report.median_log10_residual,
+        report.p99_log10_residual,
+    );
+    let polished = polished.and_then(|o| {
+        let more_failures = match &more {
+            Some(m) => Some(m.other_polishing.as_ref()?.failures),
+            None => None,
+        };
+        Some(sample(
+            o.failures,
+            more_failures,
+            o.median_log10_residual,
+            o.p99_log10_residual,
+        ))
+    });
+    (unpolished, polished)
 }
 
 /// Whether the emitted solver can polish `plan`'s solutions (what `option newton` needs,

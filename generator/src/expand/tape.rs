@@ -74,7 +74,7 @@ impl<'a> Guard<'a> {
         let left = self.deadline.budget().max_seconds - self.deadline.elapsed();
         if work >= SMALL_PRODUCT && work / TERM_PRODUCTS_PER_SECOND > left {
             return Err(EvalError::Budget(Exhausted::Time(
-                self.deadline.budget().max_seconds,
+                self.deadline.stated_seconds(),
             )));
         }
         Ok(())

@@ -28,7 +28,9 @@
 //!   graded and lexicographic ones with each variable first), the most rows winning.
 //!
 //! `C` followed by pivot rows (none, or some), and pivot rows alone are tried; the most
-//! rows folded win.
+//! rows folded win. That choice (which row order grows `C`, and whether `C` is kept) is
+//! made in Z_p, where it costs little; only the chosen `C` is then grown again in rational
+//! arithmetic, whose entries grow with the block (hundreds of rows take seconds each).
 
 use super::EliminationTemplate;
 use crate::algebra::{Field, Fp, Monomial, Ring, P1, Q};
@@ -329,17 +331,9 @@ fn choose_pivot_rows<F: Field>(
     pivots
 }
 
-/// The fold chosen for `t` (see the module documentation) in the field `F`: the constant
-/// block (the largest of four row orders) followed by pivot rows, or pivot rows alone when
-/// the block's rows would block more pivots than they fold; the most rows folded win, the
-/// block first on ties. `better` as for [`choose_block`].
-fn choose_fold<F: Field>(
-    t: &EliminationTemplate,
-    entries: &[Option<Entries<F>>],
-    better: fn(&F, &F) -> bool,
-) -> (Block<F>, Vec<PivotRow<F>>) {
-    // Row orders tried: the template's, its reverse, and by multiplier degree (highest,
-    // then lowest first); the largest block wins, the earlier order on ties.
+/// The row orders a constant block is grown under: the template's, its reverse, and by
+/// multiplier degree (highest, then lowest first).
+fn block_orders(t: &EliminationTemplate) -> [Vec<usize>; 4] {
     let n = t.rows.len();
     let by_degree = |high: bool| {
         let mut o: Vec<usize> = (0..n).collect();
@@ -353,34 +347,57 @@ fn choose_fold<F: Field>(
         });
         o
     };
-    let orders = [
+    [
         (0..n).collect::<Vec<_>>(),
         (0..n).rev().collect(),
         by_degree(true),
         by_degree(false),
-    ];
-    let block = orders
+    ]
+}
+
+/// The fold's structure, chosen in Z_p (see the module documentation): which row order of
+/// [`block_orders`] grows the largest constant block (the earlier on ties), and whether
+/// that block is kept (`Some(order)`) or the pivot rows alone fold more (`None`). Exact
+/// arithmetic is then spent on the chosen block only: its rational inverse is what costs,
+/// and a block of hundreds of rows takes many seconds in `Q`.
+fn choose_structure(
+    t: &EliminationTemplate,
+    entries: &[Option<Entries<Fp<P1>>>],
+) -> (Option<usize>, usize) {
+    let (order, block) = block_orders(t)
         .iter()
-        .map(|o| choose_block(t, entries, o, better))
-        .reduce(|best, b| if b.0.len() > best.0.len() { b } else { best })
+        .map(|o| choose_block(t, entries, o, |_, _| false))
+        .enumerate()
+        .reduce(|best, b| {
+            if b.1 .0.len() > best.1 .0.len() {
+                b
+            } else {
+                best
+            }
+        })
         .unwrap_or_default();
-    let rankings = column_rankings(t);
-    let mut best: Option<(Block<F>, Vec<PivotRow<F>>)> = None;
-    for b in [block, Default::default()] {
-        let pivots = rankings
-            .iter()
-            .map(|r| choose_pivot_rows(t, entries, &b, r))
-            .reduce(|best, p| if p.len() > best.len() { p } else { best })
-            .unwrap_or_default();
-        let total = b.0.len() + pivots.len();
-        if best
-            .as_ref()
-            .map_or(true, |(bb, bp)| total > bb.0.len() + bp.len())
-        {
-            best = Some((b, pivots));
-        }
+    let with_block = block.0.len() + best_pivot_rows(t, entries, &block).len();
+    let without = best_pivot_rows(t, entries, &Block::default()).len();
+    // The block first on ties.
+    if with_block >= without {
+        (Some(order), with_block)
+    } else {
+        (None, without)
     }
-    best.unwrap_or_default()
+}
+
+/// The most pivot rows after `block` under any of [`column_rankings`] (the earlier
+/// ranking on ties).
+fn best_pivot_rows<F: Field>(
+    t: &EliminationTemplate,
+    entries: &[Option<Entries<F>>],
+    block: &Block<F>,
+) -> Vec<PivotRow<F>> {
+    column_rankings(t)
+        .iter()
+        .map(|r| choose_pivot_rows(t, entries, block, r))
+        .reduce(|best, p| if p.len() > best.len() { p } else { best })
+        .unwrap_or_default()
 }
 
 /// How many rows [`fold_constant_rows`] would fold from `t`, counted in Z_p (no exact
@@ -389,9 +406,7 @@ pub fn foldable_rows(t: &EliminationTemplate, equations: &[EquationConstants]) -
     if t.reduction.is_some() || t.shift.is_some() || equations.is_empty() {
         return 0;
     }
-    let entries = row_entries::<Fp<P1>>(t, equations);
-    let (block, pivots) = choose_fold(t, &entries, |_, _| false);
-    block.0.len() + pivots.len()
+    choose_structure(t, &row_entries::<Fp<P1>>(t, equations)).1
 }
 
 /// Folds what `t` allows (see the module documentation): `equations[e]` are the terms of
@@ -406,8 +421,17 @@ pub fn fold_constant_rows(t: &mut EliminationTemplate, equations: &[EquationCons
     if t.reduction.is_some() || t.shift.is_some() || equations.is_empty() {
         return;
     }
+    let (order, _) = choose_structure(t, &row_entries::<Fp<P1>>(t, equations));
     let entries = row_entries::<Q>(t, equations);
-    let ((rows, cols, inv), pivots) = choose_fold(t, &entries, |s, best| s.abs() > best.abs());
+    // The chosen block exactly, each row pivoting on its largest exact Schur scalar.
+    let block = match order {
+        Some(o) => choose_block(t, &entries, &block_orders(t)[o], |s, best| {
+            s.abs() > best.abs()
+        }),
+        None => Block::default(),
+    };
+    let pivots = best_pivot_rows(t, &entries, &block);
+    let (rows, cols, inv) = block;
     let k = rows.len();
     if k + pivots.len() == 0 {
         return;

@@ -277,9 +277,15 @@ pub fn plan(
         // where its minors would be wrong (see `crate::eliminate::block_reduction`).
         let mut rng = <InstanceRng as rand::SeedableRng>::seed_from_u64(options.seed ^ 0xb10c);
         let data = random_data_fp::<{ crate::algebra::P1 }>(&problem.layout, &mut rng);
-        if let Some(reduction) =
+        if let Some(mut reduction) =
             block_reduction(&problem.evaluate(&data), &problem.layout.eliminate)
         {
+            // The reduced minors are solved through the equations' own row reduction,
+            // which normalises their scale (`reduced_equations_only` below); without it
+            // the block's rows are used as they are.
+            if !options.reduce_equations {
+                reduction.rest_pivots.clear();
+            }
             problem = problem.with_block_reduction(reduction);
         }
         // Check the elimination once on an exact instance so that a structural problem is a
@@ -314,26 +320,57 @@ pub fn plan(
         options,
         &deadline,
     );
-    let problem = rewrite::fold_sign_symmetry(
-        rewrite::drop_dependent_equations(
-            rewrite::divide_out_nonzero(problem, options, &deadline),
-            options.seed,
-        ),
-        options,
-        &deadline,
+    let unfolded = rewrite::drop_dependent_equations(
+        rewrite::divide_out_nonzero(problem, options, &deadline),
+        options.seed,
     );
+    let folded = rewrite::fold_sign_symmetry(unfolded.clone(), options, &deadline);
+    // A sign fold halves the basis but not always the template: unless the file or the
+    // command line asks for it, the system as written is searched too (on what is left
+    // of the search's budget) and kept where its elimination is far smaller (below).
+    let asked = options
+        .overrides
+        .sign_symmetry
+        .or(folded.layout.options.sign_symmetry)
+        .is_some();
+    let compare = !folded.sign_folds().is_empty() && !asked;
+    let search_deadline = deadline.portion(SEARCH_BUDGET_SHARE);
     // The equations' generic monomials serve the template search (its fold of constant
-    // rows) and the sparse elimination order alike.
-    let supports = equation_supports(&problem, options.seed ^ SUPPORT_SEED);
-    // The search stops with the best template so far when its share of the budget runs
-    // out; the steps after it (the fold, the sparse order, the polishing measurement) are
-    // not interruptible and keep the rest.
-    let generated = find_template_within(
-        &ProblemSource::with_supports(&problem, &supports),
-        options,
-        deadline.portion(SEARCH_BUDGET_SHARE),
-    )
-    .map_err(|source| PipelineError::Template {
+    // rows) and the sparse elimination order alike. The search stops with the best
+    // template so far when its share of the budget runs out; the steps after it (the
+    // fold, the sparse order, the polishing measurement) are not interruptible and keep
+    // the rest.
+    let search = |problem: Problem| {
+        let supports = equation_supports(&problem, options.seed ^ SUPPORT_SEED);
+        let options = &TemplateOptions {
+            reduced_equations_only: problem
+                .block_reduction()
+                .is_some_and(|b| !b.rest_pivots.is_empty()),
+            ..options.clone()
+        };
+        let generated = find_template_within(
+            &ProblemSource::with_supports(&problem, &supports),
+            options,
+            search_deadline,
+        );
+        (problem, supports, generated)
+    };
+    let mut chosen = search(folded);
+    if compare {
+        let written = search(unfolded);
+        let area = |g: &Result<Generated, TemplateError>| {
+            g.as_ref().ok().map(|g| g.built.template.elimination_area())
+        };
+        // The folded eigenvalue problem is half the size: the folded template is kept up
+        // to twice the area of the one as written.
+        match (area(&chosen.2), area(&written.2)) {
+            (Some(f), Some(w)) if 2 * w <= f => chosen = written,
+            (None, Some(_)) => chosen = written,
+            _ => {}
+        }
+    }
+    let (problem, supports, generated) = chosen;
+    let generated = generated.map_err(|source| PipelineError::Template {
         file: file.to_string(),
         // The problem's count, not the folded system's.
         source: match source {

@@ -186,8 +186,9 @@ struct SearchArgs {
     #[arg(long, value_name = "yes|no", value_parser = ["yes", "no"])]
     reduce_equations: Option<String>,
     /// Solve a system whose solutions come in sign pairs (every equation even or odd in
-    /// some unknowns) at half its size and recover both signs (`yes`, the default, when the
-    /// count halves), or as written (`no`); default: the file's `option sign_symmetry`.
+    /// some unknowns) at half its size and recover both signs (`yes`, when the count
+    /// halves), or as written (`no`); default: the file's `option sign_symmetry`, else
+    /// folded unless the system as written has a template of at most half the area.
     #[arg(long, value_name = "yes|no", value_parser = ["yes", "no"])]
     sign_symmetry: Option<String>,
     /// Let the template's basis have more monomials than solutions when that makes the

@@ -18,7 +18,11 @@
 //!   D_i m]]` (the combination of rows that cancels `C`);
 //! - [`BlockMode::Minors`] (`C` of rank `r` below its column count): the maximal minors
 //!   of `[A b]` on the rows `P` only, the equations the worksheet gets by solving rows for
-//!   `t` and substituting into another (`numer` of the result);
+//!   `t` and substituting into another (`numer` of the result). As in the worksheet, whose
+//!   reduced row echelon form clears the `t`-free rows' pivot monomials from the rows it
+//!   then solves, the rows `P` are first reduced by the `t`-free combinations (their
+//!   `b` loses those monomials; a multiple of `t`-free equations, so the minors change by
+//!   members of the ideal only): the minors have far fewer terms;
 //! - [`BlockMode::Substitute`] (`C` of full column rank, every `t_i` a column of its
 //!   own): Cramer's rule `d y_j = g_j(u)` with `d = det C_PQ` solves every column, the
 //!   columns `t_i` give `t_i = g_i / d`, which is substituted into the other equations
@@ -30,7 +34,7 @@ use super::{
     combinations, determinant, numbered, pivots_from_last, remaining_unknowns,
     substitute_quotients, EliminateError, Eliminated,
 };
-use crate::algebra::{Fp, Monomial, Poly, Ring};
+use crate::algebra::{Fp, Monomial, MonomialOrder, Poly, Ring};
 
 /// How the block of equations linear in the eliminated unknowns is reduced (see the module
 /// documentation).
@@ -57,6 +61,12 @@ pub struct BlockReduction {
     pub pivot_columns: Vec<usize>,
     /// Minors or substitution.
     pub mode: BlockMode,
+    /// [`BlockMode::Minors`]: the pivot monomial of each `t`-free combination of rows (in
+    /// the order they are produced, a monomial in the remaining unknowns; `None` for one
+    /// that is a combination of those before it) in their fraction-free echelon form, by
+    /// which the pivot rows' `t`-free parts are reduced before their minors are taken
+    /// (see [`reduce_pivot_rows`]). Empty: the minors of the rows as they are.
+    pub rest_pivots: Vec<Option<Monomial>>,
 }
 
 /// How each equation meets the eliminated unknowns.
@@ -144,12 +154,117 @@ pub fn block_reduction<const P: u32>(
     } else {
         return None;
     };
-    Some(BlockReduction {
+    let mut plan = BlockReduction {
         columns,
         pivot_rows,
         pivot_columns,
         mode,
-    })
+        rest_pivots: Vec::new(),
+    };
+    if mode == BlockMode::Minors {
+        let nvars = block.first().map_or(0, |e| e.nvars());
+        let t_free = reduce_block(equations, nvars, eliminated, &plan)
+            .ok()
+            .map(|e| t_free_rows(&e, equations, eliminated, &plan))
+            .unwrap_or_default();
+        plan.rest_pivots = choose_rest_pivots(&t_free);
+    }
+    Some(plan)
+}
+
+/// The `t`-free combinations of rows among the equations `e` produced (after the
+/// equations free of the eliminated unknowns, see [`reduce_block`]).
+fn t_free_rows<C: Ring>(
+    e: &Eliminated<C>,
+    equations: &[Poly<C>],
+    eliminated: &[usize],
+    plan: &BlockReduction,
+) -> Vec<Poly<C>> {
+    let free = equations
+        .iter()
+        .filter(|q| matches!(role(q, eliminated), Role::Free))
+        .count();
+    let block = equations
+        .iter()
+        .filter(|q| matches!(role(q, eliminated), Role::Block))
+        .count();
+    let n = block.saturating_sub(plan.pivot_rows.len());
+    e.equations.iter().skip(free).take(n).cloned().collect()
+}
+
+/// The pivots of the fraction-free echelon form of `rows` ([`echelon_step`] in order): each
+/// row's largest monomial (grevlex) once the pivots before it are eliminated, `None` for a
+/// row that vanishes.
+fn choose_rest_pivots<const P: u32>(rows: &[Poly<Fp<P>>]) -> Vec<Option<Monomial>> {
+    let mut reduced: Vec<(Poly<Fp<P>>, Option<Monomial>)> = Vec::new();
+    for r in rows {
+        let mut t = r.clone();
+        for (prev, pivot) in &reduced {
+            if let Some(m) = pivot {
+                t = echelon_step(&t, prev, m);
+            }
+        }
+        let pivot = t.leading(MonomialOrder::Grevlex).map(|(m, _)| m.clone());
+        reduced.push((t, pivot));
+    }
+    reduced.into_iter().map(|(_, p)| p).collect()
+}
+
+/// One fraction-free elimination step: `p` times `by`'s coefficient on `m`, minus `by`
+/// times `p`'s coefficient on `m`, with the term on `m` removed (its coefficient is zero;
+/// removed explicitly so that a ring that does not see the cancellation, such as the
+/// emitter's traced expressions, has the support the plan has).
+fn echelon_step<C: Ring>(p: &Poly<C>, by: &Poly<C>, m: &Monomial) -> Poly<C> {
+    let reduced = p.scale(&by.coeff(m)).sub(&by.scale(&p.coeff(m)));
+    Poly::from_terms(
+        reduced.nvars(),
+        reduced
+            .terms()
+            .filter(|(t, _)| *t != m)
+            .map(|(t, c)| (t.clone(), c.clone())),
+    )
+}
+
+/// `m` with `n` exponents: unknowns added at the end with exponent 0, or removed from the
+/// end where their exponents are 0 (`None` otherwise).
+fn fit_monomial(m: &Monomial, n: usize) -> Option<Monomial> {
+    let mut e = m.0.clone();
+    if e.len() > n && e[n..].iter().any(|&x| x != 0) {
+        return None;
+    }
+    e.resize(n, 0);
+    Some(Monomial(e))
+}
+
+/// The pivot rows of `[A b]` with their `t`-free parts `b` reduced by the `t`-free
+/// combinations `t_free` (brought to echelon form on the pivots `pivots` first): each
+/// pivot monomial is eliminated from the column `b` fraction-free. Every step scales the
+/// whole column by one number (the pivot's coefficient) and subtracts multiples of a
+/// `t`-free equation, and a determinant is linear in a column: the minors become a
+/// number times the minors before, minus multiples of `t`-free equations. `A` is left as
+/// it is (scaling the rows instead would multiply the minors by the cube of it).
+fn reduce_pivot_rows<C: Ring>(
+    mut rows: Vec<Vec<Poly<C>>>,
+    t_free: &[Poly<C>],
+    pivots: &[Option<Monomial>],
+) -> Vec<Vec<Poly<C>>> {
+    let mut echelon: Vec<(Poly<C>, &Monomial)> = Vec::new();
+    for (t, pivot) in t_free.iter().zip(pivots) {
+        let mut t = t.clone();
+        for (prev, m) in &echelon {
+            t = echelon_step(&t, prev, m);
+        }
+        if let Some(m) = pivot {
+            echelon.push((t, m));
+        }
+    }
+    for row in &mut rows {
+        let Some(b) = row.last_mut() else { continue };
+        for (by, m) in &echelon {
+            *b = echelon_step(b, by, m);
+        }
+    }
+    rows
 }
 
 /// Eliminates the unknowns `eliminated` (flat indices) from `equations` (polynomials in
@@ -248,6 +363,10 @@ pub fn reduce_block<C: Ring>(
             })
             .collect()
     };
+    let t_free: Vec<Poly<C>> = (0..matrix.len())
+        .filter(|r| !plan.pivot_rows.contains(r))
+        .map(|r| determinant(&bordered(r), nrem))
+        .collect();
     let mut out = free;
     let mut tail = Vec::new();
     match plan.mode {
@@ -260,11 +379,30 @@ pub fn reduce_block<C: Ring>(
                     needed: cols,
                 });
             }
+            let pivot_rows: Vec<Vec<Poly<C>>> = plan
+                .pivot_rows
+                .iter()
+                .map(|&r| matrix[r][..cols].to_vec())
+                .collect();
+            // The pivots in this system's remaining unknowns: a `nonzero`'s hidden unknowns,
+            // when the plan was made without them or they are dropped, come last.
+            let rest_pivots: Option<Vec<Option<Monomial>>> = plan
+                .rest_pivots
+                .iter()
+                .map(|p| match p {
+                    None => Some(None),
+                    Some(m) => fit_monomial(m, nrem).map(Some),
+                })
+                .collect();
+            // Without a `t`-free part there is nothing to reduce.
+            let pivot_rows = match rest_pivots {
+                Some(pivots) if inhomogeneous && pivots.len() == t_free.len() => {
+                    reduce_pivot_rows(pivot_rows, &t_free, &pivots)
+                }
+                _ => pivot_rows,
+            };
             for rows in combinations(rank, cols) {
-                let sub: Vec<Vec<Poly<C>>> = rows
-                    .iter()
-                    .map(|&r| matrix[plan.pivot_rows[r]][..cols].to_vec())
-                    .collect();
+                let sub: Vec<Vec<Poly<C>>> = rows.iter().map(|&r| pivot_rows[r].clone()).collect();
                 tail.push(determinant(&sub, nrem));
             }
         }
@@ -327,11 +465,7 @@ pub fn reduce_block<C: Ring>(
             }
         }
     }
-    for r in 0..matrix.len() {
-        if !plan.pivot_rows.contains(&r) {
-            out.push(determinant(&bordered(r), nrem));
-        }
-    }
+    out.extend(t_free);
     out.extend(tail);
     if !inhomogeneous {
         for row in &mut matrix {
@@ -427,6 +561,40 @@ mod tests {
         }
         // Independent rows: the block's minors are the right equations, no reduction.
         assert!(block_reduction(&eqs[..2], &[0, 1]).is_none());
+    }
+
+    #[test]
+    fn pivot_rows_lose_the_t_free_pivot_monomials_and_keep_the_solution() {
+        let mut rng = ChaCha8Rng::seed_from_u64(9);
+        let point: Vec<F> = (0..4).map(|_| random(&mut rng)).collect();
+        let eqs = dependent_rows(&mut rng, &point);
+        let plan = block_reduction(&eqs, &[0, 1]).expect("rank three of four rows");
+        assert_eq!(plan.rest_pivots.len(), 1);
+        let pivot = plan.rest_pivots[0].clone().expect("a non-zero t-free row");
+        let e = reduce_block(&eqs, 4, &[0, 1], &plan).unwrap();
+        let rows: Vec<Vec<Poly<F>>> = plan
+            .pivot_rows
+            .iter()
+            .map(|&r| e.coefficient_matrix[r].clone())
+            .collect();
+        let reduced = reduce_pivot_rows(rows.clone(), &e.equations[..1], &plan.rest_pivots);
+        for (before, after) in rows.iter().zip(&reduced) {
+            assert!(!before[2].coeff(&pivot).is_zero());
+            assert!(after[2].coeff(&pivot).is_zero());
+            assert_eq!(before[..2], after[..2]);
+        }
+        // The minor of the reduced rows is the equation the plan gives, and vanishes at
+        // the solution.
+        let minor = determinant(&reduced, 2);
+        assert_eq!(e.equations[1], minor);
+        assert!(minor.eval(&point[2..]).is_zero());
+        let plain = BlockReduction {
+            rest_pivots: Vec::new(),
+            ..plan.clone()
+        };
+        let unreduced = reduce_block(&eqs, 4, &[0, 1], &plain).unwrap();
+        assert_ne!(unreduced.equations[1], minor);
+        assert!(unreduced.equations[1].eval(&point[2..]).is_zero());
     }
 
     #[test]

@@ -74,6 +74,13 @@ pub struct TemplateOptions {
     /// [`super::reduction`]; every action and basis again) and keep the smaller. On by
     /// default.
     pub reduce_equations: bool,
+    /// Only templates of the equations row-reduced on their data (with
+    /// [`TemplateOptions::reduce_equations`]): the pipeline sets it for systems whose
+    /// equations differ in scale by construction (the minors of an eliminated block whose
+    /// rows were reduced fraction-free, `crate::eliminate::BlockReduction::rest_pivots`,
+    /// carry products of the reduction's pivots in their coefficients); the solver's
+    /// reduction brings every equation to a unit pivot first. Off by default.
+    pub reduced_equations_only: bool,
     /// How a `nonzero` polynomial with constant coefficients is saturated (see
     /// [`PolynomialSaturation`]); both ways, the smaller kept, by default.
     pub polynomial_saturation: PolynomialSaturation,
@@ -108,6 +115,7 @@ impl Default for TemplateOptions {
             redundant_bases: false,
             laurent_actions: false,
             reduce_equations: true,
+            reduced_equations_only: false,
             polynomial_saturation: PolynomialSaturation::Smaller,
             seed: 2024,
             hidden_vars: 0,

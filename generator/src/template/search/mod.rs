@@ -110,8 +110,19 @@ pub(crate) fn best_template_within(
     // `u s - 1` has numeric coefficients and its multiples often fold away: both are
     // searched and the smaller kept. The saturated template's rows refer to the equations
     // before the hidden ones, which keep their indices in `eqs`.
-    let saturated =
-        saturated::saturated_templates(eqs, Some(constants), basis, gb, opts, deadline, &first);
+    // The equations as given, then (when it changes their monomials) their row reduction
+    // on the instance's data: the same ideal, so the same bases and Gröbner basis.
+    let reduction = opts
+        .reduce_equations
+        .then(|| EquationReduction::of(eqs))
+        .flatten();
+    // Equations of very different scales are solved through their reduction only.
+    let as_given = !(opts.reduced_equations_only && reduction.is_some());
+    let saturated = as_given
+        .then(|| {
+            saturated::saturated_templates(eqs, Some(constants), basis, gb, opts, deadline, &first)
+        })
+        .flatten();
     let mut saturated_finalist = None;
     if let Some((b, written, saturated)) =
         saturated.and_then(|(all, written)| choose(&all, opts).map(|b| (b, written, all)))
@@ -125,12 +136,6 @@ pub(crate) fn best_template_within(
         }
         saturated_finalist = Some((b, saturated));
     }
-    // The equations as given, then (when it changes their monomials) their row reduction
-    // on the instance's data: the same ideal, so the same bases and Gröbner basis.
-    let reduction = opts
-        .reduce_equations
-        .then(|| EquationReduction::of(eqs))
-        .flatten();
     let bases = if opts.alternative_bases {
         alternative_bases(eqs, basis, visible, opts, deadline)
     } else {
@@ -208,7 +213,11 @@ pub(crate) fn best_template_within(
         );
         all
     };
-    let mut all = search_all(eqs, Some(constants));
+    let mut all = if as_given {
+        search_all(eqs, Some(constants))
+    } else {
+        Vec::new()
+    };
     let mut reduced_all: PerAction = Vec::new();
     if let Some((red, reduced)) = &reduction {
         reduced_all = search_all(reduced, None);

@@ -152,39 +152,34 @@ fn measure(plan: &SolverPlan) -> (Sample, Option<Sample>) {
         .other_polishing
         .as_ref()
         .filter(|o| comparable && o.newton_steps == COMPARISON_NEWTON_STEPS);
-    let first_failures = report.failures;
-    let polished_failures = polished.map(|o| o.failures);
-    let more = (first_failures == 1 || polished_failures == Some(1))
+    let more = (report.failures == 1 || polished.is_some_and(|o| o.failures == 1))
         .then(|| run(AUTO_POLISH_MORE_INSTANCES, AUTO_POLISH_SEED + 1));
-    let sample = |failures: usize, more_failures: Option<usize>, median, p99| {
-        let (extra_instances, extra_failures) = match (failures == 1, &more) {
-            (true, Some(m)) => (m.instances, more_failures.unwrap_or(usize::MAX)),
-            _ => (0, 0),
-        };
+    // The further instances count only for a sample with exactly one failure of the first.
+    let sample = |failures: usize, median, p99, more: Option<(usize, usize)>| {
+        let (extra_instances, extra_failures) = more.filter(|_| failures == 1).unwrap_or((0, 0));
         Sample {
             instances: report.instances + extra_instances,
             median_log10_residual: median,
             p99_log10_residual: p99,
-            failures: failures.saturating_add(extra_failures),
+            failures: failures + extra_failures,
         }
     };
     let unpolished = sample(
-        first_failures,
-        more.as_ref().map(|m| m.failures),
+        report.failures,
         report.median_log10_residual,
         report.p99_log10_residual,
+        more.as_ref().map(|m| (m.instances, m.failures)),
     );
-    let polished = polished.and_then(|o| {
-        let more_failures = match &more {
-            Some(m) => Some(m.other_polishing.as_ref()?.failures),
-            None => None,
-        };
-        Some(sample(
+    let polished = polished.map(|o| {
+        let more = more
+            .as_ref()
+            .and_then(|m| Some((m.instances, m.other_polishing.as_ref()?.failures)));
+        sample(
             o.failures,
-            more_failures,
             o.median_log10_residual,
             o.p99_log10_residual,
-        ))
+            more,
+        )
     });
     (unpolished, polished)
 }

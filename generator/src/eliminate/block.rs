@@ -192,22 +192,36 @@ fn t_free_rows<C: Ring>(
     e.equations.iter().skip(free).take(n).cloned().collect()
 }
 
-/// The pivots of the fraction-free echelon form of `rows` ([`echelon_step`] in order): each
-/// row's largest monomial (grevlex) once the pivots before it are eliminated, `None` for a
-/// row that vanishes.
+/// The pivots of the fraction-free echelon form of `rows` ([`echelon_form`]): each row's
+/// largest monomial (grevlex) once the pivots before it are eliminated, `None` for a row
+/// that vanishes.
 fn choose_rest_pivots<const P: u32>(rows: &[Poly<Fp<P>>]) -> Vec<Option<Monomial>> {
-    let mut reduced: Vec<(Poly<Fp<P>>, Option<Monomial>)> = Vec::new();
-    for r in rows {
+    echelon_form(rows, |_, t| {
+        t.leading(MonomialOrder::Grevlex).map(|(m, _)| m.clone())
+    })
+    .into_iter()
+    .map(|(_, p)| p)
+    .collect()
+}
+
+/// The fraction-free echelon form of `rows`: each row reduced by the rows before it on
+/// their pivots ([`echelon_step`]), then given its own pivot by `pivot(i, reduced row)`.
+fn echelon_form<C: Ring>(
+    rows: &[Poly<C>],
+    mut pivot: impl FnMut(usize, &Poly<C>) -> Option<Monomial>,
+) -> Vec<(Poly<C>, Option<Monomial>)> {
+    let mut reduced: Vec<(Poly<C>, Option<Monomial>)> = Vec::with_capacity(rows.len());
+    for (i, r) in rows.iter().enumerate() {
         let mut t = r.clone();
-        for (prev, pivot) in &reduced {
-            if let Some(m) = pivot {
+        for (prev, m) in &reduced {
+            if let Some(m) = m {
                 t = echelon_step(&t, prev, m);
             }
         }
-        let pivot = t.leading(MonomialOrder::Grevlex).map(|(m, _)| m.clone());
-        reduced.push((t, pivot));
+        let p = pivot(i, &t);
+        reduced.push((t, p));
     }
-    reduced.into_iter().map(|(_, p)| p).collect()
+    reduced
 }
 
 /// One fraction-free elimination step: `p` times `by`'s coefficient on `m`, minus `by`
@@ -248,20 +262,13 @@ fn reduce_pivot_rows<C: Ring>(
     t_free: &[Poly<C>],
     pivots: &[Option<Monomial>],
 ) -> Vec<Vec<Poly<C>>> {
-    let mut echelon: Vec<(Poly<C>, &Monomial)> = Vec::new();
-    for (t, pivot) in t_free.iter().zip(pivots) {
-        let mut t = t.clone();
-        for (prev, m) in &echelon {
-            t = echelon_step(&t, prev, m);
-        }
-        if let Some(m) = pivot {
-            echelon.push((t, m));
-        }
-    }
+    let echelon = echelon_form(t_free, |i, _| pivots.get(i).cloned().flatten());
     for row in &mut rows {
         let Some(b) = row.last_mut() else { continue };
         for (by, m) in &echelon {
-            *b = echelon_step(b, by, m);
+            if let Some(m) = m {
+                *b = echelon_step(b, by, m);
+            }
         }
     }
     rows

@@ -118,6 +118,10 @@ impl Deadline {
     pub fn elapsed(&self) -> f64 {
         self.started.elapsed().as_secs_f64()
     }
+    /// Seconds left of the wall-clock budget (0 once it has run out).
+    pub fn remaining(&self) -> f64 {
+        (self.budget.max_seconds - self.elapsed()).max(0.0)
+    }
     /// The same start with `fraction` (in `(0, 1]`) of the wall-clock budget: a step that
     /// may stop early without starving the steps after it. Its errors still name the
     /// whole budget (the one a user can raise).

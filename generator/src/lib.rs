@@ -15,6 +15,7 @@
 //! The stages behind them (language, expansion, Gröbner bases, template search, emission,
 //! the interpreter) are private: `ARCHITECTURE.md` §2 describes them.
 
+mod action_accuracy;
 mod algebra;
 mod audit;
 mod budget;
@@ -40,6 +41,7 @@ mod symmetry;
 mod system;
 mod template;
 
+pub use action_accuracy::{ActionAccuracy, ActionTrial, ACCURACY_INSTANCES};
 pub use audit::{
     audit_plan, audit_plan_on, audit_plan_planted, AuditOptions, AuditReport, PlantedStats,
     PolishingStats, MAX_INSTANCES,

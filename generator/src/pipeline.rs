@@ -17,6 +17,7 @@
 //! through [`SolverPlan::equations`], so every consumer sees the same elimination. Writing
 //! files is `crate::build`'s (and the `mingen` binary's).
 
+use crate::action_accuracy::{self, ActionAccuracy};
 use crate::algebra::{Monomial, Poly, Ring};
 use crate::budget::{Deadline, Exhausted};
 use crate::eliminate::{block_reduction, EliminateError};
@@ -146,6 +147,9 @@ pub struct SolverPlan {
     /// When the search grew a redundant basis: whether the plan kept it, by measuring it
     /// against the quotient-basis template it grew from (see [`RedundantCheck`]).
     pub redundant_check: Option<RedundantCheck>,
+    /// When the chosen template's solver failed too often on the plan's sample: the other
+    /// actions' templates compared with it, and which was kept (see [`ActionAccuracy`]).
+    pub action_accuracy: Option<ActionAccuracy>,
 }
 
 /// The share of a plan's wall-clock budget the template search may use (see [`plan`]).
@@ -340,12 +344,13 @@ pub fn plan(
     // template so far when its share of the budget runs out; the steps after it (the
     // fold, the sparse order, the polishing measurement) are not interruptible and keep
     // the rest.
-    let search = |problem: Problem| {
+    let search = |problem: Problem, actions: &ActionChoice| {
         let supports = equation_supports(&problem, options.seed ^ SUPPORT_SEED);
         let options = &TemplateOptions {
             reduced_equations_only: problem
                 .block_reduction()
                 .is_some_and(|b| !b.rest_pivots.is_empty()),
+            actions: actions.clone(),
             ..options.clone()
         };
         let generated = find_template_within(
@@ -355,9 +360,9 @@ pub fn plan(
         );
         (problem, supports, generated)
     };
-    let mut chosen = search(folded);
+    let mut chosen = search(folded, &options.actions);
     if compare {
-        let written = search(unfolded);
+        let written = search(unfolded, &options.actions);
         let area = |g: &Result<Generated, TemplateError>| {
             g.as_ref().ok().map(|g| g.built.template.elimination_area())
         };
@@ -381,6 +386,30 @@ pub fn plan(
             other => other,
         },
     })?;
+    // Only an action the search chose itself is compared with the others.
+    let unchosen = (options.actions == ActionChoice::Auto).then(|| problem.clone());
+    let mut plan = complete_plan(problem, file, supports, generated);
+    if let Some(problem) = unchosen.filter(|_| action_accuracy::needs_comparison(&plan)) {
+        let first_seconds = start.elapsed().as_secs_f64();
+        plan = action_accuracy::choose(plan, &search_deadline, &deadline, first_seconds, |v| {
+            let (problem, supports, generated) =
+                search(problem.clone(), &ActionChoice::Unknowns(vec![v]));
+            Some(complete_plan(problem, file, supports, generated.ok()?))
+        });
+    }
+    plan.seconds = start.elapsed().as_secs_f64();
+    Ok(plan)
+}
+
+/// The plan of a searched template: the redundant basis measured against its quotient
+/// basis ([`crate::redundancy`]), the sparse elimination order, and the polishing unless
+/// the problem's layout sets it ([`crate::polishing`]).
+fn complete_plan(
+    problem: Problem,
+    file: &str,
+    supports: Vec<Vec<Monomial>>,
+    generated: Generated,
+) -> SolverPlan {
     let mut plan = SolverPlan {
         problem,
         file: file.to_string(),
@@ -389,6 +418,7 @@ pub fn plan(
         supports,
         auto_polishing: None,
         redundant_check: None,
+        action_accuracy: None,
     };
     plan.redundant_check = redundancy::choose(&mut plan);
     let template = &mut plan.generated.built.template;
@@ -403,8 +433,7 @@ pub fn plan(
             plan.problem.layout.options.newton = Some(choice.steps);
         }
     }
-    plan.seconds = start.elapsed().as_secs_f64();
-    Ok(plan)
+    plan
 }
 
 impl SolverPlan {
@@ -542,6 +571,7 @@ impl SolverPlan {
                 })),
             },
             "redundant_basis": self.redundant_check.as_ref().map(RedundantCheck::to_json),
+            "action_accuracy": self.action_accuracy.as_ref().map(ActionAccuracy::to_json),
             "spurious_eigenvalues": t.spurious_eigenvalues,
             "per_action": self.generated.per_action.iter().map(|(v, s)| json!({
                 "action": v.display_with(&names),

@@ -66,6 +66,19 @@ pub struct AutoPolishing {
     pub p99_log10_residual: f64,
     /// The failing instances among all `instances`, unpolished.
     pub failures: usize,
+    /// Instances solved with the chosen steps (`instances` when none are chosen): the
+    /// sample's further instances are drawn for each polishing on its own rule.
+    pub chosen_instances: usize,
+    /// The failing instances among `chosen_instances`, polished by the chosen steps.
+    pub chosen_failures: usize,
+}
+
+impl AutoPolishing {
+    /// The failure rate of the plan's sample as its solver returns it (polished by the
+    /// chosen steps).
+    pub fn chosen_failure_rate(&self) -> f64 {
+        self.chosen_failures as f64 / self.chosen_instances.max(1) as f64
+    }
 }
 
 /// Measures `plan`'s template unpolished and chooses the steps (see the module
@@ -79,9 +92,10 @@ pub(crate) fn choose(plan: &mut SolverPlan) -> Option<AutoPolishing> {
     plan.problem.layout.options.newton = Some(0);
     let (unpolished, two_steps) = measure(plan);
     let mut steps = 0;
+    let mut chosen = (unpolished.failures, unpolished.instances);
     if unpolished.median_log10_residual > AUTO_POLISH_MEDIAN || unpolished.fails() {
         // The fewest steps that pass, else those that fail the fewest instances.
-        let mut best: Option<(usize, u32)> = None;
+        let mut best: Option<(usize, u32, usize)> = None;
         let mut two_steps = two_steps;
         for k in AUTO_POLISH_STEP_CHOICES {
             plan.problem.layout.options.newton = Some(k);
@@ -90,14 +104,17 @@ pub(crate) fn choose(plan: &mut SolverPlan) -> Option<AutoPolishing> {
                 _ => measure(plan).0,
             };
             let passes = !polished.fails();
-            if passes || best.map_or(true, |(f, _)| polished.failures < f) {
-                best = Some((polished.failures, k));
+            if passes || best.map_or(true, |(f, _, _)| polished.failures < f) {
+                best = Some((polished.failures, k, polished.instances));
             }
             if passes {
                 break;
             }
         }
-        steps = best.map_or(AUTO_POLISH_STEPS, |(_, k)| k);
+        if let Some((failures, k, instances)) = best {
+            steps = k;
+            chosen = (failures, instances);
+        }
     }
     plan.problem.layout.options.newton = given;
     Some(AutoPolishing {
@@ -106,7 +123,22 @@ pub(crate) fn choose(plan: &mut SolverPlan) -> Option<AutoPolishing> {
         median_log10_residual: unpolished.median_log10_residual,
         p99_log10_residual: unpolished.p99_log10_residual,
         failures: unpolished.failures,
+        chosen_instances: chosen.1,
+        chosen_failures: chosen.0,
     })
+}
+
+/// The failure rate of `plan`'s solver on the plan's sample, polished as its layout says:
+/// read off [`SolverPlan::auto_polishing`] where the plan chose its polishing, measured
+/// otherwise (the file or the command line set it).
+pub(crate) fn failure_rate(plan: &SolverPlan) -> f64 {
+    match &plan.auto_polishing {
+        Some(a) => a.chosen_failure_rate(),
+        None => {
+            let sample = measure(plan).0;
+            sample.failures as f64 / sample.instances.max(1) as f64
+        }
+    }
 }
 
 /// The plan's sample as its solver solves it (polished as its layout says).

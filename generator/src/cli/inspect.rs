@@ -305,6 +305,27 @@ fn print_plan(out: &mut String, plan: &SolverPlan) {
             );
         }
     }
+    if let Some(a) = &plan.action_accuracy {
+        outln!(
+            out,
+            "action by accuracy (the first template's solver failed its polishing sample; failures on {} further instances):",
+            mingen::ACCURACY_INSTANCES
+        );
+        for (k, t) in a.tried.iter().enumerate() {
+            let size = t
+                .size
+                .map_or("no template within the budget".to_string(), |(r, c)| {
+                    format!("{r} x {c}")
+                });
+            let measured = match t.failure_rate {
+                Some(rate) => format!("{:.1} % failures", 100.0 * rate),
+                None if t.size.is_some() => "larger, not measured".to_string(),
+                None => String::new(),
+            };
+            let kept = if k == a.kept { " (kept)" } else { "" };
+            outln!(out, "  {:<6} {size}  {measured}{kept}", t.action);
+        }
+    }
     let steps = plan.problem.layout.options.newton_steps();
     match &plan.auto_polishing {
         Some(a) => outln!(

@@ -55,7 +55,8 @@ pub struct ActionTrial {
     /// The template's eliminated size (`None`: no template within the budget).
     pub size: Option<(usize, usize)>,
     /// The failure rate of its solver on the comparison's instances (`None`: not
-    /// measured, its template is larger than the chosen one or there is none).
+    /// measured: its template is larger than the chosen one or there is none, or, for the
+    /// chosen one, no other was of at most its area).
     pub failure_rate: Option<f64>,
 }
 
@@ -105,11 +106,12 @@ pub(crate) fn choose(
     let names = plan.variable_names();
     let area = template.elimination_area();
     let chosen_action = template.action.single();
-    let rate = measured_failure_rate(&plan, deadline);
+    // The chosen template is solved only once another one is to be compared with it.
+    let mut rate: Option<Option<f64>> = None;
     let mut tried = vec![ActionTrial {
         action: template.action.display_with(&names),
         size: Some(template.eliminated_size()),
-        failure_rate: rate,
+        failure_rate: None,
     }];
     let mut best: Option<(f64, usize, SolverPlan)> = None;
     for v in (0..template.visible_vars()).filter(|&v| Some(v) != chosen_action) {
@@ -127,15 +129,19 @@ pub(crate) fn choose(
         };
         let t = &other.generated.built.template;
         let (other_area, size) = (t.elimination_area(), t.eliminated_size());
-        let other_rate = (other_area <= area)
-            .then(|| measured_failure_rate(&other, deadline))
-            .flatten();
+        let other_rate = if other_area <= area {
+            let first = *rate.get_or_insert_with(|| measured_failure_rate(&plan, deadline));
+            tried[0].failure_rate = first;
+            measured_failure_rate(&other, deadline)
+        } else {
+            None
+        };
         tried.push(ActionTrial {
             action: t.action.display_with(&names),
             size: Some(size),
             failure_rate: other_rate,
         });
-        let to_beat = best.as_ref().map(|b| b.0).or(rate);
+        let to_beat = best.as_ref().map(|b| b.0).or(rate.flatten());
         if let (Some(r), Some(b)) = (other_rate, to_beat) {
             if r < b {
                 best = Some((r, tried.len() - 1, other));

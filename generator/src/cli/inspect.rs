@@ -319,6 +319,7 @@ fn print_plan(out: &mut String, plan: &SolverPlan) {
                 });
             let measured = match t.failure_rate {
                 Some(rate) => format!("{:.1} % failures", 100.0 * rate),
+                None if k == 0 => "not measured: no other template as small".to_string(),
                 None if t.size.is_some() => "larger, not measured".to_string(),
                 None => String::new(),
             };

@@ -61,8 +61,8 @@ fn assert_same_solutions(
 
 #[test]
 fn a_redundant_basis_makes_a_smaller_template_that_finds_every_solution() {
-    let quotient = planned("8ptF_radial_1s", false);
-    let redundant = planned("8ptF_radial_1s", true);
+    let quotient = planned("relpose_6p_rad_1s", false);
+    let redundant = planned("relpose_6p_rad_1s", true);
     let (q, r) = (&quotient.generated, &redundant.generated);
     assert_eq!(q.built.template.spurious_eigenvalues, 0);
     assert!(quotient.redundant_check.is_none());
@@ -130,7 +130,7 @@ fn a_laurent_action_grows_a_basis_the_unknown_cannot() {
 
 #[test]
 fn the_problem_file_option_turns_it_on() {
-    let text = std::fs::read_to_string(benchmark("8ptF_radial_1s")).unwrap();
+    let text = std::fs::read_to_string(benchmark("relpose_6p_rad_1s")).unwrap();
     let on = plan_source(
         &format!("{text}\noption redundant_basis = yes\n"),
         "on.mp",

@@ -19,6 +19,9 @@ pub enum BasisOrder {
     Grevlex(Vec<usize>),
     /// Total degree, then the degree in the variables `set` (larger first), then grevlex.
     DegreeThenSet(u64, bool),
+    /// The degree in one variable first (larger first), then grevlex: the monomials of
+    /// high degree in it are eliminated first, so that the basis is low in it.
+    VariableFirst(usize),
 }
 
 fn key_cmp(o: &BasisOrder, a: &Monomial, b: &Monomial) -> std::cmp::Ordering {
@@ -45,6 +48,11 @@ fn key_cmp(o: &BasisOrder, a: &Monomial, b: &Monomial) -> std::cmp::Ordering {
                 }
             });
             c.then_with(|| MonomialOrder::Grevlex.cmp(a, b))
+        }
+        &BasisOrder::VariableFirst(v) => {
+            let d = |m: &Monomial| m.0.get(v).copied().unwrap_or(0);
+            d(a).cmp(&d(b))
+                .then_with(|| MonomialOrder::Grevlex.cmp(a, b))
         }
     }
 }
@@ -122,7 +130,8 @@ pub(crate) fn select_basis<const P: u32>(
 
 /// The column orders tried by `best_selected`: grevlex under the cyclic rotations of
 /// the variables and of their reversal (2n orders for n variables, the identity first),
-/// without duplicates.
+/// without duplicates, then for each variable its degree first (a basis low in that
+/// variable, as non-standard published bases often are: `{1, x, x^2, x^3} x {1, y}`).
 pub fn basis_orders(nvars: usize) -> Vec<BasisOrder> {
     let mut out: Vec<BasisOrder> = Vec::new();
     for rev in [false, true] {
@@ -143,6 +152,9 @@ pub fn basis_orders(nvars: usize) -> Vec<BasisOrder> {
             }
         }
     }
+    if nvars > 1 {
+        out.extend((0..nvars).map(BasisOrder::VariableFirst));
+    }
     out
 }
 
@@ -161,6 +173,10 @@ impl BasisOrder {
             BasisOrder::DegreeThenSet(mask, larger_first) => format!(
                 "degree, then {} degree in variables {mask:#b} first",
                 if *larger_first { "larger" } else { "smaller" }
+            ),
+            BasisOrder::VariableFirst(v) => format!(
+                "the degree in {} first, then grevlex",
+                names.get(*v).cloned().unwrap_or_else(|| format!("x{v}"))
             ),
         }
     }

@@ -90,17 +90,18 @@ pub(crate) fn needs_comparison(plan: &SolverPlan) -> bool {
     failure_rate(plan) >= AUTO_POLISH_FAILURE_RATE
 }
 
-/// The plan to keep among `plan` and the plans `plan_with(v)` of the other visible
+/// The plan to keep among `plan` and the plans `plan_with(v, area)` of the other visible
 /// unknowns `v` as the action (see the module documentation), with what was compared in
-/// its [`SolverPlan::action_accuracy`]. `search` is the search's share of the budget
-/// (`plan_with` searches on it), `deadline` the whole budget, `first_seconds` what
-/// `plan` took.
+/// its [`SolverPlan::action_accuracy`]. `plan_with` searches on `search`, the search's
+/// share of the budget, and completes the plan only when its template's elimination area
+/// is at most `area` (`Err(size)` otherwise: it is not compared); `deadline` is the whole
+/// budget, `first_seconds` what `plan` took.
 pub(crate) fn choose(
     plan: SolverPlan,
     search: &Deadline,
     deadline: &Deadline,
     first_seconds: f64,
-    mut plan_with: impl FnMut(usize) -> Option<SolverPlan>,
+    mut plan_with: impl FnMut(usize, usize) -> Option<Result<SolverPlan, (usize, usize)>>,
 ) -> SolverPlan {
     let template = &plan.generated.built.template;
     let names = plan.variable_names();
@@ -115,34 +116,36 @@ pub(crate) fn choose(
     }];
     let mut best: Option<(f64, usize, SolverPlan)> = None;
     for v in (0..template.visible_vars()).filter(|&v| Some(v) != chosen_action) {
-        let name = names.get(v).cloned().unwrap_or_else(|| format!("x{v}"));
+        let action = names.get(v).cloned().unwrap_or_else(|| format!("x{v}"));
         let other = (search.remaining() >= first_seconds)
-            .then(|| plan_with(v))
+            .then(|| plan_with(v, area))
             .flatten();
-        let Some(other) = other else {
-            tried.push(ActionTrial {
-                action: name,
-                size: None,
-                failure_rate: None,
-            });
-            continue;
-        };
-        let t = &other.generated.built.template;
-        let (other_area, size) = (t.elimination_area(), t.eliminated_size());
-        let other_rate = if other_area <= area {
-            let first = *rate.get_or_insert_with(|| measured_failure_rate(&plan, deadline));
-            tried[0].failure_rate = first;
-            measured_failure_rate(&other, deadline)
-        } else {
-            None
+        let (size, other, other_rate) = match other {
+            None => (None, None, None),
+            Some(Err(size)) => (Some(size), None, None),
+            Some(Ok(other)) if other.generated.built.template.elimination_area() > area => (
+                Some(other.generated.built.template.eliminated_size()),
+                None,
+                None,
+            ),
+            Some(Ok(other)) => {
+                let first = *rate.get_or_insert_with(|| measured_failure_rate(&plan, deadline));
+                tried[0].failure_rate = first;
+                let r = measured_failure_rate(&other, deadline);
+                (
+                    Some(other.generated.built.template.eliminated_size()),
+                    Some(other),
+                    r,
+                )
+            }
         };
         tried.push(ActionTrial {
-            action: t.action.display_with(&names),
-            size: Some(size),
+            action,
+            size,
             failure_rate: other_rate,
         });
         let to_beat = best.as_ref().map(|b| b.0).or(rate.flatten());
-        if let (Some(r), Some(b)) = (other_rate, to_beat) {
+        if let (Some(r), Some(b), Some(other)) = (other_rate, to_beat, other) {
             if r < b {
                 best = Some((r, tried.len() - 1, other));
             }

@@ -391,11 +391,24 @@ pub fn plan(
     let mut plan = complete_plan(problem, file, supports, generated);
     if let Some(problem) = unchosen.filter(|_| action_accuracy::needs_comparison(&plan)) {
         let first_seconds = start.elapsed().as_secs_f64();
-        plan = action_accuracy::choose(plan, &search_deadline, &deadline, first_seconds, |v| {
-            let (problem, supports, generated) =
-                search(problem.clone(), &ActionChoice::Unknowns(vec![v]));
-            Some(complete_plan(problem, file, supports, generated.ok()?))
-        });
+        plan = action_accuracy::choose(
+            plan,
+            &search_deadline,
+            &deadline,
+            first_seconds,
+            |v, area| {
+                let (problem, supports, generated) =
+                    search(problem.clone(), &ActionChoice::Unknowns(vec![v]));
+                let generated = generated.ok()?;
+                let t = &generated.built.template;
+                // Completing a plan measures it: not for a template that cannot be kept
+                // (the completion never makes it smaller).
+                if t.elimination_area() > area {
+                    return Some(Err(t.eliminated_size()));
+                }
+                Some(Ok(complete_plan(problem, file, supports, generated)))
+            },
+        );
     }
     plan.seconds = start.elapsed().as_secs_f64();
     Ok(plan)

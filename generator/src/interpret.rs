@@ -356,11 +356,15 @@ pub fn solve_template(
     )?;
     let mut solutions = Vec::with_capacity(eigenpairs.len());
     let action = template.action.single();
+    let companion = template.companion_unknown();
     for (lambda, v) in &eigenpairs {
         let mut u = vec![0.0; pairs.len()];
         let action = action.map(|i| (i, *lambda));
         if !mingen_runtime::read_unknowns_with_eigenvalue(v, one, &pairs, action, &mut u) {
             continue;
+        }
+        if let Some(x) = companion {
+            u[x] = *lambda;
         }
         let read = linear.iter().zip(&readouts).all(|(&i, row)| {
             mingen_runtime::read_linear(v, one, row)

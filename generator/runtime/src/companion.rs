@@ -29,9 +29,20 @@ pub(crate) fn companion_eigenpairs<const N: usize>(
             }
         }
     }
-    // Row 0 reads x * x^(N-1) = sum_k m[(0, k)] b_k with b_k = x^(N-1-k): the monic
-    // polynomial x^N - sum_k m[(0, k)] x^(N-1-k), lower coefficients from the constant up.
-    let c: [f64; N] = std::array::from_fn(|j| -m[(0, N - 1 - j)]);
+    closed_form_eigenpairs(&std::array::from_fn(|k| m[(0, k)]))
+}
+
+/// The closed-form path of [`companion_eigenpairs`] on the companion matrix's first row
+/// `row` (`N` of 3 or 4; `None` otherwise and where that function gives `None`).
+fn closed_form_eigenpairs<const N: usize>(
+    row: &[f64; N],
+) -> Option<SolutionSet<(f64, SVector<f64, N>), N>> {
+    if N != 3 && N != 4 {
+        return None;
+    }
+    // Row 0 reads x * x^(N-1) = sum_k row[k] b_k with b_k = x^(N-1-k): the monic
+    // polynomial x^N - sum_k row[k] x^(N-1-k), lower coefficients from the constant up.
+    let c: [f64; N] = std::array::from_fn(|j| -row[N - 1 - j]);
     let mut roots = [0.0f64; N];
     let n = monic_real_roots(&c, &mut roots)?;
     let mut out = SolutionSet::filled_with((0.0, SVector::zeros()));
@@ -44,6 +55,33 @@ pub(crate) fn companion_eigenpairs<const N: usize>(
         out.push((lambda, SVector::from(v)));
     }
     Some(out)
+}
+
+/// The real eigenpairs (eigenvalues increasing, unit eigenvectors) of the companion matrix
+/// whose first row is `row` and whose rows `1..N` shift the basis (`m[(i, i - 1)] = 1`):
+/// the action of `x` on the power basis `[x^(N-1), ..., x, 1]`, whose eigenvalues are the
+/// real roots of `x^N - sum_k row[k] x^(N-1-k)`. For `N` of 3 or 4 the roots come in
+/// closed form with a Newton polish and each eigenvector is the powers of its root,
+/// exactly as [`real_eigenpairs_sturm`](crate::real_eigenpairs_sturm) treats such a
+/// matrix, without building it; otherwise, and where the closed form declines (roots too
+/// close to separate), the matrix goes to `real_eigenpairs_sturm`. The emitted solvers
+/// call it when the template's basis is the power basis of the action's unknown. Never
+/// panics; a non-finite row gives no pairs.
+#[must_use]
+pub fn real_eigenpairs_companion<const N: usize>(
+    row: &[f64; N],
+) -> SolutionSet<(f64, SVector<f64, N>), N> {
+    if let Some(pairs) = closed_form_eigenpairs(row) {
+        return pairs;
+    }
+    let mut m = SMatrix::<f64, N, N>::zeros();
+    for (k, x) in row.iter().enumerate() {
+        m[(0, k)] = *x;
+    }
+    for i in 1..N {
+        m[(i, i - 1)] = 1.0;
+    }
+    crate::real_eigenpairs_sturm(&m)
 }
 
 #[cfg(test)]
@@ -118,6 +156,38 @@ mod tests {
                 .all(|(a, b)| (a - b).abs() < 1e-12),
             "{got:?}"
         );
+    }
+
+    #[test]
+    fn eigenpairs_from_the_first_row_are_those_of_the_matrix() {
+        let mut rng = ChaCha8Rng::seed_from_u64(10);
+        for trial in 0..200 {
+            let r: Vec<f64> = (0..4).map(|_| rng.gen_range(-5.0..5.0)).collect();
+            // Every fifth one with a double root: the closed form declines it, the general
+            // path takes the matrix.
+            let r = if trial % 5 == 0 {
+                vec![r[0], r[0], r[2], r[3]]
+            } else {
+                r
+            };
+            let m = companion::<4>(&r, None);
+            let row: [f64; 4] = std::array::from_fn(|k| m[(0, k)]);
+            let from_row = real_eigenpairs_companion(&row);
+            let from_matrix = crate::real_eigenpairs_sturm(&m);
+            assert_eq!(from_row.len(), from_matrix.len(), "{r:?}");
+            for ((l1, v1), (l2, v2)) in from_row.iter().zip(from_matrix.iter()) {
+                assert_eq!(l1, l2);
+                assert_eq!(v1, v2);
+            }
+        }
+        let m3 = companion::<3>(&[-1.0, 0.5, 2.0], None);
+        let row: [f64; 3] = std::array::from_fn(|k| m3[(0, k)]);
+        assert_eq!(real_eigenpairs_companion(&row).len(), 3);
+        // Sizes without a closed form go to the general path; a non-finite row has none.
+        let m5 = companion::<5>(&[-2.0, -1.0, 0.5, 1.0, 3.0], None);
+        let row: [f64; 5] = std::array::from_fn(|k| m5[(0, k)]);
+        assert_eq!(real_eigenpairs_companion(&row).len(), 5);
+        assert!(real_eigenpairs_companion(&[f64::NAN, 0.0, 1.0, 2.0]).is_empty());
     }
 
     #[test]

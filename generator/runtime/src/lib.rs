@@ -91,6 +91,7 @@ mod sturm_sequence;
 mod triangular_fold;
 
 pub use coefficient_table::{fill_template, zeroed_coefficients};
+pub use companion::real_eigenpairs_companion;
 pub use constant_fold::{fold_constant_rows, ConstantFold};
 pub use distinct::{repeats, DistinctSolutions, DUPLICATE_TOLERANCE};
 pub use dynamic::{real_eigenpairs_dyn, DynEigenpair, MAX_DYNAMIC_BASIS, STURM_MAX_BASIS};

@@ -41,7 +41,19 @@ const CONSISTENT_RESID: f64 = 1e-13;
 ///
 /// `None` if `R < 2`, an entry is not finite, or the rank is below 2.
 /// Never panics, never allocates.
+#[inline]
 pub fn null_vector3<const R: usize>(rows: &[[f64; 3]; R]) -> Option<[f64; 3]> {
+    if let [r0, r1, r2] = rows[..] {
+        if let Some(v) = square_fast_path([r0, r1, r2]) {
+            return Some(v);
+        }
+    }
+    null_vector3_general(rows)
+}
+
+/// [`null_vector3`] without its fast path for square matrices.
+#[inline(never)]
+fn null_vector3_general<const R: usize>(rows: &[[f64; 3]; R]) -> Option<[f64; 3]> {
     let inv = 1.0 / max_abs(rows)?;
     // Scaled once: the fast path alone reads every row three times.
     let scaled_rows: [[f64; 3]; R] = std::array::from_fn(|i| scaled(rows[i], inv));
@@ -55,6 +67,52 @@ pub fn null_vector3_rows(rows: &[[f64; 3]]) -> Option<[f64; 3]> {
     let inv = 1.0 / max_abs(rows)?;
     null_vector3_scaled(rows.len(), |i| scaled(rows[i], inv))
 }
+
+/// The null vector of a 3 x 3 matrix of rank 2 whose rows are consistent, the usual case
+/// at a minimal problem's solutions: of the cross products of two rows, the largest, returned only where the pair is far from parallel (its cross product at
+/// least [`SQUARE_PAIR_TOL`] times `largest^2`, the largest entry squared) and the third
+/// row is orthogonal to it to [`CONSISTENT_RESID`] times the largest entry; `None`
+/// otherwise (a non-finite entry, or the largest entry's fourth power outside the
+/// floating-point range), for the general method to decide.
+/// Without the scaled copy of the rows the general method starts with.
+#[inline(always)]
+fn square_fast_path(rows: [[f64; 3]; 3]) -> Option<[f64; 3]> {
+    let (mut largest, mut sum) = (0.0f64, 0.0f64);
+    for x in rows.as_flattened() {
+        largest = largest.max(x.abs());
+        sum += x.abs();
+    }
+    // A NaN or infinite entry makes the sum non-finite (`max` would skip a NaN).
+    if !sum.is_finite() {
+        return None;
+    }
+    let scale = largest * largest;
+    let floor = SQUARE_PAIR_TOL * scale;
+    let floor = floor * floor;
+    if !(floor > f64::MIN_POSITIVE && scale * scale < f64::MAX) {
+        return None;
+    }
+    let [r0, r1, r2] = rows;
+    let crosses = [cross(r1, r2), cross(r2, r0), cross(r0, r1)];
+    let norms = crosses.map(|c| dot(c, c));
+    let mut k = 0;
+    if norms[1] > norms[k] {
+        k = 1;
+    }
+    if norms[2] > norms[k] {
+        k = 2;
+    }
+    if norms[k] < floor {
+        return None;
+    }
+    // crosses[k] is orthogonal to the two rows other than rows[k].
+    let v = scaled(crosses[k], 1.0 / norms[k].sqrt());
+    (dot(rows[k], v).abs() <= CONSISTENT_RESID * largest).then_some(v)
+}
+
+/// The smallest cross product (relative to the largest entry squared) that
+/// [`square_fast_path`] takes for the null vector of two rows.
+const SQUARE_PAIR_TOL: f64 = 1e-4;
 
 /// Largest `|a_ij|`; `None` if an entry is not finite or every entry is zero.
 fn max_abs(rows: &[[f64; 3]]) -> Option<f64> {
@@ -252,6 +310,39 @@ mod tests {
             let opt = eig.eigenvalues[k];
             assert!(r(v) <= opt * (1.0 + 1e-9) + 1e-15, "{c} {} {}", r(v), opt);
         }
+    }
+
+    #[test]
+    fn square_fast_path_agrees_with_the_general_method() {
+        let mut rng = ChaCha8Rng::seed_from_u64(8);
+        for trial in 0..300 {
+            let t = unit(&mut rng);
+            // Rank 2 at scales from tiny to huge (beyond the fast path's range at the ends).
+            let scale = 10f64.powi(trial % 13 * 50 - 300);
+            let rows: [[f64; 3]; 3] = std::array::from_fn(|_| {
+                let r = unit(&mut rng);
+                let d = dot(r, t);
+                scaled([r[0] - d * t[0], r[1] - d * t[1], r[2] - d * t[2]], scale)
+            });
+            let fast = null_vector3(&rows).unwrap();
+            let general = null_vector3_general(&rows).unwrap();
+            assert!((dot(fast, t).abs() - 1.0).abs() < 1e-12, "{scale:e}");
+            assert!((dot(fast, general).abs() - 1.0).abs() < 1e-12, "{scale:e}");
+        }
+        // Full rank: no exact null vector, the least-squares one (the general method's).
+        let rows = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1e-3]];
+        assert_eq!(square_fast_path(rows), None);
+        assert_eq!(null_vector3(&rows), Some([0.0, 0.0, 1.0]));
+        // Rank 1 and non-finite entries: none.
+        assert_eq!(null_vector3(&[[1.0, 2.0, 3.0]; 3]), None);
+        assert_eq!(
+            null_vector3(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, f64::NAN, 0.0]]),
+            None
+        );
+        assert_eq!(
+            null_vector3(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [f64::INFINITY, 0.0, 0.0]]),
+            None
+        );
     }
 
     #[test]

@@ -81,6 +81,12 @@ pub(crate) fn real_eigenpairs_hqr() -> TokenStream {
     quote!(mingen_runtime::real_eigenpairs_hqr)
 }
 
+/// `real_eigenpairs_companion::<N>(row: &[f64; N])`: the real eigenpairs of the companion
+/// matrix with that first row (closed form for N of 3 or 4).
+pub(crate) fn real_eigenpairs_companion() -> TokenStream {
+    quote!(mingen_runtime::real_eigenpairs_companion)
+}
+
 /// `real_eigenpairs_sturm::<N>`: same signature as `real_eigenpairs` (characteristic
 /// polynomial + Sturm sequences + inverse iteration; faster for small `N`).
 pub(crate) fn real_eigenpairs_sturm() -> TokenStream {

@@ -137,10 +137,18 @@ impl Readout {
         let cols = t.eliminated_size().1;
         let (pivots, nb) = (t.pivot_columns(), t.basis.len());
         let one_l = lit(plan.basis_one);
+        // The unknown of a companion action is its eigenvalue, not a ratio.
+        let companion = t.companion_unknown();
         let pairs: Vec<TokenStream> = plan
             .readout
             .iter()
-            .map(|pairs| {
+            .enumerate()
+            .map(|(i, pairs)| {
+                let pairs = if Some(i) == companion {
+                    &[][..]
+                } else {
+                    &pairs[..]
+                };
                 let ps = pairs.iter().map(|&(j, k)| {
                     let (jl, kl) = (lit(j), lit(k));
                     quote!((#jl, #kl))
@@ -159,7 +167,7 @@ impl Readout {
             .readout
             .iter()
             .enumerate()
-            .filter(|(_, pairs)| pairs.is_empty())
+            .filter(|&(i, pairs)| pairs.is_empty() && Some(i) != companion)
             .map(|(i, _)| {
                 let c = t
                     .eliminated_column(plan.column_of[&Monomial::var(t.nvars, i).mul(&t.unit())])
@@ -173,6 +181,14 @@ impl Readout {
                     }
                 }
             })
+            .collect();
+        let linear_reads = companion
+            .map(|x| {
+                let xl = lit(x);
+                quote!(u[#xl] = *lambda;)
+            })
+            .into_iter()
+            .chain(linear_reads)
             .collect();
         Readout {
             nvars_l: lit(plan.readout.len()),

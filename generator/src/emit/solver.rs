@@ -461,14 +461,24 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     let (units, from_template_loop) = action_matrix_tokens(t, &plan.column_of, cols, pivots, nb);
     let solutions = solution_loop(plan, &coefficients, fill.style)?;
     let elimination = Elimination::new(t);
-    let eig = eigen_function(nb);
+    let (rows_l, cols_l, pivots_l, nb_l) = (lit(rows), lit(cols), lit(pivots), lit(nb));
+    let eigenpairs = match t.companion_unknown() {
+        // The first row is the polynomial's: the rest of `a` serves the observer only.
+        Some(_) if (3..=4).contains(&nb) => {
+            let companion = rt::real_eigenpairs_companion();
+            quote!(#companion::<#nb_l>(&::core::array::from_fn(|k| a[(0, k)])))
+        }
+        _ => {
+            let eig = eigen_function(nb);
+            quote!(#eig::<#nb_l>(&a))
+        }
+    };
     let docs: Vec<TokenStream> = solve_docs(plan, elimination.words)
         .iter()
         .map(doc)
         .collect();
 
     let n_slots_l = lit(n_slots);
-    let (rows_l, cols_l, pivots_l, nb_l) = (lit(rows), lit(cols), lit(pivots), lit(nb));
     let first_row = &elimination.first_row;
     let elimination_items = &elimination.items;
     let reduce = &elimination.reduce;
@@ -520,7 +530,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
             if !stages.action(a.as_slice()) {
                 return out;
             }
-            let pairs = #eig::<#nb_l>(&a);
+            let pairs = #eigenpairs;
             #solutions
             out
         }

@@ -200,6 +200,23 @@ impl EliminationTemplate {
     pub fn unit(&self) -> Monomial {
         basis_unit(&self.basis).unwrap_or_else(|| Monomial::one(self.nvars))
     }
+    /// The action's unknown `x` when the basis is its power basis `[x^(n-1), ..., x, 1]`
+    /// in that order: the action matrix is then the companion matrix of the univariate
+    /// polynomial of `x` the template's first reduced row holds (rows `1..n` shift the
+    /// basis), its eigenvalues are the values of `x` at the solutions, and its eigenvectors
+    /// the powers of each. The solvers take `x` from the eigenvalue then, not from
+    /// eigenvector ratios, and the emitted ones solve the polynomial without building a
+    /// general eigenproblem (`mingen_runtime::real_eigenpairs_companion`). `None` otherwise.
+    pub fn companion_unknown(&self) -> Option<usize> {
+        let x = self.action.single()?;
+        let n = self.basis.len();
+        let powers = self.basis.iter().enumerate().all(|(j, b)| {
+            b.0.iter()
+                .enumerate()
+                .all(|(i, &e)| e as usize == if i == x { n - 1 - j } else { 0 })
+        });
+        (n > 0 && powers).then_some(x)
+    }
     /// Number of variables read off the eigenvectors (all but the hidden ones).
     pub fn visible_vars(&self) -> usize {
         self.nvars - self.n_hidden.min(self.nvars)

@@ -76,7 +76,14 @@ pub(crate) fn monic_real_roots<const N: usize>(
             return None;
         }
     }
-    found.sort_by(f64::total_cmp);
+    // At most four finite values: an insertion sort without the generic sort's machinery.
+    for i in 1..found.len() {
+        let mut j = i;
+        while j > 0 && found[j - 1] > found[j] {
+            found.swap(j - 1, j);
+            j -= 1;
+        }
+    }
     let scale = found.iter().fold(1.0f64, |s, x| s.max(x.abs()));
     if found.windows(2).any(|w| w[1] - w[0] <= SEPARATION * scale) {
         return None;

@@ -71,7 +71,7 @@ pub fn null_vector3_rows(rows: &[[f64; 3]]) -> Option<[f64; 3]> {
 /// The null vector of a 3 x 3 matrix of rank 2 whose rows are consistent, the usual case
 /// at a minimal problem's solutions: of the cross products of two rows, the largest, returned only where the pair is far from parallel (its cross product at
 /// least [`SQUARE_PAIR_TOL`] times `largest^2`, the largest entry squared) and the third
-/// row is orthogonal to it to [`CONSISTENT_RESID`] times the largest entry; `None`
+/// row is orthogonal to it to [`SQUARE_CONSISTENT_RESID`] times the largest entry; `None`
 /// otherwise (a non-finite entry, or the largest entry's fourth power outside the
 /// floating-point range), for the general method to decide.
 /// Without the scaled copy of the rows the general method starts with.
@@ -107,12 +107,21 @@ fn square_fast_path(rows: [[f64; 3]; 3]) -> Option<[f64; 3]> {
     }
     // crosses[k] is orthogonal to the two rows other than rows[k].
     let v = scaled(crosses[k], 1.0 / norms[k].sqrt());
-    (dot(rows[k], v).abs() <= CONSISTENT_RESID * largest).then_some(v)
+    (dot(rows[k], v).abs() <= SQUARE_CONSISTENT_RESID * largest).then_some(v)
 }
 
 /// The smallest cross product (relative to the largest entry squared) that
 /// [`square_fast_path`] takes for the null vector of two rows.
 const SQUARE_PAIR_TOL: f64 = 1e-4;
+
+/// The largest residual of the third row (relative to the largest entry) with which
+/// [`square_fast_path`] takes the cross product of the other two. Looser than
+/// [`CONSISTENT_RESID`]: a square matrix evaluated at an approximate root is as
+/// inconsistent as the root is inaccurate, and the least-squares null vector is then no
+/// nearer the exact one than the cross product (both are off by the rows' error over the
+/// second singular value); what the check keeps from the fast path is a matrix of full
+/// rank, whose least-squares vector is the meaningful answer.
+const SQUARE_CONSISTENT_RESID: f64 = 1e-10;
 
 /// Largest `|a_ij|`; `None` if an entry is not finite or every entry is zero.
 fn max_abs(rows: &[[f64; 3]]) -> Option<f64> {

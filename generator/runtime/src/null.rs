@@ -64,6 +64,11 @@ fn null_vector3_general<const R: usize>(rows: &[[f64; 3]; R]) -> Option<[f64; 3]
 /// matrices whose size is known at run time only): the same algorithm and the same
 /// result, the rows scaled as they are read instead of copied. Never allocates.
 pub fn null_vector3_rows(rows: &[[f64; 3]]) -> Option<[f64; 3]> {
+    if let [r0, r1, r2] = rows[..] {
+        if let Some(v) = square_fast_path([r0, r1, r2]) {
+            return Some(v);
+        }
+    }
     let inv = 1.0 / max_abs(rows)?;
     null_vector3_scaled(rows.len(), |i| scaled(rows[i], inv))
 }
@@ -334,6 +339,7 @@ mod tests {
                 scaled([r[0] - d * t[0], r[1] - d * t[1], r[2] - d * t[2]], scale)
             });
             let fast = null_vector3(&rows).unwrap();
+            assert_eq!(null_vector3_rows(&rows), Some(fast));
             let general = null_vector3_general(&rows).unwrap();
             assert!((dot(fast, t).abs() - 1.0).abs() < 1e-12, "{scale:e}");
             assert!((dot(fast, general).abs() - 1.0).abs() < 1e-12, "{scale:e}");

@@ -211,8 +211,14 @@ pub(super) fn fill_tokens(plan: &Plan, coefficients: &mut Coefficients) -> Resul
         )
     };
     if let Some(red) = &t.reduction {
-        let (items, reduce) =
-            super::reduction::reduce_and_fill_tokens(t, red, &plan.column_of, cols, &alloc)?;
+        let (items, reduce) = super::reduction::reduce_and_fill_tokens(
+            t,
+            red,
+            &plan.column_of,
+            cols,
+            &alloc,
+            !table_form,
+        )?;
         functions.extend(items);
         code.extend(reduce);
     } else if let Some(f) = &t.fold {

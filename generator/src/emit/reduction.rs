@@ -71,15 +71,25 @@ pub(super) fn equation_entries(
     Ok((pos, vals))
 }
 
+/// The most template entries the inline form fills from `q` by one assignment each
+/// rather than through the constant table: straight-line copies with constant indices
+/// cost a move each, the table's loop several instructions more per entry, while the
+/// compile time stays small.
+pub const STRAIGHT_LINE_FILL_MAX_ENTRIES: usize = 1024;
+
 /// The items (pivot constant, fill table) and the code in `solve` after `q` is filled:
-/// the reduction, the allocation of the template `m` (`alloc_m`) and its fill from `q`.
-/// `column_of` maps monomials to template columns; `cols` is the eliminated width.
+/// the reduction, the allocation of the template `m` (`alloc_m`) and its fill from `q`
+/// (written out as assignments when `inline` and at most
+/// [`STRAIGHT_LINE_FILL_MAX_ENTRIES`], else by `mingen_runtime::fill_template` and a
+/// constant table). `column_of` maps monomials to template columns; `cols` is the
+/// eliminated width.
 pub(super) fn reduce_and_fill_tokens(
     t: &EliminationTemplate,
     red: &EquationReduction,
     column_of: &HashMap<Monomial, usize>,
     cols: usize,
     alloc_m: &TokenStream,
+    inline: bool,
 ) -> Result<(TokenStream, TokenStream), EmitError> {
     let n = red.monomials.len();
     let mut table: Vec<(u32, u32)> = Vec::new();
@@ -114,18 +124,39 @@ pub(super) fn reduce_and_fill_tokens(
         }
     }
     table.sort_unstable();
+    let pivots = red.pivots.iter().map(|&p| lit(p));
+    let (n_eq, n_l) = (lit(red.len()), lit(n));
+    let reduce = rt::reduce_equations();
+    let pivot_item = quote! {
+        /// The pivot of each reduced equation: a column of the equations' coefficient
+        /// matrix `q` (one column per monomial of the equations).
+        pub const EQUATION_PIVOTS: [usize; #n_eq] = [#(#pivots),*];
+    };
+    if inline && table.len() <= STRAIGHT_LINE_FILL_MAX_ENTRIES {
+        // Codes are 2 k (never negated here): `m[entry] = q[k]`.
+        let fills = table.iter().map(|&(p, code)| {
+            let (p, k) = (lit(p as usize), lit((code >> 1) as usize));
+            quote!(m[#p] = q[#k];)
+        });
+        return Ok((
+            pivot_item,
+            quote! {
+                if !#reduce::<#n_eq, #n_l>(&mut q[..], &EQUATION_PIVOTS) {
+                    return out;
+                }
+                #alloc_m
+                #(#fills)*
+            },
+        ));
+    }
     let entries = table.iter().map(|&(p, code)| {
         let (p, code) = (Literal::u32_unsuffixed(p), Literal::u32_unsuffixed(code));
         quote!([#p, #code])
     });
-    let pivots = red.pivots.iter().map(|&p| lit(p));
-    let (n_eq, n_l, n_fill) = (lit(red.len()), lit(n), lit(table.len()));
-    let (reduce, fill) = (rt::reduce_equations(), rt::fill_template());
+    let (n_fill, fill) = (lit(table.len()), rt::fill_template());
     Ok((
         quote! {
-            /// The pivot of each reduced equation: a column of the equations' coefficient
-            /// matrix `q` (one column per monomial of the equations).
-            pub const EQUATION_PIVOTS: [usize; #n_eq] = [#(#pivots),*];
+            #pivot_item
             /// The template's nonzero entries from the reduced equations: `[entry, 2 k]`,
             /// the entry (row-major) and the entry `q[k]` of the reduced coefficient matrix
             /// it holds.

@@ -283,7 +283,9 @@ pub fn action_matrix_and_readouts(
 /// The read-out pairs of every unknown (see [`mingen_runtime::read_unknowns`]): for each
 /// variable `x_i` in the basis, all pairs `(j, k)` of basis indices with `basis[k] = x_i *
 /// basis[j]`, the pair `(1, x_i)` first, then by increasing `j`; none for a variable
-/// outside the basis (read off its reduced row instead). Errors if the basis lacks `1`.
+/// outside the basis (read off its reduced row instead) and none for the unknown of a
+/// companion action ([`EliminationTemplate::companion_unknown`]), which is the
+/// eigenvalue. Errors if the basis lacks `1`.
 pub fn readout_pairs(
     template: &EliminationTemplate,
 ) -> Result<Vec<Vec<(usize, usize)>>, InterpretError> {
@@ -297,8 +299,12 @@ pub fn readout_pairs(
     };
     let unit = template.unit();
     let one = find(&unit)?;
+    let companion = template.companion_unknown();
     (0..template.visible_vars())
         .map(|i| {
+            if Some(i) == companion {
+                return Ok(Vec::new());
+            }
             let x = Monomial::var(n, i);
             let Some(xk) = template.basis.iter().position(|b| *b == x.mul(&unit)) else {
                 return Ok(Vec::new());
@@ -346,7 +352,10 @@ pub fn solve_template(
         .position(|b| *b == unit)
         .ok_or_else(|| InterpretError::MissingReadout("1".into()))?;
     let (a, readouts) = action_matrix_and_readouts(template, equations)?;
-    let linear: Vec<usize> = (0..pairs.len()).filter(|&i| pairs[i].is_empty()).collect();
+    let companion = template.companion_unknown();
+    let linear: Vec<usize> = (0..pairs.len())
+        .filter(|&i| pairs[i].is_empty() && Some(i) != companion)
+        .collect();
     let n = a.nrows();
     let eigenpairs = mingen_runtime::real_eigenpairs_dyn(a.as_slice(), n).ok_or(
         InterpretError::ActionTooLarge {
@@ -356,7 +365,6 @@ pub fn solve_template(
     )?;
     let mut solutions = Vec::with_capacity(eigenpairs.len());
     let action = template.action.single();
-    let companion = template.companion_unknown();
     for (lambda, v) in &eigenpairs {
         let mut u = vec![0.0; pairs.len()];
         let action = action.map(|i| (i, *lambda));

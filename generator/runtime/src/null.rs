@@ -35,9 +35,11 @@ const CONSISTENT_RESID: f64 = 1e-13;
 /// rank 2 — and, for `n > 2`, the eigenvector of the smallest eigenvalue of `A^T A`
 /// (closed-form 3x3 symmetric eigenvalue, then the best cross product of the rows of
 /// `A^T A - lambda I`); the candidate with the smaller `|A v|` wins (evaluated on the rows,
-/// not on `A^T A`, so noise-free inputs keep their full accuracy). Shortcuts: the cross
-/// product of the two longest rows (when they are far from parallel), then the best pair,
-/// are returned as soon as `|A v| <= 1e-13` (scaled rows).
+/// not on `A^T A`, so noise-free inputs keep their full accuracy). Shortcuts: for three
+/// rows, the largest cross product of two of them when the third agrees to 1e-10
+/// (`square_fast_path`); otherwise the cross product of the two longest rows (when they
+/// are far from parallel), then the best pair, are returned as soon as `|A v| <= 1e-13`
+/// (scaled rows).
 ///
 /// `None` if `R < 2`, an entry is not finite, or the rank is below 2.
 /// Never panics, never allocates.
@@ -74,12 +76,13 @@ pub fn null_vector3_rows(rows: &[[f64; 3]]) -> Option<[f64; 3]> {
 }
 
 /// The null vector of a 3 x 3 matrix of rank 2 whose rows are consistent, the usual case
-/// at a minimal problem's solutions: of the cross products of two rows, the largest, returned only where the pair is far from parallel (its cross product at
-/// least [`SQUARE_PAIR_TOL`] times `largest^2`, the largest entry squared) and the third
-/// row is orthogonal to it to [`SQUARE_CONSISTENT_RESID`] times the largest entry; `None`
-/// otherwise (a non-finite entry, or the largest entry's fourth power outside the
-/// floating-point range), for the general method to decide.
-/// Without the scaled copy of the rows the general method starts with.
+/// at a minimal problem's solutions: the largest of the cross products of two rows,
+/// returned only where the pair is far from parallel (its cross product at least
+/// [`SQUARE_PAIR_TOL`] times the largest entry squared) and the third row is orthogonal to
+/// it to [`SQUARE_CONSISTENT_RESID`] times the largest entry; `None` otherwise (a
+/// non-finite entry, or the largest entry's fourth power outside the floating-point
+/// range), for the general method to decide. Without the general method's scaled copy of
+/// the rows.
 #[inline(always)]
 fn square_fast_path(rows: [[f64; 3]; 3]) -> Option<[f64; 3]> {
     let (mut largest, mut sum) = (0.0f64, 0.0f64);

@@ -137,18 +137,12 @@ impl Readout {
         let cols = t.eliminated_size().1;
         let (pivots, nb) = (t.pivot_columns(), t.basis.len());
         let one_l = lit(plan.basis_one);
-        // The unknown of a companion action is its eigenvalue, not a ratio.
+        // The unknown of a companion action is its eigenvalue (no read-out pairs).
         let companion = t.companion_unknown();
         let pairs: Vec<TokenStream> = plan
             .readout
             .iter()
-            .enumerate()
-            .map(|(i, pairs)| {
-                let pairs = if Some(i) == companion {
-                    &[][..]
-                } else {
-                    &pairs[..]
-                };
+            .map(|pairs| {
                 let ps = pairs.iter().map(|&(j, k)| {
                     let (jl, kl) = (lit(j), lit(k));
                     quote!((#jl, #kl))

@@ -41,7 +41,8 @@ pub(super) struct Plan<'a> {
     pub(super) basis_one: usize,
     /// Read-out pairs `(j, k)`, `basis[k] = x_i * basis[j]`, of each template variable
     /// (`interpret::readout_pairs`); none for a variable outside the basis, which is read
-    /// off its reduced template row (the linear read-out).
+    /// off its reduced template row (the linear read-out), and none for a companion
+    /// action's unknown, the eigenvalue.
     pub(super) readout: Vec<Vec<(usize, usize)>>,
 }
 

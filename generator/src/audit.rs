@@ -6,8 +6,8 @@
 use crate::algebra::Poly;
 use crate::instance::random_data_f64;
 use crate::interpret::{
-    newton_polish_polys, normalized_residual, recover_eliminated, screen_redundant_readout_polys,
-    solve_template,
+    newton_polish_polys, normalized_residual, polish_poor_solution_polys, recover_eliminated,
+    screen_redundant_readout_polys, solve_template,
 };
 use crate::pipeline::SolverPlan;
 use crate::template::EliminationTemplate;
@@ -81,6 +81,12 @@ pub struct AuditInstance {
     pub eliminated: Option<EliminatedUnknowns>,
     /// Gauss-Newton steps polishing each solution on `original` (`option newton`).
     pub newton_steps: usize,
+    /// Polish only a solution whose worst relative residual is above
+    /// [`mingen_runtime::POOR_SOLUTION_RESIDUAL`], by
+    /// [`mingen_runtime::POOR_SOLUTION_STEPS`] steps, as a solver whose plan chose not to
+    /// polish every solution does ([`SolverPlan::polishes_poor_solutions_only`];
+    /// `newton_steps` is then 0).
+    pub poor_only: bool,
     /// A known solution of this instance (all original unknowns, in declaration order),
     /// e.g. the geometry a simulator planted: the audit then reports how accurately the
     /// closest returned solution recovers it ([`PlantedStats`]).
@@ -396,8 +402,13 @@ impl Tally {
             newton_polish_polys(&inst.original, &mut full, inst.newton_steps);
             r
         } else {
+            // The comparison polishes every solution of a solver that polishes its poor
+            // ones only, too.
             let mut polished = full.clone();
             newton_polish_polys(&inst.original, &mut polished, COMPARISON_NEWTON_STEPS);
+            if inst.poor_only {
+                polish_poor_solution_polys(&inst.original, &mut full);
+            }
             residual(&polished)
         };
         if reject_spurious && positive_before && !self.distinct(&full) {
@@ -765,6 +776,7 @@ fn plan_instance(plan: &SolverPlan, data: &[f64]) -> AuditInstance {
             inhomogeneous: e.inhomogeneous,
         }),
         newton_steps: plan.problem.layout.options.newton_steps() as usize,
+        poor_only: plan.polishes_poor_solutions_only(),
         planted: None,
         positive: plan.problem.layout.positive.clone(),
         sign_folds: plan.problem.sign_folds().to_vec(),

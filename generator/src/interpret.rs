@@ -409,6 +409,16 @@ pub fn newton_polish_polys(equations: &[Poly<f64>], x: &mut [f64], steps: usize)
     .unwrap_or(0)
 }
 
+/// Polishes `x` as a solver that polishes its poor solutions only does
+/// ([`mingen_runtime::polish_poor_solution`], on `equations` as [`newton_polish_polys`]
+/// takes them). Returns the steps taken (0 if an exponent exceeds 255).
+pub fn polish_poor_solution_polys(equations: &[Poly<f64>], x: &mut [f64]) -> usize {
+    with_newton_terms(equations, x.len(), |terms, coefficients| {
+        mingen_runtime::polish_poor_solution(x, terms, coefficients)
+    })
+    .unwrap_or(0)
+}
+
 /// Whether `x`, read off a redundant basis, is a solution of `equations` (as
 /// [`newton_polish_polys`] takes them), by [`mingen_runtime::screen_redundant_readout`] as
 /// an emitted solver decides; a rescued `x` is left polished. `false` if an exponent

@@ -526,6 +526,16 @@ impl SolverPlan {
         Some(clauses.join("; "))
     }
 
+    /// Whether the solver polishes its poor solutions only: the plan chose its polishing
+    /// ([`SolverPlan::auto_polishing`]) and chose no steps for every solution, so a
+    /// solution whose worst relative residual is above
+    /// [`mingen_runtime::POOR_SOLUTION_RESIDUAL`] (a poorly conditioned instance) is given
+    /// [`mingen_runtime::POOR_SOLUTION_STEPS`] Gauss-Newton steps and the others none.
+    /// `false` where `option newton` (or `--newton`) set the steps, 0 included.
+    pub fn polishes_poor_solutions_only(&self) -> bool {
+        self.auto_polishing.as_ref().is_some_and(|a| a.steps == 0)
+    }
+
     /// The number of declared (not hidden) unknowns: the first variables of every system.
     pub fn visible_unknowns(&self) -> usize {
         let layout = &self.problem.layout;
@@ -716,10 +726,16 @@ pub fn emit_plan_in(
     let data = tracer.inputs(layout.data_slot_count());
     let (equations, elimination) = plan.equations(&data);
     let reject_spurious = plan.generated.built.template.spurious_eigenvalues > 0;
+    let poor_only = plan.polishes_poor_solutions_only();
     let polish = match layout.options.newton_steps() {
-        0 if !reject_spurious => None,
+        0 if !reject_spurious && !poor_only => None,
         steps => Some(PolishSpec {
-            steps: steps as usize,
+            steps: if poor_only {
+                mingen_runtime::POOR_SOLUTION_STEPS
+            } else {
+                steps as usize
+            },
+            poor_only,
             reject_spurious,
             equations: plan.visible_equations(&data),
             unknowns: plan.visible_unknowns(),

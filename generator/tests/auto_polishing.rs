@@ -46,6 +46,9 @@ fn assert_consistent(plan: &SolverPlan) {
         a.steps > 0
     );
     assert_eq!(source.contains("newton_polish"), a.steps > 0);
+    // No steps for every solution: the poor ones are still polished.
+    assert_eq!(plan.polishes_poor_solutions_only(), a.steps == 0);
+    assert_eq!(source.contains("polish_poor_solution"), a.steps == 0);
 }
 
 #[test]
@@ -68,6 +71,17 @@ fn the_file_and_the_command_line_override_the_choice() {
     .unwrap();
     assert_eq!(from_file.auto_polishing, None);
     assert_eq!(from_file.problem.layout.options.newton_steps(), 3);
+    // `option newton = 0` turns polishing off, the poor solutions' included.
+    let off = plan_source(
+        &format!("{CIRCLE_HYPERBOLA}option newton = 0\n"),
+        "c.mp",
+        &TemplateOptions::default(),
+    )
+    .unwrap();
+    assert!(!off.polishes_poor_solutions_only());
+    let source = emit_plan_from(&off, "t.mp").unwrap();
+    assert!(!source.contains("newton_polish"));
+    assert!(!source.contains("polish_poor_solution"));
     let opts = TemplateOptions {
         overrides: ProblemOptions {
             newton: Some(1),

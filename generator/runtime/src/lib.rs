@@ -50,7 +50,9 @@
 //!   unknowns such as a translation direction).
 //! - [`read_unknowns`]: the unknowns read off an eigenvector of the action matrix.
 //! - [`newton_polish`] / [`newton_polish_with`]: Gauss-Newton polishing of a solution on the original equations
-//!   (`option newton`); [`worst_relative_residual`] and [`screen_redundant_readout`]: a
+//!   (`option newton`); [`polish_poor_solution`] / [`polish_poor_solution_with`]: the
+//!   same for a solution whose residual is poor only (solvers that do not polish every
+//!   solution); [`worst_relative_residual`] and [`screen_redundant_readout`]: a
 //!   read-out's residual, and whether a read-out of a redundant basis is a solution (its
 //!   action matrix has spurious eigenvalues); [`DistinctSolutions`]: drops a solution that
 //!   repeats one kept before it.
@@ -101,9 +103,10 @@ pub use equation_reduction::{reduce_equations, reduce_equations_fixed};
 pub use hqr::{real_eigenpairs_hqr, real_eigenpairs_hqr_dyn};
 pub use least_squares::{least_squares_dyn, LeastSquares};
 pub use newton::{
-    newton_polish, newton_polish_with, screen_redundant_readout, screen_redundant_readout_with,
-    worst_relative_residual, NewtonTerm, AT_ROUNDING_LEVEL, MAX_NEWTON_UNKNOWNS,
-    MAX_TABULATED_POWER, RESCUED_RESIDUAL, SPURIOUS_RESCUE, SPURIOUS_RESCUE_STEPS,
+    newton_polish, newton_polish_with, polish_poor_solution, polish_poor_solution_with,
+    screen_redundant_readout, screen_redundant_readout_with, worst_relative_residual, NewtonTerm,
+    AT_ROUNDING_LEVEL, MAX_NEWTON_UNKNOWNS, MAX_TABULATED_POWER, POOR_SOLUTION_RESIDUAL,
+    POOR_SOLUTION_STEPS, RESCUED_RESIDUAL, SPURIOUS_RESCUE, SPURIOUS_RESCUE_STEPS,
     SPURIOUS_RESIDUAL,
 };
 pub use null::{null_vector3, null_vector3_rows};

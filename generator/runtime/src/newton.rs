@@ -246,6 +246,86 @@ fn screen(
     }
 }
 
+/// The worst relative residual above which a solution is poor: a solver whose solutions
+/// are not all polished (the plan found its template accurate, `option newton` not given)
+/// still gives a poor one [`POOR_SOLUTION_STEPS`] Gauss-Newton steps
+/// ([`polish_poor_solution`]). A solution from a well-conditioned elimination is near the
+/// rounding level, orders of magnitude below; a poorly conditioned instance (a near-
+/// degenerate configuration, a solution far from the origin) gives one that is accurate
+/// to a few digits only, which one or two steps bring to rounding level. Checking costs
+/// one evaluation of the equations per solution.
+pub const POOR_SOLUTION_RESIDUAL: f64 = 1e-10;
+
+/// Gauss-Newton steps of [`polish_poor_solution`].
+pub const POOR_SOLUTION_STEPS: usize = 2;
+
+/// Polishes `x` by up to [`POOR_SOLUTION_STEPS`] Gauss-Newton steps ([`newton_polish`])
+/// if its worst relative residual ([`worst_relative_residual`]) is above
+/// [`POOR_SOLUTION_RESIDUAL`] (or cannot be evaluated; more than [`MAX_NEWTON_UNKNOWNS`]
+/// unknowns: nothing is done); returns the steps taken. Never
+/// makes `x` worse, never panics, never allocates.
+pub fn polish_poor_solution(
+    x: &mut [f64],
+    equations: &[&[NewtonTerm<'_>]],
+    coefficients: &[f64],
+) -> usize {
+    let poor = match x.len() {
+        0..=3 => is_poor(evaluate_table::<3>(x, equations, coefficients)),
+        4..=6 => is_poor(evaluate_table::<6>(x, equations, coefficients)),
+        7..=12 => is_poor(evaluate_table::<12>(x, equations, coefficients)),
+        _ => is_poor(evaluate_table::<MAX_NEWTON_UNKNOWNS>(
+            x,
+            equations,
+            coefficients,
+        )),
+    };
+    match poor {
+        true => newton_polish(x, equations, coefficients, POOR_SOLUTION_STEPS),
+        false => 0,
+    }
+}
+
+/// [`polish_poor_solution`] on equations given as code, as [`newton_polish_with`] takes
+/// them: the same test and the same bits.
+pub fn polish_poor_solution_with<const N: usize, const E: usize>(
+    x: &mut [f64; N],
+    values: impl Fn(&[f64; N], &mut [f64; E], &mut [f64; E]),
+    jacobian: impl Fn(&[f64; N], &mut [f64; E], &mut [[f64; N]; E]),
+) -> usize {
+    match is_poor(evaluate(&values, x)) {
+        true => newton_polish_with(x, POOR_SOLUTION_STEPS, values, jacobian),
+        false => 0,
+    }
+}
+
+/// Whether some equation's `(value, magnitude)` has `|f| > POOR_SOLUTION_RESIDUAL ·
+/// magnitude` (or is malformed or not finite): the worst relative residual above
+/// [`POOR_SOLUTION_RESIDUAL`], without a division per equation.
+#[inline(always)]
+fn is_poor(values: impl IntoIterator<Item = Option<(f64, f64)>>) -> bool {
+    values.into_iter().any(|v| {
+        v.map_or(true, |(f, magnitude)| {
+            // NaN is poor too.
+            f.abs()
+                .partial_cmp(&(POOR_SOLUTION_RESIDUAL * magnitude))
+                .map_or(true, |o| o.is_gt())
+        })
+    })
+}
+
+/// Each equation's `(value, magnitude)` from the term tables, for `M >= x.len()` unknowns
+/// (`None` items for a malformed term; a term-free system has none).
+fn evaluate_table<'a, const M: usize>(
+    x: &'a [f64],
+    equations: &'a [&'a [NewtonTerm<'a>]],
+    coefficients: &'a [f64],
+) -> impl Iterator<Item = Option<(f64, f64)>> + 'a {
+    let powers = (x.len() <= M).then(|| Powers::<M>::new(x));
+    equations
+        .iter()
+        .map(move |eq| value(eq, coefficients, powers.as_ref()?))
+}
+
 /// The worst relative residual `|f_i(x)| / Σ_terms |c x^e|` over the equations (0 for an
 /// equation whose terms all vanish at `x`), as the audit measures solutions; `None` for a
 /// malformed term, too many unknowns ([`MAX_NEWTON_UNKNOWNS`]) or a non-finite value.
@@ -585,6 +665,18 @@ mod tests {
             );
             assert_eq!(a, b, "from {start:?}");
         }
+        // Polishing of poor solutions only: the same test and steps.
+        for start in [
+            [1.0 + 1e-12, 1.0],
+            [1.0 + 1e-6, 1.0 - 1e-6],
+            [1.3, 0.8],
+            [f64::NAN, 1.0],
+        ] {
+            let (mut a, mut b) = (start, start);
+            let steps = polish_poor_solution(&mut a, &eqs, &c);
+            assert_eq!(polish_poor_solution_with(&mut b, values, jacobian), steps);
+            assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits), "from {start:?}");
+        }
     }
 
     #[test]
@@ -638,6 +730,38 @@ mod tests {
         let mut x = [2.0, 1.0];
         assert!(!screen_redundant_readout(&mut x, &eqs, &c));
         assert_eq!(x, [2.0, 1.0]);
+    }
+
+    #[test]
+    fn polishes_poor_solutions_only() {
+        let (eqs, c) = system();
+        let eqs: Vec<&[NewtonTerm]> = eqs.iter().map(Vec::as_slice).collect();
+        // Off by 1e-12: a relative residual near 1e-12, not poor; left as it is although
+        // not at rounding level (where `newton_polish` would step).
+        let good = [1.0 + 1e-12, 1.0];
+        let r = worst_relative_residual(&good, &eqs, &c).unwrap();
+        assert!(
+            r > 10.0 * AT_ROUNDING_LEVEL && r < POOR_SOLUTION_RESIDUAL,
+            "{r}"
+        );
+        let mut x = good;
+        assert_eq!(polish_poor_solution(&mut x, &eqs, &c), 0);
+        assert_eq!(x, good);
+        // Off by 1e-6: poor; polished to the root within its steps.
+        let mut x = [1.0 + 1e-6, 1.0 - 1e-6];
+        assert!(worst_relative_residual(&x, &eqs, &c).unwrap() > POOR_SOLUTION_RESIDUAL);
+        let steps = polish_poor_solution(&mut x, &eqs, &c);
+        assert!((1..=POOR_SOLUTION_STEPS).contains(&steps), "{steps}");
+        assert!(
+            worst_relative_residual(&x, &eqs, &c).unwrap() < 1e-14,
+            "{x:?}"
+        );
+        // Non-finite input and too many unknowns: untouched.
+        let mut x = [f64::NAN, 1.0];
+        assert_eq!(polish_poor_solution(&mut x, &eqs, &c), 0);
+        let mut x = [0.5; 25];
+        assert_eq!(polish_poor_solution(&mut x, &eqs, &c), 0);
+        assert_eq!(x, [0.5; 25]);
     }
 
     #[test]

@@ -327,18 +327,28 @@ fn print_plan(out: &mut String, plan: &SolverPlan) {
             outln!(out, "  {:<6} {size}  {measured}{kept}", t.action);
         }
     }
-    let steps = plan.problem.layout.options.newton_steps();
+    let steps = match plan.polishes_poor_solutions_only() {
+        true => format!(
+            "poor solutions only ({} Gauss-Newton steps where the residual is above {:e})",
+            mingen_runtime::POOR_SOLUTION_STEPS,
+            mingen_runtime::POOR_SOLUTION_RESIDUAL
+        ),
+        false => format!(
+            "{} Gauss-Newton steps",
+            plan.problem.layout.options.newton_steps()
+        ),
+    };
     match &plan.auto_polishing {
         Some(a) => outln!(
             out,
-            "polishing: {steps} Gauss-Newton steps (chosen: unpolished, {} random instances gave median {:.2} and p99 {:.2} log10 residual, {} failures in {}; `option newton = N` sets it)",
+            "polishing: {steps} (chosen: unpolished, {} random instances gave median {:.2} and p99 {:.2} log10 residual, {} failures in {}; `option newton = N` sets it)",
             mingen::AUTO_POLISH_INSTANCES,
             a.median_log10_residual,
             a.p99_log10_residual,
             a.failures,
             a.instances
         ),
-        None => outln!(out, "polishing: {steps} Gauss-Newton steps (as set)"),
+        None => outln!(out, "polishing: {steps} (as set)"),
     }
     outln!(
         out,

@@ -81,13 +81,19 @@ pub struct EliminationSpec {
     pub inhomogeneous: bool,
 }
 
-/// Polishing of every solution by Gauss-Newton steps (`option newton = N`), and the
-/// residual check that drops the spurious read-outs of a redundant basis.
+/// Polishing of every solution by Gauss-Newton steps (`option newton = N`) or of the poor
+/// ones only, and the residual check that drops the spurious read-outs of a redundant
+/// basis.
 #[derive(Clone, Debug)]
 pub struct PolishSpec {
     /// Steps per solution (at most; each is kept only if it lowers the residual); 0 with
     /// `reject_spurious` only checks.
     pub steps: usize,
+    /// Polish only a solution whose worst relative residual is above
+    /// `mingen_runtime::POOR_SOLUTION_RESIDUAL`, by `mingen_runtime::POOR_SOLUTION_STEPS`
+    /// steps (`steps` must be that number): the plan found its template accurate and
+    /// chose not to polish every solution.
+    pub poor_only: bool,
     /// Drop a solution whose worst relative residual on `equations`, before polishing, is
     /// above `mingen_runtime::SPURIOUS_RESIDUAL` (the template's basis is redundant:
     /// [`crate::template::EliminationTemplate::spurious_eigenvalues`]).

@@ -1,9 +1,10 @@
-//! Emission of `option newton`: the original equations' coefficients (computed with the
-//! template's, from the same shared intermediates), the equations written out as code
-//! (their values, magnitudes and Jacobian, for `mingen_runtime::newton_polish_with` and
+//! Emission of `option newton` and of the polishing of poor solutions: the original
+//! equations' coefficients (computed with the template's, from the same shared
+//! intermediates), the equations written out as code (their values, magnitudes and
+//! Jacobian, for `mingen_runtime::newton_polish_with`, `polish_poor_solution_with` and
 //! `screen_redundant_readout_with`) or, past [`MAX_CODE_FORM_PRODUCTS`], as a constant
-//! table of terms (for `newton_polish` and `screen_redundant_readout`), and the screening
-//! and polishing of each solution.
+//! table of terms (for `newton_polish`, `polish_poor_solution` and
+//! `screen_redundant_readout`), and the screening and polishing of each solution.
 
 use super::coefficients::{Expr, VarStyle};
 use super::runtime_api as rt;
@@ -125,6 +126,14 @@ pub(super) fn tokens(
         (quote!(), quote!(), quote!())
     };
     let polish = match &code_form {
+        Some(_) if p.poor_only => {
+            let polish = rt::polish_poor_solution_with();
+            quote!(#polish(&mut x, newton_values, newton_jacobian);)
+        }
+        None if p.poor_only => {
+            let polish = rt::polish_poor_solution();
+            quote!(#polish(&mut x, &NEWTON_TERMS, &newton_c);)
+        }
         Some(_) if p.steps > 0 => {
             let (steps, polish) = (lit(p.steps), rt::newton_polish_with());
             quote!(#polish(&mut x, #steps, newton_values, newton_jacobian);)

@@ -124,6 +124,18 @@ pub(crate) fn newton_polish_with() -> TokenStream {
     quote!(mingen_runtime::newton_polish_with)
 }
 
+/// `polish_poor_solution(x: &mut [f64], equations: &[&[NewtonTerm]], coefficients: &[f64])
+/// -> usize`: Gauss-Newton steps for a solution whose residual is poor only.
+pub(crate) fn polish_poor_solution() -> TokenStream {
+    quote!(mingen_runtime::polish_poor_solution)
+}
+
+/// `polish_poor_solution_with::<N, E>(x: &mut [f64; N], values, jacobian) -> usize`: the
+/// same on equations written out as code.
+pub(crate) fn polish_poor_solution_with() -> TokenStream {
+    quote!(mingen_runtime::polish_poor_solution_with)
+}
+
 /// `screen_redundant_readout(x: &mut [f64], equations: &[&[NewtonTerm]], coefficients:
 /// &[f64]) -> bool`: whether a read-out of a redundant basis is a solution.
 pub(crate) fn screen_redundant_readout() -> TokenStream {

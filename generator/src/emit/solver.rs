@@ -723,14 +723,28 @@ fn solve_docs(plan: &Plan, lu_words: &str) -> Vec<String> {
         ));
         docs.push(String::new());
     }
-    if let Some(p) = &spec.polish {
-        docs.push(format!(
-            "Then polishes each solution by up to {} Gauss-Newton steps on the problem's \
-             original equations (`option newton`), each kept only if it lowers their \
-             squared residual.",
-            p.steps
-        ));
-        docs.push(String::new());
+    match &spec.polish {
+        Some(p) if p.poor_only => {
+            docs.push(format!(
+                "Then polishes a poor solution (its worst relative residual on the problem's \
+                 original equations above `mingen_runtime::POOR_SOLUTION_RESIDUAL`) by up to \
+                 {} Gauss-Newton steps on those equations, each kept only if it lowers their \
+                 squared residual (`mingen_runtime::polish_poor_solution`; `option newton` \
+                 polishes every solution).",
+                p.steps
+            ));
+            docs.push(String::new());
+        }
+        Some(p) if p.steps > 0 => {
+            docs.push(format!(
+                "Then polishes each solution by up to {} Gauss-Newton steps on the problem's \
+                 original equations (`option newton`), each kept only if it lowers their \
+                 squared residual.",
+                p.steps
+            ));
+            docs.push(String::new());
+        }
+        _ => {}
     }
     if !spec.layout.positive.is_empty() {
         let positive: Vec<String> = spec

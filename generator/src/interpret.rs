@@ -353,8 +353,14 @@ pub fn solve_template(
         .ok_or_else(|| InterpretError::MissingReadout("1".into()))?;
     let (a, readouts) = action_matrix_and_readouts(template, equations)?;
     let companion = template.companion_unknown();
-    let linear: Vec<usize> = (0..pairs.len())
-        .filter(|&i| pairs[i].is_empty() && Some(i) != companion)
+    // The unknowns read off their reduced rows, in the order of `readouts`
+    // ([`EliminationTemplate::linear_readouts`]), with those rows; a companion action's
+    // unknown outside the basis (a basis of 1 alone) is its eigenvalue instead.
+    let outside = template.linear_readouts();
+    let linear: Vec<(usize, &Vec<f64>)> = (0..pairs.len())
+        .filter(|&i| outside.contains(&Monomial::var(template.nvars, i).mul(&unit)))
+        .zip(&readouts)
+        .filter(|&(i, _)| Some(i) != companion)
         .collect();
     let n = a.nrows();
     let eigenpairs = mingen_runtime::real_eigenpairs_dyn(a.as_slice(), n).ok_or(
@@ -374,7 +380,7 @@ pub fn solve_template(
         if let Some(x) = companion {
             u[x] = *lambda;
         }
-        let read = linear.iter().zip(&readouts).all(|(&i, row)| {
+        let read = linear.iter().all(|&(i, row)| {
             mingen_runtime::read_linear(v, one, row)
                 .map(|x| u[i] = x)
                 .is_some()

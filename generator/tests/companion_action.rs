@@ -61,3 +61,42 @@ y*y + b[0]*x*y + b[1]*y + b[2] = 0
     let code = emit_plan_from(&p, "t.mp").unwrap_or_else(|e| panic!("{e}"));
     assert!(!code.contains("real_eigenpairs_companion"));
 }
+
+#[test]
+fn a_basis_of_one_reads_the_other_unknowns_off_their_own_rows() {
+    // One solution: the basis is [1], the action's unknown is the eigenvalue and the others
+    // (outside the basis too) are read off their own reduced rows, not the action's.
+    let src = "problem line_pair
+option auto_eliminate = no
+unknown x, y, z
+data a: vec3, b: vec3, c: vec3
+a[0]*x + a[1]*y + a[2]*z = 1
+b[0]*x + b[1]*y + b[2]*z = 2
+c[0]*x + c[1]*y + c[2]*z = 3
+";
+    for action in 0..3 {
+        let problem = Problem::parse(src, "t.mp").unwrap_or_else(|e| panic!("{e}"));
+        let opts = TemplateOptions {
+            actions: mingen::ActionChoice::Unknowns(vec![action]),
+            ..TemplateOptions::default()
+        };
+        let p = plan(problem, "t.mp", &opts).unwrap_or_else(|e| panic!("{e}"));
+        let t = &p.generated.built.template;
+        assert_eq!(t.basis.len(), 1, "{:?}", t.basis);
+        assert_eq!(t.companion_unknown(), Some(action));
+        // x = (1, -2, 0.5) for these rows.
+        let want = [1.0, -2.0, 0.5];
+        let rows = [[2.0, 1.0, 2.0], [1.0, 3.0, 14.0], [-1.0, -1.0, 4.0]];
+        let data: Vec<f64> = rows.iter().flatten().copied().collect();
+        for (r, rhs) in rows.iter().zip([1.0, 2.0, 3.0]) {
+            let lhs: f64 = r.iter().zip(want).map(|(a, x)| a * x).sum();
+            assert!((lhs - rhs).abs() < 1e-14, "{lhs} {rhs}");
+        }
+        let (equations, _) = p.equations::<f64>(&data);
+        let got = solve_template_real(t, &equations);
+        assert_eq!(got.len(), 1, "action {action}: {got:?}");
+        for (g, w) in got[0].iter().zip(want) {
+            assert!((g - w).abs() < 1e-12, "action {action}: {got:?}");
+        }
+    }
+}

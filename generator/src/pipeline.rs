@@ -527,13 +527,16 @@ impl SolverPlan {
     }
 
     /// Whether the solver polishes its poor solutions only: the plan chose its polishing
-    /// ([`SolverPlan::auto_polishing`]) and chose no steps for every solution, so a
+    /// ([`SolverPlan::auto_polishing`]), chose no steps for every solution, and the check
+    /// is cheap beside the solve ([`crate::POOR_CHECK_MAX_TERMS_PER_ENTRY`]), so a
     /// solution whose worst relative residual is above
     /// [`mingen_runtime::POOR_SOLUTION_RESIDUAL`] (a poorly conditioned instance) is given
     /// [`mingen_runtime::POOR_SOLUTION_STEPS`] Gauss-Newton steps and the others none.
     /// `false` where `option newton` (or `--newton`) set the steps, 0 included.
     pub fn polishes_poor_solutions_only(&self) -> bool {
-        self.auto_polishing.as_ref().is_some_and(|a| a.steps == 0)
+        self.auto_polishing
+            .as_ref()
+            .is_some_and(|a| a.steps == 0 && a.polish_poor)
     }
 
     /// The number of declared (not hidden) unknowns: the first variables of every system.

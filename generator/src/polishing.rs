@@ -71,7 +71,21 @@ pub struct AutoPolishing {
     pub chosen_instances: usize,
     /// The failing instances among `chosen_instances`, polished by the chosen steps.
     pub chosen_failures: usize,
+    /// With no steps chosen: whether the solver still polishes its poor solutions
+    /// ([`crate::SolverPlan::polishes_poor_solutions_only`]), which it does where the
+    /// check is cheap beside the solve ([`POOR_CHECK_MAX_TERMS_PER_ENTRY`]).
+    pub polish_poor: bool,
 }
+
+/// The solver of a plan that polishes no solution checks each one's residual (and polishes
+/// the poor ones, `mingen_runtime::POOR_SOLUTION_RESIDUAL`) when the check evaluates at
+/// most this many terms of the original equations per entry of the matrices it eliminates
+/// (the equations' terms times the solution count, against
+/// [`crate::template::EliminationTemplate::elimination_area`]). Filling the template alone
+/// touches every entry, so the check is then a small part of the solve; a closed form or a
+/// template of a few entries, whose solve costs less than evaluating the equations at
+/// every solution, does without it.
+pub const POOR_CHECK_MAX_TERMS_PER_ENTRY: f64 = 1.0;
 
 impl AutoPolishing {
     /// The failure rate of the plan's sample as its solver returns it (polished by the
@@ -117,7 +131,9 @@ pub(crate) fn choose(plan: &mut SolverPlan) -> Option<AutoPolishing> {
         }
     }
     plan.problem.layout.options.newton = given;
+    let polish_poor = steps == 0 && poor_check_is_cheap(plan);
     Some(AutoPolishing {
+        polish_poor,
         steps,
         instances: unpolished.instances,
         median_log10_residual: unpolished.median_log10_residual,
@@ -214,6 +230,16 @@ fn measure(plan: &SolverPlan) -> (Sample, Option<Sample>) {
         )
     });
     (unpolished, polished)
+}
+
+/// Whether checking every solution's residual costs little beside `plan`'s solve
+/// ([`POOR_CHECK_MAX_TERMS_PER_ENTRY`]); the terms are counted on one seeded instance.
+fn poor_check_is_cheap(plan: &SolverPlan) -> bool {
+    let mut rng = ChaCha8Rng::seed_from_u64(AUTO_POLISH_SEED);
+    let equations = plan.visible_equations(&random_data_f64(&plan.problem.layout, &mut rng));
+    let terms: usize = equations.iter().map(|e| e.terms().count()).sum();
+    let area = plan.generated.built.template.elimination_area();
+    (terms * plan.solution_count()) as f64 <= POOR_CHECK_MAX_TERMS_PER_ENTRY * area as f64
 }
 
 /// Whether the emitted solver can polish `plan`'s solutions (what `option newton` needs,

@@ -172,7 +172,8 @@ struct SearchArgs {
     /// Gauss-Newton steps polishing every solution on the original equations (0 to 8;
     /// default: the file's `option newton`, else 0, 2, 4 or 8 as the plan measures its
     /// template, see `inspect`'s `polishing:` line; where the plan chooses 0, solutions
-    /// whose residual is above 1e-10 still get 2; `--newton 0` polishes none).
+    /// whose residual is above 1e-10 still get 2 unless the check costs more than a small
+    /// part of the solve; `--newton 0` polishes none).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=8))]
     newton: Option<u32>,
     /// Solve unknowns from affine equations and substitute them, or else eliminate the

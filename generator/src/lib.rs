@@ -57,7 +57,7 @@ pub use pipeline::{
 pub use polishing::{
     AutoPolishing, AUTO_POLISH_FAILURE_RATE, AUTO_POLISH_INSTANCES, AUTO_POLISH_MEDIAN,
     AUTO_POLISH_MORE_INSTANCES, AUTO_POLISH_P99, AUTO_POLISH_STEPS, AUTO_POLISH_STEP_CHOICES,
-    POOR_CHECK_MAX_TERMS_PER_ENTRY,
+    POOR_CHECK_MAX_SHARE,
 };
 pub use problem::{PolynomialSaturation, ProblemOptions};
 pub use redundancy::{

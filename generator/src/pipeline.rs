@@ -528,7 +528,7 @@ impl SolverPlan {
 
     /// Whether the solver polishes its poor solutions only: the plan chose its polishing
     /// ([`SolverPlan::auto_polishing`]), chose no steps for every solution, and the check
-    /// is cheap beside the solve ([`crate::POOR_CHECK_MAX_TERMS_PER_ENTRY`]), so a
+    /// is cheap beside the solve ([`crate::POOR_CHECK_MAX_SHARE`]), so a
     /// solution whose worst relative residual is above
     /// [`mingen_runtime::POOR_SOLUTION_RESIDUAL`] (a poorly conditioned instance) is given
     /// [`mingen_runtime::POOR_SOLUTION_STEPS`] Gauss-Newton steps and the others none.

@@ -73,19 +73,19 @@ pub struct AutoPolishing {
     pub chosen_failures: usize,
     /// With no steps chosen: whether the solver still polishes its poor solutions
     /// ([`crate::SolverPlan::polishes_poor_solutions_only`]), which it does where the
-    /// check is cheap beside the solve ([`POOR_CHECK_MAX_TERMS_PER_ENTRY`]).
+    /// check is cheap beside the solve ([`POOR_CHECK_MAX_SHARE`]).
     pub polish_poor: bool,
 }
 
 /// The solver of a plan that polishes no solution checks each one's residual (and polishes
-/// the poor ones, `mingen_runtime::POOR_SOLUTION_RESIDUAL`) when the check evaluates at
-/// most this many terms of the original equations per entry of the matrices it eliminates
-/// (the equations' terms times the solution count, against
-/// [`crate::template::EliminationTemplate::elimination_area`]). Filling the template alone
-/// touches every entry, so the check is then a small part of the solve; a closed form or a
-/// template of a few entries, whose solve costs less than evaluating the equations at
-/// every solution, does without it.
-pub const POOR_CHECK_MAX_TERMS_PER_ENTRY: f64 = 1.0;
+/// the poor ones, `mingen_runtime::POOR_SOLUTION_RESIDUAL`) when the check is cheap beside
+/// the solve: the terms it evaluates (the original equations' terms times the solution
+/// count) at most this share of the solve's estimated operations (the entries of the
+/// matrices it eliminates, [`crate::template::EliminationTemplate::elimination_area`],
+/// plus the eigenproblem's `10 n^3` for a basis of `n`, `n^2` for a companion action's
+/// polynomial). A closed form or a template of a few entries, whose solve costs about as
+/// much as evaluating the equations at every solution, does without it.
+pub const POOR_CHECK_MAX_SHARE: f64 = 0.3;
 
 impl AutoPolishing {
     /// The failure rate of the plan's sample as its solver returns it (polished by the
@@ -233,14 +233,24 @@ fn measure(plan: &SolverPlan) -> (Sample, Option<Sample>) {
 }
 
 /// Whether checking every solution's residual costs little beside `plan`'s solve
-/// ([`POOR_CHECK_MAX_TERMS_PER_ENTRY`]); the terms are counted on one seeded instance.
+/// ([`POOR_CHECK_MAX_SHARE`]); the terms are counted on one seeded instance.
 fn poor_check_is_cheap(plan: &SolverPlan) -> bool {
     let mut rng = ChaCha8Rng::seed_from_u64(AUTO_POLISH_SEED);
     let equations = plan.visible_equations(&random_data_f64(&plan.problem.layout, &mut rng));
     let terms: usize = equations.iter().map(|e| e.terms().count()).sum();
-    let area = plan.generated.built.template.elimination_area();
-    (terms * plan.solution_count()) as f64 <= POOR_CHECK_MAX_TERMS_PER_ENTRY * area as f64
+    let template = &plan.generated.built.template;
+    let n = template.basis.len();
+    let eigen = match template.companion_unknown() {
+        Some(_) => n * n,
+        None => EIGEN_OPERATIONS_PER_CUBE * n * n * n,
+    };
+    let solve = template.elimination_area() + eigen;
+    (terms * plan.solution_count()) as f64 <= POOR_CHECK_MAX_SHARE * solve as f64
 }
+
+/// Operations of a real eigenproblem of size `n` per `n^3` (the Hessenberg reduction and
+/// the QR sweeps, about `10 n^3`), in the estimate of [`POOR_CHECK_MAX_SHARE`].
+const EIGEN_OPERATIONS_PER_CUBE: usize = 10;
 
 /// Whether the emitted solver can polish `plan`'s solutions (what `option newton` needs,
 /// `emit::polish::check_polishable`), read off the original equations of one instance.

@@ -566,7 +566,8 @@ impl SolverPlan {
     /// `eliminated`, `seconds`, plus `dependent_columns` (excess columns left out of the
     /// elimination), `equation_reduction` (`{rows, cols}` of the equations' coefficient
     /// matrix the solver row-reduces first, or null), `per_action` and `polishing`
-    /// (`{"newton_steps", "chosen"}`, `chosen` null when the file or the command line set
+    /// (`{"newton_steps", "poor_solutions_only", "chosen"}`, the second as
+    /// [`SolverPlan::polishes_poor_solutions_only`], `chosen` null when the file or the command line set
     /// the steps, else `{"instances", "median_log10_residual", "p99_log10_residual",
     /// "failures"}`, what
     /// the plan measured, see [`AutoPolishing`]), `spurious_eigenvalues` (0 but for a
@@ -589,6 +590,7 @@ impl SolverPlan {
             "seconds": self.seconds,
             "polishing": {
                 "newton_steps": self.problem.layout.options.newton_steps(),
+                "poor_solutions_only": self.polishes_poor_solutions_only(),
                 "chosen": self.auto_polishing.as_ref().map(|a| json!({
                     "instances": a.instances,
                     "median_log10_residual": a.median_log10_residual,

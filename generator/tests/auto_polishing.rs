@@ -86,6 +86,10 @@ fn poor_solutions_are_polished_where_the_check_is_cheap() {
         let ratio = share(&plan);
         assert_eq!(ratio <= POOR_CHECK_MAX_SHARE, cheap, "{file}: {ratio}");
         assert_eq!(plan.polishes_poor_solutions_only(), cheap, "{file}");
+        assert_eq!(
+            plan.summary_json()["polishing"]["poor_solutions_only"],
+            cheap
+        );
     }
 }
 

@@ -16,7 +16,10 @@
 //! within two orders of magnitude of the failure residual: the sample's worst instances
 //! are that close to failing, so failures at a rate it cannot resolve are to be expected.
 //! Otherwise it does not polish, since polishing costs a few evaluations of the equations
-//! and their gradients per solution, up to several times a small template's solve.
+//! and their gradients per solution, up to several times a small template's solve; the
+//! solver then still gives a poor solution (worst relative residual above
+//! `mingen_runtime::POOR_SOLUTION_RESIDUAL`) two steps, where checking each solution's
+//! residual is cheap beside the solve ([`POOR_CHECK_MAX_SHARE`]).
 //! Where it polishes, the same instances are measured polished (two steps on a copy of
 //! each solution of the same solves, four and eight solved again): if two steps leave
 //! the sample failing by the same tests (the failure rate or the 99th percentile), four

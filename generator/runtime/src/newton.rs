@@ -5,8 +5,9 @@
 //! coefficient slice and the exponents `e` of the unknowns. Each step evaluates every
 //! equation `f_i` and its gradient `g_i` at `x`, solves the normal equations
 //! `(Σ g_i g_iᵀ) δ = −Σ f_i g_i` (Cholesky, with a relative ridge of 1e-14 on the diagonal
-//! for rank-deficient directions) and takes `x + δ` only if it lowers `Σ f_i²`; otherwise
-//! polishing stops. Near a simple root each step roughly squares the error, so the one or
+//! for rank-deficient directions) and takes `x + δ` only if it lowers `Σ f_i²`, else the
+//! first of `x + δ/2`, `x + δ/4`, ... ([`STEP_HALVINGS`]) that does; otherwise polishing
+//! stops. Near a simple root each step roughly squares the error, so the one or
 //! two steps a solution from an inaccurate action matrix needs bring it to rounding level;
 //! a solution already at rounding level ([`AT_ROUNDING_LEVEL`]) takes no step.
 //! No heap allocation: at most [`MAX_NEWTON_UNKNOWNS`] unknowns.
@@ -462,6 +463,12 @@ fn add_equation<const M: usize>(h: &mut [[f64; M]; M], b: &mut [f64; M], f: f64,
     }
 }
 
+/// How many times a Gauss-Newton step that does not lower the sum of squares is halved
+/// before polishing stops: far from a root (a solution read off a poorly conditioned
+/// action matrix, far from the origin) the full step can overshoot where a shorter one
+/// still descends.
+pub const STEP_HALVINGS: usize = 4;
+
 /// The steps both forms take from `x` (`x.len() <= M` unknowns): `squared(x)` is the sum
 /// of squares and whether every equation is at rounding level, `normal_equations(x, h, b)`
 /// adds every equation ([`add_equation`]; `false`: stop).
@@ -487,17 +494,26 @@ fn gauss_newton<const M: usize>(
             break;
         }
         let mut next = [0.0; M];
-        for ((next, x), b) in next.iter_mut().zip(&*x).zip(&b) {
-            *next = x + b;
-        }
-        match squared(&next[..n]) {
-            Some((c, at_rounding_level)) if c < cost => {
-                x.copy_from_slice(&next[..n]);
-                cost = c;
-                converged = at_rounding_level;
-                taken += 1;
+        let mut accepted = false;
+        let mut t = 1.0;
+        for _ in 0..=STEP_HALVINGS {
+            for ((next, x), b) in next.iter_mut().zip(&*x).zip(&b) {
+                *next = x + t * b;
             }
-            _ => break,
+            if let Some((c, at_rounding_level)) = squared(&next[..n]) {
+                if c < cost {
+                    x.copy_from_slice(&next[..n]);
+                    cost = c;
+                    converged = at_rounding_level;
+                    taken += 1;
+                    accepted = true;
+                    break;
+                }
+            }
+            t *= 0.5;
+        }
+        if !accepted {
+            break;
         }
     }
     taken
@@ -730,6 +746,28 @@ mod tests {
         let mut x = [2.0, 1.0];
         assert!(!screen_redundant_readout(&mut x, &eqs, &c));
         assert_eq!(x, [2.0, 1.0]);
+    }
+
+    /// x^3 - 2x + 2 = 0 from x = 1: the Newton step goes back to 0, where the residual is
+    /// larger (the classic 0 <-> 1 cycle); a shorter step still descends.
+    #[test]
+    fn an_overshooting_step_is_halved() {
+        const X3: [u8; 1] = [3];
+        const X: [u8; 1] = [1];
+        const ONE: [u8; 1] = [0];
+        let eq: Vec<NewtonTerm> = vec![(0, &X3[..]), (1, &X[..]), (2, &ONE[..])];
+        let eqs = [eq.as_slice()];
+        let c = [1.0, -2.0, 2.0];
+        let f = |x: f64| x * x * x - 2.0 * x + 2.0;
+        let mut x = [1.0];
+        assert_eq!(newton_polish(&mut x, &eqs, &c, 1), 1);
+        assert!(f(x[0]).abs() < f(1.0).abs(), "{x:?}");
+        // x = 0 and 0.5 do not lower the residual; 0.75, a quarter of the step, does.
+        assert!((x[0] - 0.75).abs() < 1e-12, "{x:?}");
+        // Enough steps reach the real root near -1.7693 and stop there.
+        let mut x = [1.0];
+        newton_polish(&mut x, &eqs, &c, 8);
+        assert!(f(x[0]).abs() < f(1.0).abs(), "{x:?}");
     }
 
     #[test]

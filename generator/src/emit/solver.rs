@@ -728,9 +728,10 @@ fn solve_docs(plan: &Plan, lu_words: &str) -> Vec<String> {
             docs.push(format!(
                 "Then polishes a poor solution (its worst relative residual on the problem's \
                  original equations above `mingen_runtime::POOR_SOLUTION_RESIDUAL`) by up to \
-                 {} Gauss-Newton steps on those equations, each kept only if it lowers their \
-                 squared residual (`mingen_runtime::polish_poor_solution`; `option newton` \
-                 polishes every solution).",
+                 {} Gauss-Newton steps on those equations, each taken only if it (or, up to \
+                 four times, half of it) lowers their squared residual \
+                 (`mingen_runtime::polish_poor_solution`; `option newton` polishes every \
+                 solution).",
                 p.steps
             ));
             docs.push(String::new());
@@ -738,8 +739,8 @@ fn solve_docs(plan: &Plan, lu_words: &str) -> Vec<String> {
         Some(p) if p.steps > 0 => {
             docs.push(format!(
                 "Then polishes each solution by up to {} Gauss-Newton steps on the problem's \
-                 original equations (`option newton`), each kept only if it lowers their \
-                 squared residual.",
+                 original equations (`option newton`), each taken only if it (or, up to four \
+                 times, half of it) lowers their squared residual.",
                 p.steps
             ));
             docs.push(String::new());

@@ -28,6 +28,7 @@
 //! else that fail the fewest instances, are chosen. The instances are seeded, so the
 //! choice, like the template, is the same on every run.
 
+use crate::algebra::Poly;
 use crate::audit::{audit_plan, AuditOptions, COMPARISON_NEWTON_STEPS};
 use crate::emit::polish::check_polishable;
 use crate::instance::random_data_f64;
@@ -238,9 +239,10 @@ fn measure(plan: &SolverPlan) -> (Sample, Option<Sample>) {
 /// Whether checking every solution's residual costs little beside `plan`'s solve
 /// ([`POOR_CHECK_MAX_SHARE`]); the terms are counted on one seeded instance.
 fn poor_check_is_cheap(plan: &SolverPlan) -> bool {
-    let mut rng = ChaCha8Rng::seed_from_u64(AUTO_POLISH_SEED);
-    let equations = plan.visible_equations(&random_data_f64(&plan.problem.layout, &mut rng));
-    let terms: usize = equations.iter().map(|e| e.terms().count()).sum();
+    let terms: usize = sample_equations(plan)
+        .iter()
+        .map(|e| e.terms().count())
+        .sum();
     let template = &plan.generated.built.template;
     let n = template.basis.len();
     let eigen = match template.companion_unknown() {
@@ -258,7 +260,11 @@ const EIGEN_OPERATIONS_PER_CUBE: usize = 10;
 /// Whether the emitted solver can polish `plan`'s solutions (what `option newton` needs,
 /// `emit::polish::check_polishable`), read off the original equations of one instance.
 fn can_polish(plan: &SolverPlan) -> bool {
+    check_polishable(plan.visible_unknowns(), &sample_equations(plan)).is_ok()
+}
+
+/// The original equations the solver polishes on, for one seeded instance.
+fn sample_equations(plan: &SolverPlan) -> Vec<Poly<f64>> {
     let mut rng = ChaCha8Rng::seed_from_u64(AUTO_POLISH_SEED);
-    let equations = plan.visible_equations(&random_data_f64(&plan.problem.layout, &mut rng));
-    check_polishable(plan.visible_unknowns(), &equations).is_ok()
+    plan.visible_equations(&random_data_f64(&plan.problem.layout, &mut rng))
 }

@@ -270,19 +270,9 @@ pub fn polish_poor_solution(
     equations: &[&[NewtonTerm<'_>]],
     coefficients: &[f64],
 ) -> usize {
-    let poor = match x.len() {
-        0..=3 => is_poor(evaluate_table::<3>(x, equations, coefficients)),
-        4..=6 => is_poor(evaluate_table::<6>(x, equations, coefficients)),
-        7..=12 => is_poor(evaluate_table::<12>(x, equations, coefficients)),
-        _ => is_poor(evaluate_table::<MAX_NEWTON_UNKNOWNS>(
-            x,
-            equations,
-            coefficients,
-        )),
-    };
-    match poor {
-        true => newton_polish(x, equations, coefficients, POOR_SOLUTION_STEPS),
-        false => 0,
+    match worst_relative_residual(x, equations, coefficients) {
+        Some(r) if r <= POOR_SOLUTION_RESIDUAL => 0,
+        _ => newton_polish(x, equations, coefficients, POOR_SOLUTION_STEPS),
     }
 }
 
@@ -293,38 +283,10 @@ pub fn polish_poor_solution_with<const N: usize, const E: usize>(
     values: impl Fn(&[f64; N], &mut [f64; E], &mut [f64; E]),
     jacobian: impl Fn(&[f64; N], &mut [f64; E], &mut [[f64; N]; E]),
 ) -> usize {
-    match is_poor(evaluate(&values, x)) {
-        true => newton_polish_with(x, POOR_SOLUTION_STEPS, values, jacobian),
-        false => 0,
+    match worst_of(evaluate(&values, x)) {
+        Some(r) if r <= POOR_SOLUTION_RESIDUAL => 0,
+        _ => newton_polish_with(x, POOR_SOLUTION_STEPS, values, jacobian),
     }
-}
-
-/// Whether some equation's `(value, magnitude)` has `|f| > POOR_SOLUTION_RESIDUAL ·
-/// magnitude` (or is malformed or not finite): the worst relative residual above
-/// [`POOR_SOLUTION_RESIDUAL`], without a division per equation.
-#[inline(always)]
-fn is_poor(values: impl IntoIterator<Item = Option<(f64, f64)>>) -> bool {
-    values.into_iter().any(|v| {
-        v.map_or(true, |(f, magnitude)| {
-            // NaN is poor too.
-            f.abs()
-                .partial_cmp(&(POOR_SOLUTION_RESIDUAL * magnitude))
-                .map_or(true, |o| o.is_gt())
-        })
-    })
-}
-
-/// Each equation's `(value, magnitude)` from the term tables, for `M >= x.len()` unknowns
-/// (`None` items for a malformed term; a term-free system has none).
-fn evaluate_table<'a, const M: usize>(
-    x: &'a [f64],
-    equations: &'a [&'a [NewtonTerm<'a>]],
-    coefficients: &'a [f64],
-) -> impl Iterator<Item = Option<(f64, f64)>> + 'a {
-    let powers = (x.len() <= M).then(|| Powers::<M>::new(x));
-    equations
-        .iter()
-        .map(move |eq| value(eq, coefficients, powers.as_ref()?))
 }
 
 /// The worst relative residual `|f_i(x)| / Σ_terms |c x^e|` over the equations (0 for an

@@ -199,7 +199,8 @@ pub struct ProblemOptions {
     pub basis: Option<String>,
     /// `option newton = N` (0 to 8): Gauss-Newton steps polishing every solution on the
     /// problem's original equations (eliminated unknowns included), each step kept only if
-    /// it lowers their squared residual, none once the residual is at rounding level. Not
+    /// it lowers the sum of their squared relative residuals, none once the residual is at
+    /// rounding level. Not
     /// set, the plan chooses 0, 2, 4 or 8 by solving its template on random instances
     /// ([`crate::AutoPolishing`]). Read it through [`ProblemOptions::newton_steps`].
     pub newton: Option<u32>,

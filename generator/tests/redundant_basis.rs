@@ -7,6 +7,7 @@
 
 use mingen::{
     audit_plan, emit_plan_from, plan_file, plan_source, AuditOptions, SolverPlan, TemplateOptions,
+    REDUNDANT_EXTRA_FAILURES, REDUNDANT_REAL_TOLERANCE,
 };
 use std::path::{Path, PathBuf};
 
@@ -94,20 +95,27 @@ fn a_redundant_basis_makes_a_smaller_template_that_finds_every_solution() {
 fn the_permissible_set_reduced_is_measured_first() {
     // stitching: the basis grown column by column gives 14 x 41; the rows' whole
     // permissible set, reduced by greedy exclusion (Martyushev et al.'s construction),
-    // 11 x 35 with 24 monomials for 18 solutions. The plan measures the smallest first;
-    // here it loses a real solution now and then, so it is dropped, and so is the other.
+    // 11 x 35 with 24 monomials for 18 solutions. The plan measures the smallest first,
+    // which loses a real solution now and then (about one in 200 instances): kept or
+    // dropped by the check's tolerance on the mean number of real solutions.
     let quotient = planned("stitching", false);
     let redundant = planned("stitching", true);
     let check = redundant.redundant_check.as_ref().expect("measured");
     let (rows, cols) = check.redundant_size;
     assert!(rows * cols <= 11 * 35, "{check:?}");
     assert_eq!(check.spurious_eigenvalues, 24 - 18, "{check:?}");
-    assert!(!check.kept, "{check:?}");
     assert!(check.dropped_smaller.is_empty(), "{check:?}");
-    assert_eq!(
-        redundant.generated.built.template.eliminated_size(),
+    let ((redundant_real, quotient_real), (redundant_failures, quotient_failures)) =
+        (check.mean_real, check.failures);
+    let within = (redundant_real - quotient_real).abs() <= REDUNDANT_REAL_TOLERANCE * quotient_real
+        && redundant_failures <= quotient_failures + REDUNDANT_EXTRA_FAILURES;
+    assert_eq!(check.kept, within, "{check:?}");
+    let chosen = if check.kept {
+        check.redundant_size
+    } else {
         quotient.generated.built.template.eliminated_size()
-    );
+    };
+    assert_eq!(redundant.generated.built.template.eliminated_size(), chosen);
 }
 
 #[test]

@@ -107,7 +107,7 @@ pub use newton::{
     screen_redundant_readout, screen_redundant_readout_with, worst_relative_residual, NewtonTerm,
     AT_ROUNDING_LEVEL, MAX_NEWTON_UNKNOWNS, MAX_TABULATED_POWER, POOR_SOLUTION_RESIDUAL,
     POOR_SOLUTION_STEPS, RESCUED_RESIDUAL, SPURIOUS_RESCUE, SPURIOUS_RESCUE_STEPS,
-    SPURIOUS_RESIDUAL,
+    SPURIOUS_RESIDUAL, STEP_HALVINGS,
 };
 pub use null::{null_vector3, null_vector3_rows};
 pub use null_general::{dehomogenize, null_vector, null_vector_dyn};

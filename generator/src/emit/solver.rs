@@ -729,7 +729,7 @@ fn solve_docs(plan: &Plan, lu_words: &str) -> Vec<String> {
                 "Then polishes a poor solution (its worst relative residual on the problem's \
                  original equations above `mingen_runtime::POOR_SOLUTION_RESIDUAL`) by up to \
                  {} Gauss-Newton steps on those equations, each taken only if it (or, up to \
-                 four times, half of it) lowers their squared residual \
+                 four times, half of it) lowers the sum of their squared relative residuals \
                  (`mingen_runtime::polish_poor_solution`; `option newton` polishes every \
                  solution).",
                 p.steps
@@ -740,7 +740,7 @@ fn solve_docs(plan: &Plan, lu_words: &str) -> Vec<String> {
             docs.push(format!(
                 "Then polishes each solution by up to {} Gauss-Newton steps on the problem's \
                  original equations (`option newton`), each taken only if it (or, up to four \
-                 times, half of it) lowers their squared residual.",
+                 times, half of it) lowers the sum of their squared relative residuals.",
                 p.steps
             ));
             docs.push(String::new());

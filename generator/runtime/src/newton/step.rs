@@ -83,6 +83,11 @@ const RANK_TOL: f64 = 1e-13;
 /// the ridge shortens towards the gradient's direction.
 const RIDGE: f64 = 1e-14;
 
+/// The weighted sum of squares below which a step that does not descend is not followed by
+/// its Levenberg-Marquardt step: relative residuals near 1e-10 and below are a solution's
+/// rounding noise, where no step descends, and the fallback would only cost evaluations.
+const LEVENBERG_MIN_COST: f64 = 1e-20;
+
 /// Adds an equation's value `f` and gradient `g`, divided by its magnitude `Σ_terms |c x^e|`
 /// ([`relative`]), as a row `g δ = -f` of the step's least-squares problem, rotated into
 /// the upper triangular `r` and right-hand side `b` by Givens rotations: a QR
@@ -114,7 +119,13 @@ pub(super) fn add_equation<const M: usize>(
             continue;
         }
         let d = r[k][k];
-        let h = d.hypot(a);
+        // `hypot` guards against overflow at a cost per rotation; the rows are relative
+        // (divided by their magnitudes), so the plain square root overflows only on
+        // entries beyond 1e150, where `hypot` takes over.
+        let h = match (d * d + a * a).sqrt() {
+            h if h.is_finite() && h > 0.0 => h,
+            _ => d.hypot(a),
+        };
         let (c, s) = (d / h, a / h);
         r[k][k] = h;
         for j in k + 1..n {
@@ -182,6 +193,9 @@ pub(super) fn gauss_newton<const M: usize, W: Copy>(
         }
         let mut accepted = false;
         for ridge in [None, Some(RIDGE)] {
+            if ridge.is_some() && cost <= LEVENBERG_MIN_COST {
+                break;
+            }
             let (mut factor, mut step) = (r, rhs);
             if let Some(ridge) = ridge {
                 // The Levenberg-Marquardt step: rows `sqrt(λ) e_i` of the scaled unknowns.

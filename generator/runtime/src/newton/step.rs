@@ -77,10 +77,11 @@ fn solve_triangular<const M: usize>(r: &[[f64; M]; M], b: &mut [f64], n: usize) 
 /// direction is treated as rank-deficient ([`solve_triangular`]).
 const RANK_TOL: f64 = 1e-13;
 
-/// The Levenberg ridge `λ / max_j |J e_j|²` of the step tried when the Gauss-Newton step
-/// (and its halvings) does not lower the residual: an ill-conditioned direction of the
-/// Jacobian can give the full step a length far beyond the root's neighbourhood, which
-/// the ridge shortens towards the gradient's direction.
+/// The Levenberg-Marquardt ridge `λ` (rows `sqrt(λ) e_i` of the unknowns scaled to unit
+/// Jacobian columns) of the step tried when the Gauss-Newton step and its halvings do not
+/// lower the residual: an ill-conditioned direction of the Jacobian can give the full
+/// step a length far beyond the root's neighbourhood, which the ridge shortens towards
+/// the gradient's direction.
 const RIDGE: f64 = 1e-14;
 
 /// The weighted sum of squares below which a step that does not descend is not followed by

@@ -141,25 +141,6 @@ fn value_and_gradient<const M: usize>(
 /// accurate, so polishing stops there.
 pub const AT_ROUNDING_LEVEL: f64 = 16.0 * f64::EPSILON;
 
-/// The sum of squares `Σ_i f_i(x)²` and whether every equation is at rounding level
-/// ([`AT_ROUNDING_LEVEL`]); `None` if an equation is malformed or a value not finite.
-#[cfg(test)]
-fn squared_residual<const M: usize>(
-    equations: &[&[NewtonTerm<'_>]],
-    coefficients: &[f64],
-    x: &[f64],
-) -> Option<(f64, bool)> {
-    let powers = Powers::<M>::new(x);
-    let mut sum = 0.0;
-    let mut converged = true;
-    for eq in equations {
-        let (f, magnitude) = value(eq, coefficients, &powers)?;
-        sum += f * f;
-        converged &= f.abs() <= AT_ROUNDING_LEVEL * magnitude;
-    }
-    sum.is_finite().then_some((sum, converged))
-}
-
 /// The largest `|f| / magnitude` over each equation's `(f, magnitude)` (those of zero
 /// magnitude left out); `None` if one is `None` or not finite.
 #[inline(always)]

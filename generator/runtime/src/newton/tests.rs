@@ -2,6 +2,24 @@
 
 use super::*;
 
+/// The sum of squares `Σ_i f_i(x)²` and whether every equation is at rounding level
+/// ([`AT_ROUNDING_LEVEL`]); `None` if an equation is malformed or a value not finite.
+fn squared_residual<const M: usize>(
+    equations: &[&[NewtonTerm<'_>]],
+    coefficients: &[f64],
+    x: &[f64],
+) -> Option<(f64, bool)> {
+    let powers = Powers::<M>::new(x);
+    let mut sum = 0.0;
+    let mut converged = true;
+    for eq in equations {
+        let (f, magnitude) = value(eq, coefficients, &powers)?;
+        sum += f * f;
+        converged &= f.abs() <= AT_ROUNDING_LEVEL * magnitude;
+    }
+    sum.is_finite().then_some((sum, converged))
+}
+
 /// x² + y² − 2 = 0, x − y = 0, x y − 1 = 0 (overdetermined; root (1, 1)).
 fn system() -> (Vec<Vec<NewtonTerm<'static>>>, Vec<f64>) {
     const X2: [u8; 2] = [2, 0];

@@ -7,7 +7,6 @@
 
 use mingen::{
     audit_plan, emit_plan_from, plan_file, plan_source, AuditOptions, SolverPlan, TemplateOptions,
-    REDUNDANT_EXTRA_FAILURES, REDUNDANT_REAL_TOLERANCE,
 };
 use std::path::{Path, PathBuf};
 
@@ -92,48 +91,55 @@ fn a_redundant_basis_makes_a_smaller_template_that_finds_every_solution() {
 }
 
 #[test]
-fn the_permissible_set_reduced_is_measured_first() {
-    // stitching: the basis grown column by column gives 14 x 41; the rows' whole
-    // permissible set, reduced by greedy exclusion (Martyushev et al.'s construction),
-    // 11 x 35 with 24 monomials for 18 solutions. The plan measures the smallest first,
-    // which loses a real solution now and then (about one in 200 instances): kept or
-    // dropped by the check's tolerance on the mean number of real solutions.
+fn a_pool_of_any_action_reaches_the_published_redundant_size() {
+    // stitching: every quotient template is 23 x 41 or larger, and a basis grown from
+    // them reaches 11 x 35 at best. Martyushev et al.'s red solver is 6 x 30: two equations
+    // times three multipliers, 24 basis monomials for 18 solutions. The permissible set of a
+    // small candidate pool reduced greedily finds that size with no quotient template of
+    // its action to start from; its six spurious eigenvalues form a defective cluster,
+    // which the eigensolver must still get past (more Francis sweeps after a stall) for the
+    // plan to keep it: every instance solved, as many real solutions as the quotient basis.
     let quotient = planned("stitching", false);
     let redundant = planned("stitching", true);
     let check = redundant.redundant_check.as_ref().expect("measured");
-    let (rows, cols) = check.redundant_size;
-    assert!(rows * cols <= 11 * 35, "{check:?}");
+    assert!(check.kept, "{check:?}");
+    assert_eq!(check.redundant_size, (6, 30), "{check:?}");
     assert_eq!(check.spurious_eigenvalues, 24 - 18, "{check:?}");
-    assert!(check.dropped_smaller.is_empty(), "{check:?}");
-    let ((redundant_real, quotient_real), (redundant_failures, quotient_failures)) =
-        (check.mean_real, check.failures);
-    let within = (redundant_real - quotient_real).abs() <= REDUNDANT_REAL_TOLERANCE * quotient_real
-        && redundant_failures <= quotient_failures + REDUNDANT_EXTRA_FAILURES;
-    assert_eq!(check.kept, within, "{check:?}");
-    let chosen = if check.kept {
-        check.redundant_size
-    } else {
-        quotient.generated.built.template.eliminated_size()
-    };
-    assert_eq!(redundant.generated.built.template.eliminated_size(), chosen);
+    assert_eq!(
+        redundant.generated.built.template.eliminated_size(),
+        (6, 30)
+    );
+    assert!(area(&redundant) * 5 < area(&quotient));
+    let audit = assert_same_solutions(&quotient, &redundant, 12);
+    assert_eq!(audit.solve_errors, 0);
+    assert_eq!(audit.failures, 0);
 }
 
 #[test]
 fn a_laurent_action_grows_a_basis_the_unknown_cannot() {
     // focal6p_1s: grown on the template of `y`, one spurious eigenvalue shrinks the
-    // template by a row but the screen loses some solutions' read-outs, so the plan drops
-    // it; grown on the template of `1/y` (the quotient basis times y, the same size), three
-    // spurious eigenvalues take it from 11 x 20 to 8 x 20 and lose nothing.
+    // template by a row but the screen loses some solutions' read-outs; grown on the
+    // template of `1/y` (the quotient basis times y, the same size), three spurious
+    // eigenvalues take it from 11 x 20 to 8 x 20 and lose nothing.
+    let options = TemplateOptions {
+        redundant_bases: true,
+        actions: mingen::ActionChoice::Inverse(1),
+        ..TemplateOptions::default()
+    };
+    let laurent = plan_file(&benchmark("focal6p_1s"), &options).expect("plans");
     let quotient = planned("focal6p_1s", false);
-    let redundant = planned("focal6p_1s", true);
-    let check = redundant.redundant_check.as_ref().expect("measured");
+    let check = laurent.redundant_check.as_ref().expect("measured");
     assert!(check.kept, "{check:?}");
-    let t = &redundant.generated.built.template;
+    let t = &laurent.generated.built.template;
     assert_eq!(t.action.inverse_of(), Some(1), "{:?}", t.action);
-    assert!(t.spurious_eigenvalues > 0);
+    assert_eq!(t.eliminated_size(), (8, 20));
+    assert_eq!(t.spurious_eigenvalues, 3);
     assert!(t.basis.iter().all(|b| t.action.applies_to(b)));
-    assert!(area(&redundant) < area(&quotient));
-    assert_same_solutions(&quotient, &redundant, 11);
+    assert!(area(&laurent) < area(&quotient));
+    assert_same_solutions(&quotient, &laurent, 11);
+    // With every action searched, no redundant template of another is larger.
+    let redundant = planned("focal6p_1s", true);
+    assert!(area(&redundant) <= area(&laurent));
 }
 
 #[test]

@@ -13,6 +13,13 @@ use nalgebra::{SMatrix, SVector};
 /// Maximum Francis iterations per eigenvalue (as in EISPACK `hqr`).
 const MAX_ITS: usize = 30;
 
+/// Maximum Francis iterations per eigenvalue on the retries after a stall. A redundant
+/// solving basis (`mingen`'s `option redundant_basis`) often has its spurious eigenvalues
+/// in a defective cluster (a Jordan block at 0 of a Laurent action), which rounding splits
+/// into a ring of nearly equal eigenvalues; the double-shift iteration converges on it
+/// linearly, not quadratically, and needs more than [`MAX_ITS`] sweeps to deflate it.
+const RETRY_MAX_ITS: usize = 10 * MAX_ITS;
+
 /// `H a H` with the Householder reflection `H = I - 2 u u^T / u^T u` for a fixed generic
 /// `u` (two choices, by `which`): a similarity, so the spectrum is that of `a`.
 fn reflect(a: &Square, which: usize) -> Square {
@@ -49,8 +56,8 @@ fn reflect(a: &Square, which: usize) -> Square {
 
 /// Eigenvalues (re, im) of an upper Hessenberg matrix (destroyed), by the Francis
 /// double-shift QR iteration (after Numerical Recipes `hqr`); returns the total number of
-/// iterations, `None` if it does not converge within [`MAX_ITS`] for some eigenvalue.
-fn hqr(h: &mut Square, wr: &mut [f64], wi: &mut [f64]) -> Option<usize> {
+/// iterations, `None` if it does not converge within `max_its` for some eigenvalue.
+fn hqr(h: &mut Square, wr: &mut [f64], wi: &mut [f64], max_its: usize) -> Option<usize> {
     let mut total = 0;
     // 1-based indices as in the classic formulation; a!(i, j) is h[i-1][j-1].
     macro_rules! a {
@@ -115,7 +122,7 @@ fn hqr(h: &mut Square, wr: &mut [f64], wi: &mut [f64]) -> Option<usize> {
                     }
                     nn -= 2;
                 } else {
-                    if its == MAX_ITS {
+                    if its == max_its {
                         return None;
                     }
                     if its == 10 || its == 20 {
@@ -306,7 +313,8 @@ fn eigenpairs(mut a: Square) -> Vec<(f64, Vec<f64>)> {
             let _ = hessenberg(&mut r);
             r
         };
-        if hqr(&mut h, &mut wr, &mut wi).is_some() {
+        let its = if attempt == 0 { MAX_ITS } else { RETRY_MAX_ITS };
+        if hqr(&mut h, &mut wr, &mut wi, its).is_some() {
             converged = true;
             break;
         }

@@ -22,7 +22,8 @@
 use super::build::{assemble, BuiltTemplate};
 use super::candidates::{Blocks, Candidate};
 use super::fold::{foldable_rows, EquationConstants};
-use super::linalg::{charpoly_within, derivative, poly_gcd};
+use super::linalg::{charpoly_within, derivative, is_squarefree, poly_gcd};
+use super::pools::pools;
 use super::shrink::shrink_quick;
 use super::validate::template_action_matrix;
 use super::{Action, EliminationTemplate, TemplateOptions};
@@ -303,30 +304,30 @@ pub(super) fn with_redundant_basis<const P: u32>(
         })
         .collect();
     let blocks = Blocks::new(&t.basis, &t.action, visible);
-    // Templates compare by their area after the fold, as the search's do.
-    let measure = |b: &Blocks, r: &[Candidate]| match constants {
-        None => area(b, r),
-        Some(cs) => {
-            let candidate = assemble::<P>(t.nvars, b, r, &t.action, t.n_hidden);
-            let (rows, cols) = candidate.eliminated_size();
-            let k = foldable_rows(&candidate, cs).min(rows).min(cols);
-            (rows - k) * (cols - k)
-        }
-    };
+    let measure = folded_measure::<P>(constants, t, &t.action);
     let dims = (visible, count);
     let grown = grow_basis::<P>(&blocks, &rows, &t.action, dims, &measure, Some(deadline));
     let closed = closed_rows::<P>(eqs, &rows);
     let dims = (visible, max_redundant_basis(count));
     let reduced = reduce_permissible::<P>(&closed, &t.action, dims, &measure, Some(deadline));
+    // Where the quotient's eigenvalues are distinct, no spurious one may meet them.
+    let quotient = best
+        .distinct_eigenvalues
+        .then(|| template_charpoly::<P>(t, eqs, opts, deadline))
+        .flatten();
+    let action = t.action.clone();
+    let which = (&action, quotient.as_deref());
     let mut built: Vec<BuiltTemplate> = grown
         .into_iter()
         .chain(reduced)
         .filter_map(|(b, kept)| {
             let parts = (b, kept.as_slice(), visible, count);
-            redundant_template::<P>(eqs, constants, &best, parts, opts, deadline)
+            redundant_template::<P>(eqs, constants, &best, which, parts, opts, deadline)
         })
         .filter(|g| g.folded_area() < best.folded_area())
         .collect();
+    // The measure borrows `best`'s template, which moves below.
+    drop(measure);
     built.sort_by_key(BuiltTemplate::folded_area);
     built.dedup_by_key(|g| g.template.eliminated_size());
     if built.is_empty() {
@@ -344,6 +345,7 @@ fn redundant_template<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     constants: Option<&[EquationConstants]>,
     best: &BuiltTemplate,
+    (action, quotient): (&Action, Option<&[u32]>),
     (blocks, kept, visible, count): (Blocks, &[Candidate], usize, usize),
     opts: &TemplateOptions,
     deadline: &Deadline,
@@ -352,8 +354,8 @@ fn redundant_template<const P: u32>(
     // The basis in descending grevlex, as every other template's.
     let mut basis = blocks.basis;
     basis.sort_by(|x, y| MonomialOrder::Grevlex.cmp(y, x));
-    let grown = Blocks::new(&basis, &t.action, visible);
-    let mut template = assemble::<P>(t.nvars, &grown, kept, &t.action, t.n_hidden);
+    let grown = Blocks::new(&basis, action, visible);
+    let mut template = assemble::<P>(t.nvars, &grown, kept, action, t.n_hidden);
     let nb = template.basis.len();
     template.spurious_eigenvalues = nb - count;
     if template.check_emittable(&opts.var_names).is_err() {
@@ -363,18 +365,13 @@ fn redundant_template<const P: u32>(
     // undefined: where the quotient's eigenvalues are distinct, no root of its
     // characteristic polynomial may be a repeated root of the template's (spurious ones
     // may repeat among themselves).
-    if best.distinct_eigenvalues {
-        let charpoly = |t: &EliminationTemplate| {
-            template_action_matrix::<P>(t, eqs, &opts.var_names)
-                .ok()
-                .and_then(|m| charpoly_within::<P>(&m, Some(deadline)).ok())
-        };
-        let separate = match (charpoly(&template), charpoly(&best.template)) {
-            (Some(grown), Some(quotient)) => {
+    if let Some(quotient) = quotient {
+        let separate = match template_charpoly::<P>(&template, eqs, opts, deadline) {
+            Some(grown) => {
                 let repeated = poly_gcd::<P>(&grown, &derivative::<P>(&grown));
-                poly_gcd::<P>(&repeated, &quotient).len() == 1
+                poly_gcd::<P>(&repeated, quotient).len() == 1
             }
-            _ => false,
+            None => false,
         };
         if !separate {
             return None;
@@ -392,9 +389,134 @@ fn redundant_template<const P: u32>(
         template,
         history,
         basis_choice: format!("{}, redundant basis", best.basis_choice),
+        distinct_eigenvalues: best.distinct_eigenvalues || quotient.is_some(),
         foldable_rows,
         quotient_basis: None,
         redundant_alternatives: Vec::new(),
         ..best.clone()
     })
+}
+
+/// How the constructions compare templates of `action` on the rows of `t`'s problem: by
+/// their area after the fold (step 5 of the search), as the search compares its own.
+fn folded_measure<'a, const P: u32>(
+    constants: Option<&'a [EquationConstants]>,
+    t: &'a EliminationTemplate,
+    action: &'a Action,
+) -> impl Fn(&Blocks, &[Candidate]) -> usize + 'a {
+    move |b: &Blocks, r: &[Candidate]| match constants {
+        None => area(b, r),
+        Some(cs) => {
+            let candidate = assemble::<P>(t.nvars, b, r, action, t.n_hidden);
+            let (rows, cols) = candidate.eliminated_size();
+            let k = foldable_rows(&candidate, cs).min(rows).min(cols);
+            (rows - k) * (cols - k)
+        }
+    }
+}
+
+/// The characteristic polynomial, on the build instance, of a template's action matrix;
+/// `None` when the template does not reduce there or the budget runs out.
+fn template_charpoly<const P: u32>(
+    t: &EliminationTemplate,
+    eqs: &[Poly<Fp<P>>],
+    opts: &TemplateOptions,
+    deadline: &Deadline,
+) -> Option<Vec<u32>> {
+    template_action_matrix::<P>(t, eqs, &opts.var_names)
+        .ok()
+        .and_then(|m| charpoly_within::<P>(&m, Some(deadline)).ok())
+}
+
+/// How many times the quotient template's rows a pool of [`from_pools`] may have: the
+/// redundant templates sought are smaller than the quotient's, and Martyushev et al.'s
+/// greedy exclusion starts near their size.
+const POOL_ROWS_FACTOR: u64 = 2;
+
+/// The fewest rows a pool of [`from_pools`] may always have, however small the quotient
+/// template.
+const MIN_POOL_ROWS: u64 = 64;
+
+/// Redundant templates built from the candidate pools of basis selection
+/// ([`super::pools::pools`]: boxes of the unknowns' degrees, the Newton polytope, total
+/// degrees), for every action of `actions`, with no quotient template of that action to
+/// start from: each pool's permissible set reduced greedily ([`reduce_permissible`]), as
+/// Martyushev, Bhayani and Pajdla reduce their shift sets. The quotient template of one
+/// action may be far larger than the smallest redundant one of another (the Laurent
+/// action `1/x` of a system whose quotient templates all act by an unknown). An action
+/// qualifies when its characteristic polynomial on the quotient (`quotient_charpoly`, on
+/// the build instance) has distinct roots, and a template when no spurious eigenvalue
+/// meets them. Every template is smaller than `quotient`, which it names as its
+/// [`BuiltTemplate::quotient_basis`]; smallest first.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn from_pools<const P: u32>(
+    eqs: &[Poly<Fp<P>>],
+    constants: Option<&[EquationConstants]>,
+    quotient: &BuiltTemplate,
+    actions: &[Action],
+    quotient_charpoly: &dyn Fn(&Action) -> Option<Vec<u32>>,
+    (visible, count): (usize, usize),
+    opts: &TemplateOptions,
+    deadline: &Deadline,
+) -> Vec<BuiltTemplate> {
+    if !opts.redundant_bases || quotient.template.shift.is_some() {
+        return Vec::new();
+    }
+    let t = &quotient.template;
+    let maxeq = eqs.iter().filter_map(|f| f.degree()).max().unwrap_or(0);
+    let limit = (POOL_ROWS_FACTOR * t.rows.len() as u64).max(MIN_POOL_ROWS);
+    let pools: Vec<(String, Vec<Candidate>)> = pools(eqs, t.nvars, maxeq)
+        .into_iter()
+        .filter(|p| p.rows(eqs) <= limit)
+        .map(|p| (p.describe(&opts.var_names), p.candidates::<P>(eqs)))
+        .collect();
+    let mut built = Vec::new();
+    for action in actions {
+        if deadline.check_time().is_err() {
+            break;
+        }
+        let Some(charpoly) = quotient_charpoly(action).filter(|c| is_squarefree::<P>(c)) else {
+            continue;
+        };
+        let measure = folded_measure::<P>(constants, t, action);
+        let dims = (visible, max_redundant_basis(count));
+        for (label, pool) in &pools {
+            let Some((b, kept)) =
+                reduce_permissible::<P>(pool, action, dims, &measure, Some(deadline))
+            else {
+                continue;
+            };
+            let parts = (b, kept.as_slice(), visible, count);
+            let which = (action, Some(charpoly.as_slice()));
+            let Some(mut g) =
+                redundant_template::<P>(eqs, constants, quotient, which, parts, opts, deadline)
+            else {
+                continue;
+            };
+            if g.folded_area() >= quotient.folded_area() {
+                continue;
+            }
+            let (r, c) = g.template.size();
+            let nb = g.template.basis.len();
+            g.history = vec![
+                (label.clone(), pool.len(), columns(pool).len()),
+                (
+                    format!("permissible set reduced: {nb} monomials for {count} solutions"),
+                    r,
+                    c,
+                ),
+            ];
+            g.basis_choice = format!(
+                "the permissible set of {label} for the action {}, reduced greedily (redundant basis)",
+                action.display_with(&opts.var_names)
+            );
+            built.push(g);
+        }
+    }
+    built.sort_by_key(BuiltTemplate::folded_area);
+    built.dedup_by_key(|g| g.template.eliminated_size());
+    for g in &mut built {
+        g.quotient_basis = Some(Box::new(quotient.clone()));
+    }
+    built
 }

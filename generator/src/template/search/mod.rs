@@ -16,7 +16,7 @@ use super::build::{build_template, BuiltTemplate, DegreeSearch};
 use super::candidates::start_degree;
 use super::fold::{fold_constant_rows, foldable_rows, EquationConstants};
 use super::linalg::is_squarefree;
-use super::redundant::with_redundant_basis;
+use super::redundant::{from_pools, with_redundant_basis};
 use super::select::{basis_orders, BasisOrder};
 use super::validate::nf_action_charpoly;
 use super::weight_sample::{narrow_weights, neighbours, ones_and_twos, sampled_weights};
@@ -231,10 +231,35 @@ pub(crate) fn best_template_within(
     // The best of each equation set is refined, then the smaller kept (ties: the
     // equations as given): refinement can reorder them.
     let mut finalists = Vec::new();
-    for b in starts(&all, opts) {
+    let quotient_charpoly =
+        |a: &Action| nf_action_charpoly::<P1>(gb, basis, a, Some(deadline)).ok();
+    let fold_all = |bs: &mut [BuiltTemplate]| {
+        for b in bs {
+            fold_constant_rows(&mut b.template, constants);
+            if let Some(q) = &mut b.quotient_basis {
+                fold_constant_rows(&mut q.template, constants);
+            }
+        }
+    };
+    for (k, b) in starts(&all, opts).into_iter().enumerate() {
         // The equations as given may have rows to fold (`fold.rs`): every template was
         // compared by its area after the fold, counted in Z_p; the chosen one is folded.
         let b = refine(eqs, Some(constants), b, visible, opts, deadline);
+        if k == 0 {
+            let dims = (visible, basis.len());
+            let mut pooled = from_pools(
+                eqs,
+                Some(constants),
+                &b,
+                &first,
+                &quotient_charpoly,
+                dims,
+                opts,
+                deadline,
+            );
+            fold_all(&mut pooled);
+            finalists.extend(pooled);
+        }
         let mut b = with_redundant_basis(
             eqs,
             Some(constants),
@@ -254,8 +279,28 @@ pub(crate) fn best_template_within(
         finalists.push(b);
     }
     if let Some((red, reduced)) = &reduction {
-        for b in starts(&reduced_all, opts) {
+        for (k, b) in starts(&reduced_all, opts).into_iter().enumerate() {
             let r = refine(reduced, None, b, visible, opts, deadline);
+            if k == 0 {
+                let dims = (visible, basis.len());
+                let pooled = from_pools(
+                    reduced,
+                    None,
+                    &r,
+                    &first,
+                    &quotient_charpoly,
+                    dims,
+                    opts,
+                    deadline,
+                );
+                for mut p in pooled {
+                    p.template.reduction = Some(red.clone());
+                    if let Some(q) = &mut p.quotient_basis {
+                        q.template.reduction = Some(red.clone());
+                    }
+                    finalists.push(p);
+                }
+            }
             let mut r =
                 with_redundant_basis(reduced, None, r, visible, basis.len(), opts, deadline);
             r.template.reduction = Some(red.clone());

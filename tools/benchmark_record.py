@@ -14,6 +14,12 @@ kept in target/benchmark_rows/NAME.json; --only NAME ... plans just those proble
 one whose wall-clock budget ran out on a busy machine) and takes the others' rows from
 there, so the table stays whole; --table-only plans nothing and writes the table from those
 rows. Run from anywhere; builds mingen in release first.
+
+--redundant-basis plans every problem with `--redundant-basis yes` instead (templates whose
+basis may have more monomials than solutions, Martyushev et al.'s redundant solving bases;
+off by default in mingen): it writes `# recorded redundant: RxC` lines, the table between
+docs/BENCHMARK.md's redundant-table markers, and keeps its rows in
+target/benchmark_rows_redundant/.
 """
 import argparse
 import concurrent.futures
@@ -28,6 +34,10 @@ BENCH = ROOT / "templates" / "benchmark"
 DOC = ROOT / "docs" / "BENCHMARK.md"
 ROWS = ROOT / "target" / "benchmark_rows"
 BEGIN, END = "<!-- benchmark table: begin -->", "<!-- benchmark table: end -->"
+# The same for `--redundant-basis`.
+REDUNDANT_ROWS = ROOT / "target" / "benchmark_rows_redundant"
+REDUNDANT_BEGIN = "<!-- redundant benchmark table: begin -->"
+REDUNDANT_END = "<!-- redundant benchmark table: end -->"
 
 
 def mingen(*args):
@@ -92,14 +102,19 @@ def markdown(rows):
     return "\n".join(out) + "\n"
 
 
-def with_recorded(text, size, seconds):
-    lines = [l for l in text.splitlines() if not l.startswith("# recorded:")]
+def with_recorded(text, size, seconds, key="recorded"):
+    """`text` with its `# KEY: ...` line for `size` (none when `size` is None), after the
+    `# published:` line and the `# recorded:` line."""
+    lines = [l for l in text.splitlines() if not l.startswith(f"# {key}:")]
     if size is not None:
         at = next((i + 1 for i, l in enumerate(lines) if l.startswith("# published:")), 0)
+        if key != "recorded":
+            at = next((i + 1 for i, l in enumerate(lines) if l.startswith("# recorded:")), at)
         # The seconds are rounded up to a coarse step so that re-recording on a machine
         # of another speed rarely changes the line.
         step = next(s for s in (1, 5, 20, 60, 300, 10**9) if seconds <= s)
-        lines.insert(at, f"# recorded: {size}, planned within {step} s (mingen; tools/benchmark_record.py)")
+        tool = "tools/benchmark_record.py" + (" --redundant-basis" if key != "recorded" else "")
+        lines.insert(at, f"# {key}: {size}, planned within {step} s (mingen; {tool})")
     return "\n".join(lines) + "\n"
 
 
@@ -115,19 +130,27 @@ def main():
     ap.add_argument("--only", nargs="+", metavar="NAME",
                     help="plan only these problems (file stems); the other rows come from "
                          "the last run's target/benchmark_rows/")
+    ap.add_argument("--redundant-basis", action="store_true",
+                    help="plan with --redundant-basis yes: `# recorded redundant:` lines and "
+                         "the redundant table")
     a = ap.parse_args()
+    rows_dir, begin, end, key = (
+        (REDUNDANT_ROWS, REDUNDANT_BEGIN, REDUNDANT_END, "recorded redundant")
+        if a.redundant_basis else (ROWS, BEGIN, END, "recorded"))
     subprocess.run(["cargo", "build", "--release", "-q", "-p", "mingen"], cwd=ROOT, check=True)
     extra = ["--max-seconds", str(a.max_seconds)] if a.max_seconds else []
+    if a.redundant_basis:
+        extra += ["--redundant-basis", "yes"]
     files = sorted(BENCH.glob("*.mp"))
 
     if a.only:
         unknown = sorted(set(a.only) - {f.stem for f in files})
         if unknown:
             sys.exit("no such benchmark problem: " + ", ".join(unknown))
-    ROWS.mkdir(parents=True, exist_ok=True)
+    rows_dir.mkdir(parents=True, exist_ok=True)
 
     def one(f):
-        cached = ROWS / f"{f.stem}.json"
+        cached = rows_dir / f"{f.stem}.json"
         if a.table_only or (a.only and f.stem not in a.only):
             if not cached.exists():
                 sys.exit(f"{cached} missing: run without --only first")
@@ -145,15 +168,15 @@ def main():
         f = BENCH / pathlib.Path(r["file"]).name
         size = size_text(r)
         old = f.read_text()
-        new = with_recorded(old, size, r["seconds"])
+        new = with_recorded(old, size, r["seconds"], key)
         if new != old:
             stale.append(f.name)
             if not a.check:
                 f.write_text(new)
     doc = DOC.read_text()
-    m = re.search(re.escape(BEGIN) + r"\n(.*?)" + re.escape(END), doc, re.S)
+    m = re.search(re.escape(begin) + r"\n(.*?)" + re.escape(end), doc, re.S)
     if m is None:
-        sys.exit(f"{DOC}: markers {BEGIN} / {END} missing")
+        sys.exit(f"{DOC}: markers {begin} / {end} missing")
     new_doc = doc[: m.start(1)] + table + doc[m.end(1) :]
     if a.check:
         if stale:

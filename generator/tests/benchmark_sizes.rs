@@ -4,6 +4,8 @@
 //! solver row-reduces its equations first; written by `tools/benchmark_record.py`);
 //! planning it again must give that count and at most that elimination area (the
 //! template's, plus the reduction's). A regression guard on the template search, not a timing test.
+//! The same for the sizes with redundant solving bases (`# recorded redundant: ...`,
+//! `tools/benchmark_record.py --redundant-basis`), planned with them.
 //! Problems recorded as planned within more than [`MAX_RECORDED_SECONDS`] are left to
 //! `python3 tools/benchmark_record.py --check`, which plans every one, so that the test
 //! suite stays short.
@@ -62,8 +64,10 @@ fn size(text: &str) -> Option<(String, usize, f64)> {
 /// Threads planning the guarded files (their plans are independent).
 const PLANNING_THREADS: usize = 2;
 
-#[test]
-fn benchmark_templates_keep_their_counts_and_do_not_grow() {
+/// Plans every file with a `# KEY:` size recorded within [`MAX_RECORDED_SECONDS`] with
+/// `options` and lists each count that differs from the file's and each template larger in
+/// area than recorded.
+fn check_recorded(key: &str, options: &TemplateOptions) -> Vec<String> {
     let files = benchmark_files();
     assert!(files.len() >= 40, "the benchmark has {} files", files.len());
     // The guarded files: name, expected count, recorded size and area.
@@ -74,8 +78,7 @@ fn benchmark_templates_keep_their_counts_and_do_not_grow() {
         let count: Option<usize> = header(&text, "Expected solution count")
             .and_then(|v| v.split_whitespace().next().and_then(|n| n.parse().ok()));
         // Files without a template (their reason is in the header) are not guarded.
-        let Some((recorded, recorded_area, seconds)) =
-            header(&text, "recorded").and_then(|v| size(&v))
+        let Some((recorded, recorded_area, seconds)) = header(&text, key).and_then(|v| size(&v))
         else {
             continue;
         };
@@ -83,9 +86,9 @@ fn benchmark_templates_keep_their_counts_and_do_not_grow() {
             guarded.push((f.clone(), name, count, recorded, recorded_area));
         }
     }
-    assert!(!guarded.is_empty(), "no benchmark file has a recorded size");
+    assert!(!guarded.is_empty(), "no benchmark file has a `{key}` size");
     let paths: Vec<PathBuf> = guarded.iter().map(|g| g.0.clone()).collect();
-    let plans = plan_files(&paths, &TemplateOptions::default(), PLANNING_THREADS);
+    let plans = plan_files(&paths, options, PLANNING_THREADS);
     let mut failures = Vec::new();
     for ((_, name, count, recorded, recorded_area), plan) in guarded.iter().zip(plans) {
         match plan {
@@ -106,12 +109,30 @@ fn benchmark_templates_keep_their_counts_and_do_not_grow() {
                         .map(|(n, m)| format!(" + {n}x{m} reduction"))
                         .unwrap_or_default();
                     failures.push(format!(
-                        "{name}: {r}x{c}{reduction} is larger than the recorded {recorded}"
+                        "{name}: {r}x{c}{reduction} is larger than the {key} {recorded}"
                     ));
                 }
             }
             Err(e) => failures.push(format!("{name}: {e}")),
         }
     }
+    failures
+}
+
+#[test]
+fn benchmark_templates_keep_their_counts_and_do_not_grow() {
+    let failures = check_recorded("recorded", &TemplateOptions::default());
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The same with redundant solving bases (`--redundant-basis yes`; the sizes of
+/// `tools/benchmark_record.py --redundant-basis`).
+#[test]
+fn redundant_basis_templates_keep_their_counts_and_do_not_grow() {
+    let options = TemplateOptions {
+        redundant_bases: true,
+        ..TemplateOptions::default()
+    };
+    let failures = check_recorded("recorded redundant", &options);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

@@ -196,8 +196,13 @@ fn closed_rows<const P: u32>(eqs: &[Poly<Fp<P>>], rows: &[Candidate]) -> Vec<Can
     out
 }
 
-/// The bound on the summed `rows x columns` of the row sets [`reduce_permissible`] tries.
+/// The bound on the summed `rows x columns` of the row sets [`reduce_permissible`] tries
+/// from a chosen template's rows.
 const MAX_PERMISSIBLE_WORK: u64 = 1 << 27;
+
+/// The same bound for all the pools and actions of [`from_pools`] together (of both
+/// equation sets, the equations as given and row-reduced).
+pub(super) const MAX_POOL_WORK: u64 = 1 << 26;
 
 /// Martyushev, Bhayani and Pajdla's reduction of a redundant template: the basis is the
 /// permissible set of the rows ([`permissible_set`]); monomials of the template are
@@ -211,7 +216,7 @@ pub(crate) fn reduce_permissible<const P: u32>(
     action: &Action,
     (visible, max_basis): (usize, usize),
     measure: &Measure<'_>,
-    deadline: Option<&Deadline>,
+    (work, deadline): (&mut u64, Option<&Deadline>),
 ) -> Option<(Blocks, Vec<Candidate>)> {
     let mut pool = pool.to_vec();
     let mut best = settle_permissible::<P>(pool.clone(), action, visible)?;
@@ -224,7 +229,6 @@ pub(crate) fn reduce_permissible<const P: u32>(
     };
     let mut best_key = key(&best);
     let mut tried: BTreeSet<Monomial> = BTreeSet::new();
-    let mut work = 0u64;
     let mut pool_columns = columns(&pool).len();
     let within = |b: (Blocks, Vec<Candidate>)| (b.0.basis.len() <= max_basis).then_some(b);
     loop {
@@ -243,10 +247,11 @@ pub(crate) fn reduce_permissible<const P: u32>(
             }
             // Bounded by work (the summed size of the pools eliminated), so that the result
             // does not depend on the machine's speed; the deadline only guards the budget.
-            work = work.saturating_add(pool.len() as u64 * pool_columns as u64);
-            if work > MAX_PERMISSIBLE_WORK || deadline.is_some_and(|d| d.check_time().is_err()) {
+            let cost = pool.len() as u64 * pool_columns as u64;
+            if cost > *work || deadline.is_some_and(|d| d.check_time().is_err()) {
                 return within(best);
             }
+            *work -= cost;
             tried.insert(m.clone());
             let smaller: Vec<Candidate> = pool
                 .iter()
@@ -309,7 +314,9 @@ pub(super) fn with_redundant_basis<const P: u32>(
     let grown = grow_basis::<P>(&blocks, &rows, &t.action, dims, &measure, Some(deadline));
     let closed = closed_rows::<P>(eqs, &rows);
     let dims = (visible, max_redundant_basis(count));
-    let reduced = reduce_permissible::<P>(&closed, &t.action, dims, &measure, Some(deadline));
+    let mut work = MAX_PERMISSIBLE_WORK;
+    let bounds = (&mut work, Some(deadline));
+    let reduced = reduce_permissible::<P>(&closed, &t.action, dims, &measure, bounds);
     // Where the quotient's eigenvalues are distinct, no spurious one may meet them.
     let quotient = best
         .distinct_eigenvalues
@@ -447,7 +454,8 @@ const MIN_POOL_ROWS: u64 = 64;
 /// qualifies when its characteristic polynomial on the quotient (`quotient_charpoly`, on
 /// the build instance) has distinct roots, and a template when no spurious eigenvalue
 /// meets them. Every template is smaller than `quotient`, which it names as its
-/// [`BuiltTemplate::quotient_basis`]; smallest first.
+/// [`BuiltTemplate::quotient_basis`]; smallest first. The pools' eliminations draw on
+/// `work` (summed rows x columns), so that the result does not depend on the machine.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn from_pools<const P: u32>(
     eqs: &[Poly<Fp<P>>],
@@ -457,7 +465,7 @@ pub(super) fn from_pools<const P: u32>(
     quotient_charpoly: &dyn Fn(&Action) -> Option<Vec<u32>>,
     (visible, count): (usize, usize),
     opts: &TemplateOptions,
-    deadline: &Deadline,
+    (work, deadline): (&mut u64, &Deadline),
 ) -> Vec<BuiltTemplate> {
     if !opts.redundant_bases || quotient.template.shift.is_some() {
         return Vec::new();
@@ -465,11 +473,13 @@ pub(super) fn from_pools<const P: u32>(
     let t = &quotient.template;
     let maxeq = eqs.iter().filter_map(|f| f.degree()).max().unwrap_or(0);
     let limit = (POOL_ROWS_FACTOR * t.rows.len() as u64).max(MIN_POOL_ROWS);
-    let pools: Vec<(String, Vec<Candidate>)> = pools(eqs, t.nvars, maxeq)
+    // Smallest first: the work bound ends with the largest.
+    let mut pools: Vec<(String, Vec<Candidate>)> = pools(eqs, t.nvars, maxeq)
         .into_iter()
         .filter(|p| p.rows(eqs) <= limit)
         .map(|p| (p.describe(&opts.var_names), p.candidates::<P>(eqs)))
         .collect();
+    pools.sort_by_key(|(_, rows)| rows.len());
     let mut built = Vec::new();
     for action in actions {
         if deadline.check_time().is_err() {
@@ -481,8 +491,8 @@ pub(super) fn from_pools<const P: u32>(
         let measure = folded_measure::<P>(constants, t, action);
         let dims = (visible, max_redundant_basis(count));
         for (label, pool) in &pools {
-            let Some((b, kept)) =
-                reduce_permissible::<P>(pool, action, dims, &measure, Some(deadline))
+            let bounds = (&mut *work, Some(deadline));
+            let Some((b, kept)) = reduce_permissible::<P>(pool, action, dims, &measure, bounds)
             else {
                 continue;
             };

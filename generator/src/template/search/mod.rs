@@ -16,7 +16,7 @@ use super::build::{build_template, BuiltTemplate, DegreeSearch};
 use super::candidates::start_degree;
 use super::fold::{fold_constant_rows, foldable_rows, EquationConstants};
 use super::linalg::is_squarefree;
-use super::redundant::{from_pools, with_redundant_basis};
+use super::redundant::{from_pools, with_redundant_basis, MAX_POOL_WORK};
 use super::select::{basis_orders, BasisOrder};
 use super::validate::nf_action_charpoly;
 use super::weight_sample::{narrow_weights, neighbours, ones_and_twos, sampled_weights};
@@ -231,6 +231,9 @@ pub(crate) fn best_template_within(
     // The best of each equation set is refined, then the smaller kept (ties: the
     // equations as given): refinement can reorder them.
     let mut finalists = Vec::new();
+    // The refined quotient template each equation set's pools start from (`from_pools`),
+    // and whether it is the set row-reduced on the data.
+    let mut pool_quotients: Vec<(BuiltTemplate, bool)> = Vec::new();
     let quotient_charpoly =
         |a: &Action| nf_action_charpoly::<P1>(gb, basis, a, Some(deadline)).ok();
     let fold_all = |bs: &mut [BuiltTemplate]| {
@@ -245,20 +248,8 @@ pub(crate) fn best_template_within(
         // The equations as given may have rows to fold (`fold.rs`): every template was
         // compared by its area after the fold, counted in Z_p; the chosen one is folded.
         let b = refine(eqs, Some(constants), b, visible, opts, deadline);
-        if k == 0 {
-            let dims = (visible, basis.len());
-            let mut pooled = from_pools(
-                eqs,
-                Some(constants),
-                &b,
-                &first,
-                &quotient_charpoly,
-                dims,
-                opts,
-                deadline,
-            );
-            fold_all(&mut pooled);
-            finalists.extend(pooled);
+        if k == 0 && opts.redundant_bases {
+            pool_quotients.push((b.clone(), false));
         }
         let mut b = with_redundant_basis(
             eqs,
@@ -281,25 +272,8 @@ pub(crate) fn best_template_within(
     if let Some((red, reduced)) = &reduction {
         for (k, b) in starts(&reduced_all, opts).into_iter().enumerate() {
             let r = refine(reduced, None, b, visible, opts, deadline);
-            if k == 0 {
-                let dims = (visible, basis.len());
-                let pooled = from_pools(
-                    reduced,
-                    None,
-                    &r,
-                    &first,
-                    &quotient_charpoly,
-                    dims,
-                    opts,
-                    deadline,
-                );
-                for mut p in pooled {
-                    p.template.reduction = Some(red.clone());
-                    if let Some(q) = &mut p.quotient_basis {
-                        q.template.reduction = Some(red.clone());
-                    }
-                    finalists.push(p);
-                }
+            if k == 0 && opts.redundant_bases {
+                pool_quotients.push((r.clone(), true));
             }
             let mut r =
                 with_redundant_basis(reduced, None, r, visible, basis.len(), opts, deadline);
@@ -311,6 +285,39 @@ pub(crate) fn best_template_within(
                 a.template.reduction = Some(red.clone());
             }
             finalists.push(r);
+        }
+    }
+    // Redundant templates from the candidate pools of every action (`redundant.rs`), last:
+    // the quotient templates above are refined on the budget before them.
+    let mut work = MAX_POOL_WORK;
+    for (quotient, on_reduced) in pool_quotients {
+        let (system, constants) = match (&reduction, on_reduced) {
+            (Some((_, reduced)), true) => (&reduced[..], None),
+            _ => (&eqs[..], Some(constants)),
+        };
+        let dims = (visible, basis.len());
+        let bounds = (&mut work, deadline);
+        let pooled = from_pools(
+            system,
+            constants,
+            &quotient,
+            &first,
+            &quotient_charpoly,
+            dims,
+            opts,
+            bounds,
+        );
+        for mut p in pooled {
+            match (&reduction, on_reduced) {
+                (Some((red, _)), true) => {
+                    p.template.reduction = Some(red.clone());
+                    if let Some(q) = &mut p.quotient_basis {
+                        q.template.reduction = Some(red.clone());
+                    }
+                }
+                _ => fold_all(std::slice::from_mut(&mut p)),
+            }
+            finalists.push(p);
         }
     }
     merge_per_action(&mut all, reduced_all);

@@ -389,8 +389,12 @@ pub fn plan(
     // Only an action the search chose itself is compared with the others.
     let unchosen = (options.actions == ActionChoice::Auto).then(|| problem.clone());
     let mut plan = complete_plan(problem, file, supports, generated);
-    if let Some(problem) = unchosen.filter(|_| action_accuracy::needs_comparison(&plan)) {
-        let first_seconds = start.elapsed().as_secs_f64();
+    let first_seconds = start.elapsed().as_secs_f64();
+    // Another action is searched only while the search's share of the budget has room for
+    // a search as long as the first (`action_accuracy::choose`); without it, measuring the
+    // first solver's failures (hundreds of solves, not bounded by the budget) is no use.
+    let room = search_deadline.remaining() >= first_seconds;
+    if let Some(problem) = unchosen.filter(|_| room && action_accuracy::needs_comparison(&plan)) {
         plan = action_accuracy::choose(
             plan,
             &search_deadline,

@@ -22,7 +22,7 @@
 use super::build::{assemble, BuiltTemplate};
 use super::candidates::{Blocks, Candidate};
 use super::fold::{foldable_rows, EquationConstants};
-use super::linalg::{charpoly_within, derivative, is_squarefree, poly_gcd};
+use super::linalg::{charpoly_within, derivative, poly_gcd};
 use super::pools::pools;
 use super::shrink::shrink_quick;
 use super::validate::template_action_matrix;
@@ -450,19 +450,17 @@ const MIN_POOL_ROWS: u64 = 64;
 /// start from: each pool's permissible set reduced greedily ([`reduce_permissible`]), as
 /// Martyushev, Bhayani and Pajdla reduce their shift sets. The quotient template of one
 /// action may be far larger than the smallest redundant one of another (the Laurent
-/// action `1/x` of a system whose quotient templates all act by an unknown). An action
-/// qualifies when its characteristic polynomial on the quotient (`quotient_charpoly`, on
-/// the build instance) has distinct roots, and a template when no spurious eigenvalue
+/// action `1/x` of a system whose quotient templates all act by an unknown). `actions`
+/// are those whose characteristic polynomial on the quotient (given beside each, on the
+/// build instance) has distinct roots; a template qualifies when no spurious eigenvalue
 /// meets them. Every template is smaller than `quotient`, which it names as its
 /// [`BuiltTemplate::quotient_basis`]; smallest first. The pools' eliminations draw on
 /// `work` (summed rows x columns), so that the result does not depend on the machine.
-#[allow(clippy::too_many_arguments)]
 pub(super) fn from_pools<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     constants: Option<&[EquationConstants]>,
     quotient: &BuiltTemplate,
-    actions: &[Action],
-    quotient_charpoly: &dyn Fn(&Action) -> Option<Vec<u32>>,
+    actions: &[(Action, Vec<u32>)],
     (visible, count): (usize, usize),
     opts: &TemplateOptions,
     (work, deadline): (&mut u64, &Deadline),
@@ -481,13 +479,10 @@ pub(super) fn from_pools<const P: u32>(
         .collect();
     pools.sort_by_key(|(_, rows)| rows.len());
     let mut built = Vec::new();
-    for action in actions {
+    for (action, charpoly) in actions {
         if deadline.check_time().is_err() {
             break;
         }
-        let Some(charpoly) = quotient_charpoly(action).filter(|c| is_squarefree::<P>(c)) else {
-            continue;
-        };
         let measure = folded_measure::<P>(constants, t, action);
         let dims = (visible, max_redundant_basis(count));
         for (label, pool) in &pools {

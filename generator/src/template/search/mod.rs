@@ -234,16 +234,6 @@ pub(crate) fn best_template_within(
     // The refined quotient template each equation set's pools start from (`from_pools`),
     // and whether it is the set row-reduced on the data.
     let mut pool_quotients: Vec<(BuiltTemplate, bool)> = Vec::new();
-    let quotient_charpoly =
-        |a: &Action| nf_action_charpoly::<P1>(gb, basis, a, Some(deadline)).ok();
-    let fold_all = |bs: &mut [BuiltTemplate]| {
-        for b in bs {
-            fold_constant_rows(&mut b.template, constants);
-            if let Some(q) = &mut b.quotient_basis {
-                fold_constant_rows(&mut q.template, constants);
-            }
-        }
-    };
     for (k, b) in starts(&all, opts).into_iter().enumerate() {
         // The equations as given may have rows to fold (`fold.rs`): every template was
         // compared by its area after the fold, counted in Z_p; the chosen one is folded.
@@ -260,13 +250,7 @@ pub(crate) fn best_template_within(
             opts,
             deadline,
         );
-        fold_constant_rows(&mut b.template, constants);
-        if let Some(q) = &mut b.quotient_basis {
-            fold_constant_rows(&mut q.template, constants);
-        }
-        for a in &mut b.redundant_alternatives {
-            fold_constant_rows(&mut a.template, constants);
-        }
+        fold_finalist(&mut b, constants);
         finalists.push(b);
     }
     if let Some((red, reduced)) = &reduction {
@@ -277,21 +261,28 @@ pub(crate) fn best_template_within(
             }
             let mut r =
                 with_redundant_basis(reduced, None, r, visible, basis.len(), opts, deadline);
-            r.template.reduction = Some(red.clone());
-            if let Some(q) = &mut r.quotient_basis {
-                q.template.reduction = Some(red.clone());
-            }
-            for a in &mut r.redundant_alternatives {
-                a.template.reduction = Some(red.clone());
-            }
+            set_reduction(&mut r, red);
             finalists.push(r);
         }
     }
     // Redundant templates from the candidate pools of every action (`redundant.rs`), last:
-    // the quotient templates above are refined on the budget before them.
+    // the quotient templates above are refined on the budget before them. The actions
+    // qualify by their quotient's characteristic polynomial, the same for both equation
+    // sets (one ideal).
+    let qualified: Vec<(Action, Vec<u32>)> = if pool_quotients.is_empty() {
+        Vec::new()
+    } else {
+        first
+            .iter()
+            .filter_map(|a| {
+                let c = nf_action_charpoly::<P1>(gb, basis, a, Some(deadline)).ok()?;
+                is_squarefree::<P1>(&c).then(|| (a.clone(), c))
+            })
+            .collect()
+    };
     let mut work = MAX_POOL_WORK;
     for (quotient, on_reduced) in pool_quotients {
-        let (system, constants) = match (&reduction, on_reduced) {
+        let (system, system_constants) = match (&reduction, on_reduced) {
             (Some((_, reduced)), true) => (&reduced[..], None),
             _ => (&eqs[..], Some(constants)),
         };
@@ -299,23 +290,17 @@ pub(crate) fn best_template_within(
         let bounds = (&mut work, deadline);
         let pooled = from_pools(
             system,
-            constants,
+            system_constants,
             &quotient,
-            &first,
-            &quotient_charpoly,
+            &qualified,
             dims,
             opts,
             bounds,
         );
         for mut p in pooled {
             match (&reduction, on_reduced) {
-                (Some((red, _)), true) => {
-                    p.template.reduction = Some(red.clone());
-                    if let Some(q) = &mut p.quotient_basis {
-                        q.template.reduction = Some(red.clone());
-                    }
-                }
-                _ => fold_all(std::slice::from_mut(&mut p)),
+                (Some((red, _)), true) => set_reduction(&mut p, red),
+                _ => fold_finalist(&mut p, constants),
             }
             finalists.push(p);
         }
@@ -328,6 +313,30 @@ pub(crate) fn best_template_within(
     match best_finalist(finalists, opts) {
         Some(b) => Ok((b, all)),
         None => Err(no_action(&all, opts)),
+    }
+}
+
+/// Folds a finalist of the equations as given (`fold.rs`), with the quotient-basis
+/// template and the redundant alternatives it carries.
+fn fold_finalist(b: &mut BuiltTemplate, constants: &[EquationConstants]) {
+    fold_constant_rows(&mut b.template, constants);
+    if let Some(q) = &mut b.quotient_basis {
+        fold_constant_rows(&mut q.template, constants);
+    }
+    for a in &mut b.redundant_alternatives {
+        fold_constant_rows(&mut a.template, constants);
+    }
+}
+
+/// Marks a finalist of the equations row-reduced on the data, with the templates it
+/// carries, as solved through that reduction.
+fn set_reduction(b: &mut BuiltTemplate, red: &EquationReduction) {
+    b.template.reduction = Some(red.clone());
+    if let Some(q) = &mut b.quotient_basis {
+        q.template.reduction = Some(red.clone());
+    }
+    for a in &mut b.redundant_alternatives {
+        a.template.reduction = Some(red.clone());
     }
 }
 

@@ -328,23 +328,23 @@ pub fn plan(
         rewrite::divide_out_nonzero(problem, options, &deadline),
         options.seed,
     );
-    let folded = rewrite::fold_sign_symmetry(unfolded.clone(), options, &deadline);
+    let folded = rewrite::sign_fold_alternatives(unfolded.clone(), options, &deadline);
     // A sign fold halves the basis but not always the template: unless the file or the
     // command line asks for it, the system as written is searched too (on what is left
     // of the search's budget) and kept where its elimination is far smaller (below).
     let asked = options
         .overrides
         .sign_symmetry
-        .or(folded.layout.options.sign_symmetry)
+        .or(unfolded.layout.options.sign_symmetry)
         .is_some();
-    let compare = !folded.sign_folds().is_empty() && !asked;
+    let compare = !folded.is_empty() && !asked;
     let search_deadline = deadline.portion(SEARCH_BUDGET_SHARE);
     // The equations' generic monomials serve the template search (its fold of constant
     // rows) and the sparse elimination order alike. The search stops with the best
     // template so far when its share of the budget runs out; the steps after it (the
     // fold, the sparse order, the polishing measurement) are not interruptible and keep
     // the rest.
-    let search = |problem: Problem, actions: &ActionChoice| {
+    let search = |problem: Problem, actions: &ActionChoice, deadline: Deadline| {
         let supports = equation_supports(&problem, options.seed ^ SUPPORT_SEED);
         let options = &TemplateOptions {
             reduced_equations_only: problem
@@ -356,16 +356,44 @@ pub fn plan(
         let generated = find_template_within(
             &ProblemSource::with_supports(&problem, &supports),
             options,
-            search_deadline,
+            deadline,
         );
         (problem, supports, generated)
     };
-    let mut chosen = search(folded, &options.actions);
-    if compare {
-        let written = search(unfolded, &options.actions);
-        let area = |g: &Result<Generated, TemplateError>| {
-            g.as_ref().ok().map(|g| g.built.template.elimination_area())
+    let area = |g: &Result<Generated, TemplateError>| {
+        g.as_ref().ok().map(|g| g.built.template.elimination_area())
+    };
+    // Each fold's pivot gives another system: every one is searched, on an equal share of
+    // what is left of the search's budget (a search that ends early leaves its share to
+    // the next), and the smallest template kept (the first on a tie).
+    let systems = if folded.is_empty() {
+        vec![unfolded.clone()]
+    } else {
+        folded
+    };
+    let (searched, mut chosen) = (systems.len(), None);
+    for (i, system) in systems.into_iter().enumerate() {
+        let parts = (searched - i + usize::from(compare)) as f64;
+        let max_seconds = search_deadline.budget().max_seconds;
+        let within = if max_seconds.is_finite() {
+            let share = search_deadline.elapsed() + search_deadline.remaining() / parts;
+            search_deadline.portion(share / max_seconds)
+        } else {
+            search_deadline
         };
+        let result = search(system, &options.actions, within);
+        chosen = match chosen {
+            None => Some(result),
+            Some(best) => match (area(&best.2), area(&result.2)) {
+                (Some(b), Some(r)) if r < b => Some(result),
+                (None, Some(_)) => Some(result),
+                _ => Some(best),
+            },
+        };
+    }
+    let mut chosen = chosen.expect("at least one system is searched");
+    if compare {
+        let written = search(unfolded, &options.actions, search_deadline);
         // The folded eigenvalue problem is half the size: the folded template is kept up
         // to twice the area of the one as written.
         match (area(&chosen.2), area(&written.2)) {
@@ -401,8 +429,11 @@ pub fn plan(
             &deadline,
             first_seconds,
             |v, area| {
-                let (problem, supports, generated) =
-                    search(problem.clone(), &ActionChoice::Unknowns(vec![v]));
+                let (problem, supports, generated) = search(
+                    problem.clone(),
+                    &ActionChoice::Unknowns(vec![v]),
+                    search_deadline,
+                );
                 let generated = generated.ok()?;
                 let t = &generated.built.template;
                 // Completing a plan measures it: not for a template that cannot be kept

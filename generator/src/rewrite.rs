@@ -9,8 +9,8 @@
 //! 3. [`divide_out_nonzero`]: `nonzero` expressions divided out of the equations they
 //!    divide exactly, and the saturation dropped where the count allows;
 //! 4. [`drop_dependent_equations`]: equations that are combinations of others dropped;
-//! 5. [`fold_sign_symmetry`]: a system whose solutions come in sign pairs folded to half
-//!    of them (`crate::symmetry`).
+//! 5. [`sign_fold_alternatives`]: a system whose solutions come in sign pairs folded to half
+//!    of them (`crate::symmetry`), once for each pivot the fold can use.
 
 use crate::algebra::{MonomialOrder, Poly};
 use crate::budget::Deadline;
@@ -253,54 +253,52 @@ fn nonzero_divisions(problem: &Problem, seed: u64) -> Vec<Vec<u32>> {
     counts
 }
 
-/// The most sign folds [`fold_sign_symmetry`] applies (each halves the count).
+/// The most sign folds [`sign_fold_alternatives`] applies (each halves the count).
 const MAX_SIGN_FOLDS: u64 = 4;
+
+/// The most first folds [`sign_fold_alternatives`] returns (one per pivot it can fold by).
+const MAX_FOLD_ALTERNATIVES: usize = 4;
 
 /// `problem` folded by its sign symmetries (`crate::symmetry`), one at a time while some
 /// remain, when the command line and the file allow it (`option sign_symmetry`, default
-/// yes). A fold is kept only when it halves the solution count and no solution of the
-/// folded system has its pivot (the square) zero, so that each of its solutions is exactly
-/// one pair of the original's; the pivots are tried among the declared unknowns of each
-/// symmetry in order. Unchanged when there is none.
-pub(crate) fn fold_sign_symmetry(
+/// yes): one folded system for each pivot the first fold can use (at most
+/// [`MAX_FOLD_ALTERNATIVES`], the declared unknowns of each symmetry in order), each then
+/// folded further by the first pivot that works. A fold is kept only when it halves the
+/// solution count and no solution of the folded system has its pivot (the square) zero, so
+/// that each of its solutions is exactly one pair of the original's. The pivot shapes the
+/// folded system's monomials (`x_j / x_p` for the others), so its templates differ by
+/// pivot, often severalfold: the caller searches each. Empty when there is no fold.
+pub(crate) fn sign_fold_alternatives(
     problem: Problem,
     options: &TemplateOptions,
     deadline: &Deadline,
-) -> Problem {
+) -> Vec<Problem> {
     let allowed = options
         .overrides
         .sign_symmetry
         .or(problem.layout.options.sign_symmetry)
         .unwrap_or(true);
     if !allowed {
-        return problem;
+        return Vec::new();
     }
     let count = |p: &Problem| {
         analyse_within(&ProblemSource::new(p), options.seed, Some(*deadline))
             .ok()
             .map(|a| a.count)
     };
-    let mut problem = problem;
-    let mut total = None;
-    for round in 0..MAX_SIGN_FOLDS {
-        let source = ProblemSource::new(&problem);
+    // The folds of `problem` (count `before`) that halve it, at most `max`.
+    let folds = |problem: &Problem, before: usize, round: u64, max: usize| {
+        let source = ProblemSource::new(problem);
         let n = source.nvars();
         let visible = n - source.hidden_vars().min(n);
-        let supports = equation_supports(&problem, options.seed ^ 0x5167 ^ round);
-        let symmetries = sign_symmetries(&supports, n);
-        if symmetries.is_empty() {
-            break;
-        }
-        let Some(before) = total.or_else(|| count(&problem)) else {
-            break;
-        };
-        if before % 2 != 0 {
-            break;
-        }
-        let mut folded = None;
-        'search: for mask in symmetries {
+        let supports = equation_supports(problem, options.seed ^ 0x5167 ^ round);
+        let mut out = Vec::new();
+        for mask in sign_symmetries(&supports, n) {
             let vars: Vec<usize> = (0..n).filter(|&i| mask >> i & 1 == 1).collect();
             for &pivot in vars.iter().filter(|&&p| p < visible) {
+                if out.len() == max || deadline.check_time().is_err() {
+                    return out;
+                }
                 let fold = SignFold {
                     pivot,
                     scaled: vars.iter().copied().filter(|&j| j != pivot).collect(),
@@ -309,20 +307,43 @@ pub(crate) fn fold_sign_symmetry(
                 if count(&candidate) == Some(before / 2)
                     && square_never_zero(&candidate, pivot, options.seed, deadline)
                 {
-                    folded = Some(candidate);
-                    break 'search;
+                    out.push(candidate);
                 }
             }
         }
-        match folded {
-            Some(f) => {
-                problem = f;
-                total = Some(before / 2);
-            }
-            None => break,
-        }
+        out
+    };
+    let source = ProblemSource::new(&problem);
+    if sign_symmetries(
+        &equation_supports(&problem, options.seed ^ 0x5167),
+        source.nvars(),
+    )
+    .is_empty()
+    {
+        return Vec::new();
     }
-    problem
+    let Some(before) = count(&problem).filter(|c| c % 2 == 0) else {
+        return Vec::new();
+    };
+    folds(&problem, before, 0, MAX_FOLD_ALTERNATIVES)
+        .into_iter()
+        .map(|mut folded| {
+            let mut total = before / 2;
+            for round in 1..MAX_SIGN_FOLDS {
+                if total % 2 != 0 {
+                    break;
+                }
+                match folds(&folded, total, round, 1).pop() {
+                    Some(f) => {
+                        folded = f;
+                        total /= 2;
+                    }
+                    None => break,
+                }
+            }
+            folded
+        })
+        .collect()
 }
 
 /// Whether the folded system of `problem` has no solution with variable `pivot` zero (its

@@ -9,7 +9,7 @@
 //! `x^e` with degree `k` in `S` becomes `x_p^k t^e`, i.e. `s^(k/2) t^e` for even `k` and
 //! `x_p s^((k-1)/2) t^e` for odd `k`, where the odd equations lose their common factor
 //! `x_p`. The folded system has one solution per pair (when no solution has `x_p = 0`,
-//! which [`crate::rewrite::fold_sign_symmetry`] checks), so its template and action are
+//! which [`crate::rewrite::sign_fold_alternatives`] checks), so its template and action are
 //! built for half the count; the solver recovers both signs
 //! ([`mingen_runtime::unfold_signs`]). The variables keep their positions, so everything
 //! downstream (template, read-out, elimination) works on the folded system unchanged.

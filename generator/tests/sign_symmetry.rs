@@ -136,3 +136,20 @@ fn a_hidden_unknown_of_the_symmetry_is_scaled_but_not_returned() {
     let code = emit_plan_from(&p, "t.mp").unwrap();
     assert!(code.contains("= [(0, &[1, 2])];"), "{code}");
 }
+
+#[test]
+fn every_pivot_of_a_fold_is_searched_and_the_smallest_template_kept() {
+    // The pivot shapes the folded system (the others become `t_j / t_p`), and with it the
+    // template: the upright relative pose folds to 38x42 by t1, the first pivot declared,
+    // and to 32x36 by t2. The plan must search both and keep t2's.
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../templates/classic/relpose_upright_3pt.mp");
+    let p = planned(&std::fs::read_to_string(file).unwrap());
+    let folds = p.problem.sign_folds();
+    assert_eq!(folds.len(), 1, "folded");
+    // c, s come first: variable 3 is t2.
+    assert_eq!(folds[0].pivot, 3, "folded by t2");
+    assert_eq!(p.generated.built.template.elimination_area(), 32 * 36);
+    let r = audited(&p);
+    assert_eq!(r.failures, 0, "{r}");
+}

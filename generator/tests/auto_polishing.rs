@@ -38,6 +38,15 @@ fn assert_consistent(plan: &SolverPlan) {
         assert_eq!(a.steps, 0, "{a:?}");
     }
     assert_eq!(plan.problem.layout.options.newton, Some(a.steps));
+    // Steps chosen because they pass rest on the first instances and the further ones.
+    let passes = (a.chosen_failures as f64) < AUTO_POLISH_FAILURE_RATE * a.chosen_instances as f64;
+    if a.steps > 0 && passes {
+        assert_eq!(
+            a.chosen_instances,
+            AUTO_POLISH_INSTANCES + AUTO_POLISH_MORE_INSTANCES,
+            "{a:?}"
+        );
+    }
     let source = emit_plan_from(plan, "t.mp").unwrap();
     assert_eq!(
         source.replace(char::is_whitespace, "").contains(&format!(

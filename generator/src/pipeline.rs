@@ -363,9 +363,10 @@ pub fn plan(
     let area = |g: &Result<Generated, TemplateError>| {
         g.as_ref().ok().map(|g| g.built.template.elimination_area())
     };
-    // Each fold's pivot gives another system: every one is searched, on an equal share of
-    // what is left of the search's budget (a search that ends early leaves its share to
-    // the next), and the smallest template kept (the first on a tie).
+    // Each fold's pivot gives another system: every one is searched and the smallest
+    // template kept (the first on a tie). The first has the whole budget, as a single
+    // fold would (a large system's search takes it all, and a share of it might find no
+    // template); the others, searched while time is left, an equal share of the rest.
     let systems = if folded.is_empty() {
         vec![unfolded.clone()]
     } else {
@@ -375,7 +376,7 @@ pub fn plan(
     for (i, system) in systems.into_iter().enumerate() {
         let parts = (searched - i + usize::from(compare)) as f64;
         let max_seconds = search_deadline.budget().max_seconds;
-        let within = if max_seconds.is_finite() {
+        let within = if i > 0 && max_seconds.is_finite() {
             let share = search_deadline.elapsed() + search_deadline.remaining() / parts;
             search_deadline.portion(share / max_seconds)
         } else {

@@ -116,20 +116,24 @@ fn dependent_rows_give_the_published_count_and_recover_planted_poses() {
 /// The refractive pose with unknown focal length: the solved rows cleared of the free
 /// rows' pivot monomials give the worksheet's four equations on 27 monomials (its `4x27`
 /// coefficient matrix), solved through their row reduction; the system is even or odd in
-/// `w, x, y`, but folded its template is more than twice the area of the one as written,
-/// which planning keeps. A regression guard on both choices (its size is recorded in the
-/// file too, for `tools/benchmark_record.py --check`).
+/// `w, x, y` and folds, by `x` or `y`, to a template far smaller than the one as written
+/// (144x180), which folding by `w`, the first pivot declared, does not. A regression
+/// guard on both choices (its size is recorded in the file too, for
+/// `tools/benchmark_record.py --check`).
 #[test]
-fn refraction_with_focal_length_has_the_worksheet_support_and_stays_unfolded() {
+fn refraction_with_focal_length_has_the_worksheet_support_and_folds_by_its_best_pivot() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../templates/benchmark/p6pf_refract.mp");
     let p = plan_file(&path, &TemplateOptions::default()).expect("plans");
     assert_eq!(mode(&p), Some(BlockMode::Minors));
     assert_eq!(p.solution_count(), 36);
-    assert!(p.problem.sign_folds().is_empty(), "kept as written");
+    let folds = p.problem.sign_folds();
+    assert_eq!(folds.len(), 1, "folded");
+    let by = p.sign_symmetry_description().unwrap_or_default();
+    assert!(!by.contains("folded by w"), "{by}");
     let t = &p.generated.built.template;
     assert_eq!(t.reduction_size(), Some((4, 27)));
     assert!(
-        t.elimination_area() <= 144 * 180 + 4 * 27,
+        t.elimination_area() <= 65 * 83 + 4 * 27,
         "{:?}",
         t.eliminated_size()
     );

@@ -187,10 +187,11 @@ impl Sample {
 
 /// Solves the plan's [`AUTO_POLISH_INSTANCES`] seeded instances, and
 /// [`AUTO_POLISH_MORE_INSTANCES`] more when exactly one fails (one failure in 100 tells a
-/// rate above the threshold from one below it no better than none does) or when polishing
-/// is what makes the sample pass, with at most one failure, when `confirm` (the choice of
-/// polishing): the choice then rests on 500 instances. (Polishing rescues a failing template only where its solutions are near
-/// enough to converge; 100 instances do not show a straggler rate near the threshold.)
+/// rate above the threshold from one below it no better than none does) or, when
+/// `confirm` (the choice of polishing), when polishing is what makes the sample pass with
+/// at most one failure: the choice then rests on 500 instances (polishing rescues a
+/// failing template only where its solutions are near enough to converge, and 100
+/// instances do not show a straggler rate near the threshold).
 ///
 /// Solved unpolished, the same solves give the sample polished by
 /// [`COMPARISON_NEWTON_STEPS`] too (the audit's comparison polishes a copy of each

@@ -286,14 +286,23 @@ pub(crate) fn sign_fold_alternatives(
             .ok()
             .map(|a| a.count)
     };
-    // The folds of `problem` (count `before`) that halve it, at most `max`.
-    let folds = |problem: &Problem, before: usize, round: u64, max: usize| {
+    // The sign symmetries of `problem` (bit masks of its variables) on the supports of the
+    // fold's `round`.
+    let symmetries = |problem: &Problem, round: u64| {
+        let n = ProblemSource::new(problem).nvars();
+        sign_symmetries(
+            &equation_supports(problem, options.seed ^ 0x5167 ^ round),
+            n,
+        )
+    };
+    // The folds of `problem` (count `before`, symmetries `masks`) that halve it, at most
+    // `max`.
+    let folds = |problem: &Problem, masks: Vec<u32>, before: usize, max: usize| {
         let source = ProblemSource::new(problem);
         let n = source.nvars();
         let visible = n - source.hidden_vars().min(n);
-        let supports = equation_supports(problem, options.seed ^ 0x5167 ^ round);
         let mut out = Vec::new();
-        for mask in sign_symmetries(&supports, n) {
+        for mask in masks {
             let vars: Vec<usize> = (0..n).filter(|&i| mask >> i & 1 == 1).collect();
             for &pivot in vars.iter().filter(|&&p| p < visible) {
                 if out.len() == max || deadline.check_time().is_err() {
@@ -313,19 +322,14 @@ pub(crate) fn sign_fold_alternatives(
         }
         out
     };
-    let source = ProblemSource::new(&problem);
-    if sign_symmetries(
-        &equation_supports(&problem, options.seed ^ 0x5167),
-        source.nvars(),
-    )
-    .is_empty()
-    {
+    let first = symmetries(&problem, 0);
+    if first.is_empty() {
         return Vec::new();
     }
     let Some(before) = count(&problem).filter(|c| c % 2 == 0) else {
         return Vec::new();
     };
-    folds(&problem, before, 0, MAX_FOLD_ALTERNATIVES)
+    folds(&problem, first, before, MAX_FOLD_ALTERNATIVES)
         .into_iter()
         .map(|mut folded| {
             let mut total = before / 2;
@@ -333,7 +337,7 @@ pub(crate) fn sign_fold_alternatives(
                 if total % 2 != 0 {
                     break;
                 }
-                match folds(&folded, total, round, 1).pop() {
+                match folds(&folded, symmetries(&folded, round), total, 1).pop() {
                     Some(f) => {
                         folded = f;
                         total /= 2;

@@ -243,7 +243,7 @@ pub fn action_matrix_and_readouts(
     let n = template.basis.len();
     let mut a = DMatrix::zeros(n, n);
     for (j, b) in template.basis.iter().enumerate() {
-        for (prod, coef) in template.action.products(b) {
+        for (prod, coef) in template.relation(j) {
             let coef = coef as f64;
             let not_covered = || InterpretError::ActionNotCovered {
                 basis: format!("{b:?}"),
@@ -265,6 +265,9 @@ pub fn action_matrix_and_readouts(
             }
         }
     }
+    if !template.flipped.is_empty() {
+        a = pencil_action_matrix(&a, &template.flipped).ok_or(InterpretError::Singular)?;
+    }
     let readouts = template
         .linear_readouts()
         .iter()
@@ -278,6 +281,17 @@ pub fn action_matrix_and_readouts(
         })
         .collect::<Result<Vec<_>, InterpretError>>()?;
     Ok((a, readouts))
+}
+
+/// The action matrix `M = T1^-1 T0` of a pencil template from its relation matrix `rel`
+/// (see the template convention in [`crate::template`]): the flipped rows `F` solve
+/// `rel_FF M_F = E_F - rel_FU rel_U` by LU with partial pivoting; `None` when `rel_FF` is
+/// singular. The emitted solvers do the same ([`mingen_runtime::pencil_action_rows`]).
+fn pencil_action_matrix(rel: &DMatrix<f64>, flipped: &[usize]) -> Option<DMatrix<f64>> {
+    let n = rel.nrows();
+    let mut out = rel.clone();
+    let mut scratch = vec![0.0; flipped.len() * (flipped.len() + n)];
+    mingen_runtime::pencil_action_rows(out.as_mut_slice(), n, flipped, &mut scratch).then_some(out)
 }
 
 /// The read-out pairs of every unknown (see [`mingen_runtime::read_unknowns`]): for each
@@ -619,6 +633,7 @@ mod tests {
             fold: None,
             shift: None,
             spurious_eigenvalues: 0,
+            flipped: Vec::new(),
         };
         (template, vec![e0, e1])
     }

@@ -607,7 +607,8 @@ impl SolverPlan {
     /// the steps, else `{"instances", "median_log10_residual", "p99_log10_residual",
     /// "failures"}`, what
     /// the plan measured, see [`AutoPolishing`]), `spurious_eigenvalues` (0 but for a
-    /// redundant basis) and `redundant_basis` (null, or what the plan measured of a grown
+    /// redundant basis), `flipped_relations` (the basis monomials whose relation a pencil
+    /// template takes the other way round, see `crate::template`; empty otherwise) and `redundant_basis` (null, or what the plan measured of a grown
     /// basis, see [`RedundantCheck`]: `kept`, `template`, `spurious_eigenvalues`,
     /// `instances`, `mean_real_solutions` and `failures` as `[redundant, quotient basis]`).
     pub fn summary_json(&self) -> Value {
@@ -637,6 +638,7 @@ impl SolverPlan {
             "redundant_basis": self.redundant_check.as_ref().map(RedundantCheck::to_json),
             "action_accuracy": self.action_accuracy.as_ref().map(ActionAccuracy::to_json),
             "spurious_eigenvalues": t.spurious_eigenvalues,
+            "flipped_relations": t.flipped.iter().map(|&j| t.basis[j].display_with(&names)).collect::<Vec<_>>(),
             "per_action": self.generated.per_action.iter().map(|(v, s)| json!({
                 "action": v.display_with(&names),
                 "template": s.map(|(r, c)| json!({"rows": r, "cols": c})),

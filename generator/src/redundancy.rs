@@ -77,7 +77,8 @@ impl RedundantCheck {
 /// Measures a plan whose template has a redundant basis against its quotient-basis
 /// alternative and keeps the better (module documentation); nothing for other plans.
 pub(crate) fn choose(plan: &mut SolverPlan) -> Option<RedundantCheck> {
-    if plan.generated.built.template.spurious_eigenvalues == 0 {
+    let t = &plan.generated.built.template;
+    if t.spurious_eigenvalues == 0 && t.flipped.is_empty() {
         return None;
     }
     let alternative = *plan.generated.built.quotient_basis.take()?;

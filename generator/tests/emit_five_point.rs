@@ -144,6 +144,7 @@ fn five_point_template() -> EliminationTemplate {
         fold: None,
         shift: None,
         spurious_eigenvalues: 0,
+        flipped: Vec::new(),
     }
 }
 
@@ -466,6 +467,7 @@ fn elimination_emission_parses() {
         fold: None,
         shift: None,
         spurious_eigenvalues: 0,
+        flipped: Vec::new(),
     };
     let cst = |c: Traced| Poly::constant(1, c);
     let sv = Poly::<Traced>::var(1, 0);

@@ -61,6 +61,7 @@ fn five_point_template() -> EliminationTemplate {
         fold: None,
         shift: None,
         spurious_eigenvalues: 0,
+        flipped: Vec::new(),
     }
 }
 
@@ -289,6 +290,7 @@ fn audit_with_eliminated_unknowns() {
         fold: None,
         shift: None,
         spurious_eigenvalues: 0,
+        flipped: Vec::new(),
     };
     let widen = |p: &P| {
         Poly::from_terms(

@@ -48,6 +48,8 @@
 //!   points (eliminated unknowns other than three, or inhomogeneous in them).
 //! - [`null_vector3`]: unit null vector of an n x 3 matrix (recovery of eliminated
 //!   unknowns such as a translation direction).
+//! - [`pencil_action_rows`]: the action matrix of a pencil template (relations of some
+//!   basis monomials taken the other way round) from its relation matrix.
 //! - [`read_unknowns`]: the unknowns read off an eigenvector of the action matrix.
 //! - [`newton_polish`] / [`newton_polish_with`]: Gauss-Newton polishing of a solution on the original equations
 //!   (`option newton`); [`polish_poor_solution`] / [`polish_poor_solution_with`]: the
@@ -82,6 +84,7 @@ mod least_squares;
 mod newton;
 mod null;
 mod null_general;
+mod pencil;
 mod readout;
 mod sign_symmetry;
 mod solution_set;
@@ -111,6 +114,7 @@ pub use newton::{
 };
 pub use null::{null_vector3, null_vector3_rows};
 pub use null_general::{dehomogenize, null_vector, null_vector_dyn};
+pub use pencil::pencil_action_rows;
 pub use readout::{read_linear, read_unknowns, read_unknowns_with_eigenvalue, MIN_UNIT_ENTRY};
 pub use sign_symmetry::{flip_sign, unfold_sign, unfold_signs, SignFold};
 pub use solution_set::SolutionSet;

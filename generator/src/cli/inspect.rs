@@ -232,6 +232,18 @@ fn print_plan(out: &mut String, plan: &SolverPlan) {
     );
     outln!(out, "basis from: {}", g.built.basis_choice);
     outln!(out, "action: {}", t.action.display_with(&names));
+    if !t.flipped.is_empty() {
+        let flipped: Vec<String> = t
+            .flipped
+            .iter()
+            .map(|&j| t.basis[j].display_with(&names))
+            .collect();
+        outln!(
+            out,
+            "  relations taken the other way round (b / action reduced; a pencil): {}",
+            flipped.join(" ")
+        );
+    }
     if let Some(r) = &t.reduction {
         outln!(
             out,

@@ -10,7 +10,9 @@ use std::collections::HashMap;
 
 /// The statements that fill the action matrix `a` (zeros) from the reduced template `m`
 /// (see the template convention): `(unit entries, rows copied from the template)`. A
-/// single-unknown action copies rows (negated); a linear form adds `c_i` times each.
+/// single-unknown action copies rows (negated); a linear form adds `c_i` times each. For
+/// a pencil template these fill its relation matrix, which [`pencil_tokens`] turns into
+/// the action matrix.
 pub(super) fn action_matrix_tokens(
     t: &EliminationTemplate,
     column_of: &HashMap<Monomial, usize>,
@@ -53,13 +55,13 @@ pub(super) fn action_matrix_tokens(
     }
     let mut from_template = Vec::new();
     let mut single_source = None;
-    for (j, b) in t.basis.iter().enumerate() {
+    for j in 0..t.basis.len() {
         let p = t
-            .action
-            .products(b)
+            .relation(j)
+            .into_iter()
             .next()
             .map(|(p, _)| p)
-            .expect("a monomial action maps each basis monomial to one monomial");
+            .expect("a monomial action relates each basis monomial to one monomial");
         let c = t
             .eliminated_column(column_of[&p])
             .expect("action products are reducible or basis columns");
@@ -94,4 +96,24 @@ pub(super) fn action_matrix_tokens(
     };
 
     (units, from_template_loop)
+}
+
+/// The statements that turn the relation matrix `a` of a pencil template into its action
+/// matrix (see the template convention; nothing for an ordinary template): the flipped rows
+/// solve a small system on the stack, and the solver returns no solution when it is
+/// singular.
+pub(super) fn pencil_tokens(t: &EliminationTemplate, nb: usize) -> TokenStream {
+    if t.flipped.is_empty() {
+        return quote!();
+    }
+    let k = t.flipped.len();
+    let rows = t.flipped.iter().map(|&j| lit(j));
+    let (nb_l, scratch_l) = (lit(nb), lit(k * (k + nb)));
+    let pencil = super::runtime_api::pencil_action_rows();
+    quote! {
+        let mut scratch = [0.0f64; #scratch_l];
+        if !#pencil(a.as_mut_slice(), #nb_l, &[#(#rows),*], &mut scratch) {
+            return out;
+        }
+    }
 }

@@ -93,6 +93,12 @@ pub(crate) fn real_eigenpairs_sturm() -> TokenStream {
     quote!(mingen_runtime::real_eigenpairs_sturm)
 }
 
+/// `pencil_action_rows(a: &mut [f64], n: usize, flipped: &[usize], scratch: &mut [f64])
+/// -> bool`: the flipped rows of a pencil template's action matrix from its relations.
+pub(crate) fn pencil_action_rows() -> TokenStream {
+    quote!(mingen_runtime::pencil_action_rows)
+}
+
 /// `read_unknowns(v: &[f64], one: usize, pairs: &[&[(usize, usize)]], out: &mut [f64])
 /// -> bool`: the unknowns read off an eigenvector.
 pub(crate) fn read_unknowns() -> TokenStream {

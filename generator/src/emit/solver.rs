@@ -1,6 +1,6 @@
 //! The solver emitter: one Rust source file per problem.
 
-use super::action::action_matrix_tokens;
+use super::action::{action_matrix_tokens, pencil_tokens};
 use super::coefficients::{Expr, VarStyle};
 use super::files::generated_header_for_path;
 use super::fill::{fill_tokens, Coefficients};
@@ -460,6 +460,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
     };
     let fill = fill_tokens(plan, &mut coefficients)?;
     let (units, from_template_loop) = action_matrix_tokens(t, &plan.column_of, cols, pivots, nb);
+    let pencil = pencil_tokens(t, nb);
     let solutions = solution_loop(plan, &coefficients, fill.style)?;
     let elimination = Elimination::new(t);
     let (rows_l, cols_l, pivots_l, nb_l) = (lit(rows), lit(cols), lit(pivots), lit(nb));
@@ -528,6 +529,7 @@ fn emit_solve(plan: &Plan) -> Result<(TokenStream, Stats), EmitError> {
             let mut a = #smat::<f64, #nb_l, #nb_l>::zeros();
             #(#units)*
             #from_template_loop
+            #pencil
             if !stages.action(a.as_slice()) {
                 return out;
             }
@@ -683,6 +685,16 @@ fn solve_docs(plan: &Plan, lu_words: &str) -> Vec<String> {
         ),
         String::new(),
     ];
+    if !t.flipped.is_empty() {
+        let flipped: Vec<String> = t.flipped.iter().map(|&j| basis[j].clone()).collect();
+        docs.push(format!(
+            "The relations of [{}] are taken the other way round (`b / action` reduced, a \
+             pencil `action T1 v = T0 v`): the action matrix is `T1^-1 T0`, its flipped rows \
+             solved by `mingen_runtime::pencil_action_rows`.",
+            flipped.join(", ")
+        ));
+        docs.push(String::new());
+    }
     if let Some(red) = &t.reduction {
         let pivots: Vec<String> = red
             .pivots

@@ -137,6 +137,19 @@ impl Action {
                 }
             })
     }
+    /// The monomial `b / action` of a monomial action (a single unknown `x_v`: `b / x_v`;
+    /// its inverse `1 / x_v`: `x_v b`), `None` for a linear form or where `b / x_v` is not a
+    /// polynomial monomial: the other side of a basis monomial's relation in a pencil
+    /// template (see [`crate::template::EliminationTemplate::flipped`]).
+    pub fn inverse_product(&self, b: &Monomial) -> Option<Monomial> {
+        let v = self.variable()?;
+        let x = Monomial::var(self.nvars(), v);
+        if self.inverse {
+            Some(b.mul(&x))
+        } else {
+            x.divide_into(b)
+        }
+    }
     /// A coefficient as a residue mod P.
     pub fn residue<const P: u32>(c: i64) -> u32 {
         c.rem_euclid(P as i64) as u32
@@ -231,5 +244,14 @@ mod tests {
         );
         let shifted = inv.basis_for(&basis);
         assert_eq!(inv.basis_for(&shifted), shifted);
+        // The other side of a relation: y b for 1/y, b / y for y, none for a form.
+        let b = Monomial(vec![1, 1, 0]);
+        assert_eq!(inv.inverse_product(&b), Some(Monomial(vec![1, 2, 0])));
+        assert_eq!(
+            Action::var(3, 1).inverse_product(&b),
+            Some(Monomial(vec![1, 0, 0]))
+        );
+        assert_eq!(Action::var(3, 2).inverse_product(&b), None);
+        assert_eq!(a.inverse_product(&b), None);
     }
 }

@@ -334,6 +334,7 @@ pub(crate) fn assemble<const P: u32>(
         fold: None,
         shift: None,
         spurious_eigenvalues: 0,
+        flipped: blocks.flipped.clone(),
     }
 }
 

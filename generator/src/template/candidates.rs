@@ -33,6 +33,9 @@ pub(crate) struct Blocks {
     pub(crate) basis: Vec<Monomial>,
     pub(crate) red_set: BTreeSet<Monomial>,
     pub(crate) basis_set: BTreeSet<Monomial>,
+    /// The basis indices whose relation is `b / action` (a pencil template, see
+    /// [`super::EliminationTemplate::flipped`]); increasing.
+    pub(crate) flipped: Vec<usize>,
 }
 
 impl Blocks {
@@ -40,10 +43,39 @@ impl Blocks {
     /// `action * b` outside the basis and the unknowns among the first `visible` variables
     /// outside it ([`super::unknowns_outside_basis`]).
     pub(crate) fn new(basis: &[Monomial], action: &Action, visible: usize) -> Blocks {
+        Blocks::with_flipped(basis, action, &[], visible)
+    }
+    /// [`Blocks::new`] with the relations of the basis indices `flipped` (increasing) taken
+    /// the other way round: `b / action` ([`Action::inverse_product`]) is reducible rather
+    /// than `action * b`. `None` when a flipped `b / action` is not a polynomial monomial.
+    pub(crate) fn try_with_flipped(
+        basis: &[Monomial],
+        action: &Action,
+        flipped: &[usize],
+        visible: usize,
+    ) -> Option<Blocks> {
+        let flipped_ok = flipped
+            .iter()
+            .all(|&j| action.inverse_product(&basis[j]).is_some());
+        flipped_ok.then(|| Blocks::with_flipped(basis, action, flipped, visible))
+    }
+    fn with_flipped(
+        basis: &[Monomial],
+        action: &Action,
+        flipped: &[usize],
+        visible: usize,
+    ) -> Blocks {
         let basis_set: BTreeSet<Monomial> = basis.iter().cloned().collect();
         let red_set: BTreeSet<Monomial> = basis
             .iter()
-            .flat_map(|b| action.products(b).map(|(m, _)| m).collect::<Vec<_>>())
+            .enumerate()
+            .flat_map(|(j, b)| {
+                if flipped.contains(&j) {
+                    action.inverse_product(b).into_iter().collect::<Vec<_>>()
+                } else {
+                    action.products(b).map(|(m, _)| m).collect::<Vec<_>>()
+                }
+            })
             .chain(super::unknowns_outside_basis(basis, visible))
             .filter(|m| !basis_set.contains(m))
             .collect();
@@ -54,6 +86,7 @@ impl Blocks {
             basis: basis.to_vec(),
             red_set,
             basis_set,
+            flipped: flipped.to_vec(),
         }
     }
     /// The excess monomials of a set of rows, descending grevlex.

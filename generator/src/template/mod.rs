@@ -30,6 +30,21 @@
 //! read-out `x_i = -sum_k T[x_i, k] v[k] / v[1]` (`mingen_runtime::read_linear`). B must
 //! contain 1.
 //!
+//! ## Pencil templates
+//! A template may take some basis monomials' relations the other way round
+//! ([`EliminationTemplate::flipped`], monomial actions only): for a flipped `b_j` the rows
+//! reduce `b_j / action` (`b_j / x_v` for the action `x_v`, `x_v b_j` for `1 / x_v`)
+//! instead of `action * b_j`. With `R` the matrix of relations (row j: the basis
+//! coordinates of `action * b_j`, or of `b_j / action` when flipped, a unit vector or a
+//! negated reduced row as above), every solution satisfies `action(s) T1 v = T0 v`, where
+//! row j of `T1` is `e_j` and of `T0` is `R_j` for an unflipped `b_j`, the other way round
+//! for a flipped one. The action matrix is `M = T1^-1 T0`: its unflipped rows are `R`'s,
+//! and its flipped rows `F` solve the `|F| x |F|` system `R_FF M_F = E_F - R_FU R_U` (`U` the
+//! unflipped rows, `E_F` the flipped rows of the identity). A redundant basis whose spurious
+//! eigenvalues come from relations that map basis monomials onto each other deflates to
+//! such a pencil on a basis of the solution count (Martyushev, Bhayani and Pajdla's
+//! templates read that way, see `redundant.rs`), with no spurious eigenvalue.
+//!
 //! ## Modules, lowest first
 //! Each uses only those before it (and the types of this file), so dependencies go one way:
 //! - `action`, `linalg`, `shape`: the action, arithmetic mod p, the emittability predicate;
@@ -49,8 +64,9 @@
 //! - [`explore`]: size tables over orders for developers (not used by the pipeline);
 //! - [`validate`](mod@validate): the template against Gröbner normal forms on fresh instances;
 //! - [`build`]: the template of one action;
+//! - `deflate`: a redundant basis deflated to a pencil on a basis of the solution count;
 //! - `redundant`: a chosen template's basis grown past the solution count (redundant
-//!   solving bases), when that makes it smaller;
+//!   solving bases), when that makes it smaller, deflated where it can be;
 //! - [`search`]: the search over actions and candidate degrees.
 
 use crate::algebra::Monomial;
@@ -58,6 +74,7 @@ use crate::algebra::Monomial;
 mod action;
 pub mod build;
 mod candidates;
+mod deflate;
 mod error;
 mod exclude;
 pub mod explore;
@@ -134,6 +151,10 @@ pub struct EliminationTemplate {
     /// solutions', and the solver drops their read-outs by the residual of the equations
     /// ([`mingen_runtime::SPURIOUS_RESIDUAL`]).
     pub spurious_eigenvalues: usize,
+    /// The basis indices, increasing, whose relation is taken the other way round: the
+    /// rows reduce `b_j / action` rather than `action * b_j` (a pencil template, see the
+    /// module documentation; monomial actions only). Empty for an ordinary template.
+    pub flipped: Vec<usize>,
     /// Number of hidden variables (those of `nonzero`), the last `n_hidden` variables:
     /// part of the system, not read off the eigenvectors (B need not contain them).
     pub n_hidden: usize,
@@ -216,6 +237,20 @@ impl EliminationTemplate {
                 .all(|(i, &e)| e as usize == if i == x { n - 1 - j } else { 0 })
         });
         (n > 0 && powers).then_some(x)
+    }
+    /// The relation of basis monomial `j`: the terms `(monomial, coefficient)` whose
+    /// basis coordinates form row j of the relation matrix `R` (module documentation):
+    /// `action * b_j`, or `b_j / action` when `j` is flipped.
+    pub fn relation(&self, j: usize) -> Vec<(Monomial, i64)> {
+        let b = &self.basis[j];
+        if self.flipped.binary_search(&j).is_ok() {
+            self.action
+                .inverse_product(b)
+                .map(|m| vec![(m, 1)])
+                .unwrap_or_default()
+        } else {
+            self.action.products(b).collect()
+        }
     }
     /// Number of variables read off the eigenvectors (all but the hidden ones).
     pub fn visible_vars(&self) -> usize {

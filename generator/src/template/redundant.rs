@@ -21,6 +21,7 @@
 
 use super::build::{assemble, BuiltTemplate};
 use super::candidates::{Blocks, Candidate};
+use super::deflate::deflate;
 use super::fold::{foldable_rows, EquationConstants};
 use super::linalg::{charpoly_within, derivative, poly_gcd};
 use super::pools::pools;
@@ -327,9 +328,9 @@ pub(super) fn with_redundant_basis<const P: u32>(
     let mut built: Vec<BuiltTemplate> = grown
         .into_iter()
         .chain(reduced)
-        .filter_map(|(b, kept)| {
+        .flat_map(|(b, kept)| {
             let parts = (b, kept.as_slice(), visible, count);
-            redundant_template::<P>(eqs, constants, &best, which, parts, opts, deadline)
+            redundant_templates::<P>(eqs, constants, &best, which, parts, opts, deadline)
         })
         .filter(|g| g.folded_area() < best.folded_area())
         .collect();
@@ -346,9 +347,11 @@ pub(super) fn with_redundant_basis<const P: u32>(
     chosen
 }
 
-/// The template of `best`'s action on a redundant basis `blocks` with rows `kept`; `None`
-/// when it cannot be emitted or a spurious eigenvalue may meet a solution's.
-fn redundant_template<const P: u32>(
+/// The templates of `best`'s action on a redundant basis `blocks` with rows `kept`: deflated
+/// as far as the rows allow ([`deflate`]: fewer spurious eigenvalues, none when the basis
+/// reaches the solution count), then as grown; none that cannot be emitted or whose spurious
+/// eigenvalue may meet a solution's.
+fn redundant_templates<const P: u32>(
     eqs: &[Poly<Fp<P>>],
     constants: Option<&[EquationConstants]>,
     best: &BuiltTemplate,
@@ -356,52 +359,103 @@ fn redundant_template<const P: u32>(
     (blocks, kept, visible, count): (Blocks, &[Candidate], usize, usize),
     opts: &TemplateOptions,
     deadline: &Deadline,
-) -> Option<BuiltTemplate> {
+) -> Vec<BuiltTemplate> {
     let t = &best.template;
     // The basis in descending grevlex, as every other template's.
     let mut basis = blocks.basis;
     basis.sort_by(|x, y| MonomialOrder::Grevlex.cmp(y, x));
     let grown = Blocks::new(&basis, action, visible);
-    let mut template = assemble::<P>(t.nvars, &grown, kept, action, t.n_hidden);
-    let nb = template.basis.len();
-    template.spurious_eigenvalues = nb - count;
-    if template.check_emittable(&opts.var_names).is_err() {
-        return None;
-    }
-    // A spurious eigenvalue equal to a solution's would make the eigenvectors of both
-    // undefined: where the quotient's eigenvalues are distinct, no root of its
-    // characteristic polynomial may be a repeated root of the template's (spurious ones
-    // may repeat among themselves).
-    if let Some(quotient) = quotient {
-        let separate = match template_charpoly::<P>(&template, eqs, opts, deadline) {
-            Some(grown) => {
-                let repeated = poly_gcd::<P>(&grown, &derivative::<P>(&grown));
-                poly_gcd::<P>(&repeated, quotient).len() == 1
-            }
-            None => false,
-        };
-        if !separate {
-            return None;
+    let closed = closed_rows::<P>(eqs, kept);
+    let deflated = deflate::<P>(&grown, &closed, action, (visible, count));
+    // Without distinct eigenvalues the quotient's characteristic polynomial still tells
+    // whether a deflated basis spans the quotient.
+    let own = match quotient {
+        None if deflated.is_some() && t.action == *action && t.flipped.is_empty() => {
+            template_charpoly::<P>(t, eqs, opts, deadline)
         }
-    }
+        _ => None,
+    };
+    let reference = quotient.or(own.as_deref());
+    let check = |b: &Blocks, rows: &[Candidate]| {
+        let mut template = assemble::<P>(t.nvars, b, rows, action, t.n_hidden);
+        template.spurious_eigenvalues = template.basis.len() - count;
+        template.check_emittable(&opts.var_names).ok()?;
+        if template.spurious_eigenvalues == 0 {
+            // A basis of the solution count must span the quotient: the same eigenvalues.
+            let charpoly = template_charpoly::<P>(&template, eqs, opts, deadline);
+            return (charpoly.is_some() && charpoly.as_deref() == reference).then_some(template);
+        }
+        // A spurious eigenvalue equal to a solution's would make the eigenvectors of both
+        // undefined: where the quotient's eigenvalues are distinct, no root of its
+        // characteristic polynomial may be a repeated root of the template's (spurious
+        // ones may repeat among themselves).
+        if let Some(quotient) = quotient {
+            let grown = template_charpoly::<P>(&template, eqs, opts, deadline)?;
+            let repeated = poly_gcd::<P>(&grown, &derivative::<P>(&grown));
+            if poly_gcd::<P>(&repeated, quotient).len() != 1 {
+                return None;
+            }
+        }
+        Some(template)
+    };
+    let templates = deflated
+        .and_then(|(b, rows)| check(&b, &rows))
+        .into_iter()
+        .chain(check(&grown, kept));
+    let full = grown.basis.len();
+    templates
+        .map(|template| {
+            built_redundant(constants, best, template, (count, full), quotient.is_some())
+        })
+        .collect()
+}
+
+/// `best` with a redundant (possibly deflated) template of `full` monomials for `count`
+/// solutions, its history extended.
+fn built_redundant(
+    constants: Option<&[EquationConstants]>,
+    best: &BuiltTemplate,
+    template: EliminationTemplate,
+    (count, full): (usize, usize),
+    separated: bool,
+) -> BuiltTemplate {
+    let nb = template.basis.len();
     let mut history = best.history.clone();
     let (r, c) = template.size();
     history.push((
-        format!("redundant basis: {nb} monomials for {count} solutions"),
+        format!("redundant basis: {full} monomials for {count} solutions"),
         r,
         c,
     ));
+    if nb < full {
+        history.push((
+            format!(
+                "deflated to {nb} monomials, {} relations flipped",
+                template.flipped.len()
+            ),
+            r,
+            c,
+        ));
+    }
     let foldable_rows = constants.map_or(0, |c| foldable_rows(&template, c));
-    Some(BuiltTemplate {
+    let basis_choice = if template.flipped.is_empty() {
+        format!("{}, redundant basis", best.basis_choice)
+    } else {
+        format!(
+            "{}, redundant basis deflated to a pencil",
+            best.basis_choice
+        )
+    };
+    BuiltTemplate {
         template,
         history,
-        basis_choice: format!("{}, redundant basis", best.basis_choice),
-        distinct_eigenvalues: best.distinct_eigenvalues || quotient.is_some(),
+        basis_choice,
+        distinct_eigenvalues: best.distinct_eigenvalues || separated,
         foldable_rows,
         quotient_basis: None,
         redundant_alternatives: Vec::new(),
         ..best.clone()
-    })
+    }
 }
 
 /// How the constructions compare templates of `action` on the rows of `t`'s problem: by
@@ -493,29 +547,30 @@ pub(super) fn from_pools<const P: u32>(
             };
             let parts = (b, kept.as_slice(), visible, count);
             let which = (action, Some(charpoly.as_slice()));
-            let Some(mut g) =
-                redundant_template::<P>(eqs, constants, quotient, which, parts, opts, deadline)
-            else {
-                continue;
-            };
-            if g.folded_area() >= quotient.folded_area() {
-                continue;
-            }
-            let (r, c) = g.template.size();
-            let nb = g.template.basis.len();
-            g.history = vec![
-                (label.clone(), pool.len(), columns(pool).len()),
-                (
-                    format!("permissible set reduced: {nb} monomials for {count} solutions"),
-                    r,
-                    c,
-                ),
-            ];
-            g.basis_choice = format!(
-                "the permissible set of {label} for the action {}, reduced greedily (redundant basis)",
+            let found =
+                redundant_templates::<P>(eqs, constants, quotient, which, parts, opts, deadline);
+            for mut g in found {
+                if g.folded_area() >= quotient.folded_area() {
+                    continue;
+                }
+                // The steps of `redundant_templates` (the basis, its deflation) after the pool.
+                let steps = g
+                    .history
+                    .split_off(quotient.history.len().min(g.history.len()));
+                g.history = std::iter::once((label.clone(), pool.len(), columns(pool).len()))
+                    .chain(steps)
+                    .collect();
+                let deflated = if g.template.flipped.is_empty() {
+                    ""
+                } else {
+                    ", deflated to a pencil"
+                };
+                g.basis_choice = format!(
+                "the permissible set of {label} for the action {}, reduced greedily (redundant basis{deflated})",
                 action.display_with(&opts.var_names)
             );
-            built.push(g);
+                built.push(g);
+            }
         }
     }
     built.sort_by_key(BuiltTemplate::folded_area);

@@ -181,14 +181,27 @@ impl EliminationTemplate {
                 _ => return Err(ShapeError::ReadoutNotReducible(show(&m))),
             }
         }
-        for b in &self.basis {
-            if !self.action.applies_to(b) {
+        if !self.flipped.is_empty() {
+            let increasing = self.flipped.windows(2).all(|w| w[0] < w[1]);
+            if !increasing || self.flipped.last().is_some_and(|&j| j >= self.basis.len()) {
+                return bad("flipped relations are not increasing basis indices".into());
+            }
+        }
+        for (j, b) in self.basis.iter().enumerate() {
+            let flipped = self.flipped.binary_search(&j).is_ok();
+            if flipped && self.action.inverse_product(b).is_none() {
+                return Err(ShapeError::ActionNotCovered {
+                    basis: show(b),
+                    product: format!("{} / ({})", show(b), self.action.display_with(names)),
+                });
+            }
+            if !flipped && !self.action.applies_to(b) {
                 return Err(ShapeError::ActionNotCovered {
                     basis: show(b),
                     product: format!("{} / {}", show(b), show(&self.unit())),
                 });
             }
-            for (p, _) in self.action.products(b) {
+            for (p, _) in self.relation(j) {
                 match column_of.get(&p) {
                     Some(&c) if c >= npiv => {}
                     Some(&c) if c >= self.n_excess => {
@@ -262,6 +275,7 @@ mod tests {
             fold: None,
             shift: None,
             spurious_eigenvalues: 0,
+            flipped: Vec::new(),
         }
     }
 

@@ -115,11 +115,11 @@ fn template_matrices<const P: u32>(
     let basis_idx: BTreeMap<&Monomial, usize> =
         t.basis.iter().enumerate().map(|(i, m)| (m, i)).collect();
     let mut out = vec![vec![0u32; nb]; nb];
-    for (j, b) in t.basis.iter().enumerate() {
-        for (ab, coef) in t.action.products(b) {
+    for (j, row) in out.iter_mut().enumerate() {
+        for (ab, coef) in t.relation(j) {
             let c = Action::residue::<P>(coef);
             if let Some(&k) = basis_idx.get(&ab) {
-                out[j][k] = addmod::<P>(out[j][k], c);
+                row[k] = addmod::<P>(row[k], c);
                 continue;
             }
             let col = col_of[&ab];
@@ -129,10 +129,24 @@ fn template_matrices<const P: u32>(
                     monomial: show(&ab),
                 });
             };
-            for k in 0..nb {
-                out[j][k] = submod::<P>(out[j][k], mulmod::<P>(c, m[r][nc - nb + k]));
+            for (k, x) in row.iter_mut().enumerate() {
+                *x = submod::<P>(*x, mulmod::<P>(c, m[r][nc - nb + k]));
             }
         }
+    }
+    if !t.flipped.is_empty() {
+        out =
+            pencil_action_matrix::<P>(&out, &t.flipped).ok_or_else(|| TemplateError::Singular {
+                instance: 0,
+                monomial: format!(
+                    "the flipped relations of {}",
+                    t.flipped
+                        .iter()
+                        .map(|&j| show(&t.basis[j]))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            })?;
     }
     let mut readouts = Vec::new();
     for x in t.linear_readouts() {
@@ -151,6 +165,50 @@ fn template_matrices<const P: u32>(
         );
     }
     Ok((out, readouts))
+}
+
+/// The action matrix `M = T1^-1 T0` of a pencil template (see the template convention)
+/// from its relation matrix `rel` (row j: the basis coordinates of `action * b_j`, or of
+/// `b_j / action` for `j` in `flipped`): unflipped rows are `rel`'s, the flipped rows `F`
+/// solve `rel_FF M_F = E_F - rel_FU rel_U`. `None` when `rel_FF` is singular.
+pub(crate) fn pencil_action_matrix<const P: u32>(
+    rel: &[Vec<u32>],
+    flipped: &[usize],
+) -> Option<Vec<Vec<u32>>> {
+    let n = rel.len();
+    let is_flipped = |j: usize| flipped.binary_search(&j).is_ok();
+    let square: Vec<Vec<u32>> = flipped
+        .iter()
+        .map(|&i| flipped.iter().map(|&l| rel[i][l]).collect())
+        .collect();
+    let inv = inverse::<P>(&square)?;
+    // rhs_F = E_F - rel_FU rel_U.
+    let rhs: Vec<Vec<u32>> = flipped
+        .iter()
+        .map(|&i| {
+            let mut row = vec![0u32; n];
+            row[i] = 1;
+            for (l, &c) in rel[i].iter().enumerate() {
+                if c != 0 && !is_flipped(l) {
+                    for k in 0..n {
+                        row[k] = submod::<P>(row[k], mulmod::<P>(c, rel[l][k]));
+                    }
+                }
+            }
+            row
+        })
+        .collect();
+    let mut out = rel.to_vec();
+    for (a, &i) in flipped.iter().enumerate() {
+        out[i] = (0..n)
+            .map(|k| {
+                (0..flipped.len()).fold(0u32, |acc, b| {
+                    addmod::<P>(acc, mulmod::<P>(inv[a][b], rhs[b][k]))
+                })
+            })
+            .collect();
+    }
+    Some(out)
 }
 
 /// The action matrix of multiplication by `action` on the quotient ring, in the basis

@@ -22,7 +22,13 @@ use super::candidates::{Blocks, Candidate};
 use super::shrink::shrink_quick;
 use super::Action;
 use crate::algebra::Monomial;
+use crate::budget::Deadline;
 use std::collections::BTreeSet;
+
+/// The bound on the summed `rows x columns` of the reducibility tests of one [`deflate`]:
+/// the moves stop there, so that the result does not depend on the machine's speed (a
+/// large redundant basis has many candidate moves, each an elimination of the rows).
+const MAX_DEFLATE_WORK: u64 = 1 << 24;
 
 /// Deflates a redundant basis `blocks` (relations all forward) with the rows `rows`
 /// towards `count` monomials, greedily: one monomial `e` with a trivial relation
@@ -31,7 +37,8 @@ use std::collections::BTreeSet;
 /// so that its relation reduces `e` (the row that reduced `action * p` is freed for it),
 /// otherwise `e` just leaves (the rows must then prove it dependent). A move is kept when
 /// the rows reduce the new reducible set ([`Blocks::reducible_by`]), and the moves stop at
-/// `count` monomials or when none is left. Returns the smaller basis's blocks and the rows
+/// `count` monomials, when none is left, or when the tests have used
+/// [`MAX_DEFLATE_WORK`] (or the deadline passes, which only guards the budget). Returns the smaller basis's blocks and the rows
 /// shrunk for them; `None` when the action is not a monomial one, the basis is not
 /// redundant, or no move is possible.
 pub(crate) fn deflate<const P: u32>(
@@ -39,6 +46,7 @@ pub(crate) fn deflate<const P: u32>(
     rows: &[Candidate],
     action: &Action,
     (visible, count): (usize, usize),
+    deadline: Option<&Deadline>,
 ) -> Option<(Blocks, Vec<Candidate>)> {
     if blocks.basis.len() <= count || !action.is_monomial() || !blocks.flipped.is_empty() {
         return None;
@@ -47,7 +55,14 @@ pub(crate) fn deflate<const P: u32>(
     let refs: Vec<&Candidate> = rows.iter().collect();
     let mut basis = blocks.basis.clone();
     let mut flipped: BTreeSet<Monomial> = BTreeSet::new();
-    while basis.len() > count {
+    let width = rows
+        .iter()
+        .flat_map(|c| c.terms.iter().map(|(m, _)| m))
+        .collect::<BTreeSet<_>>()
+        .len() as u64;
+    let cost = rows.len() as u64 * width;
+    let mut work = MAX_DEFLATE_WORK;
+    'moves: while basis.len() > count {
         let in_basis: BTreeSet<&Monomial> = basis.iter().collect();
         let is_start = |e: &Monomial| {
             action
@@ -83,6 +98,10 @@ pub(crate) fn deflate<const P: u32>(
             let Some(pencil) = Blocks::try_with_flipped(&kept, action, &indices, visible) else {
                 continue;
             };
+            if cost > work || deadline.is_some_and(|d| d.check_time().is_err()) {
+                break 'moves;
+            }
+            work -= cost;
             if pencil.reducible_by::<P>(&refs) {
                 step = Some((kept, now));
                 break;

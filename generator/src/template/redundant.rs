@@ -366,7 +366,7 @@ fn redundant_templates<const P: u32>(
     basis.sort_by(|x, y| MonomialOrder::Grevlex.cmp(y, x));
     let grown = Blocks::new(&basis, action, visible);
     let closed = closed_rows::<P>(eqs, kept);
-    let deflated = deflate::<P>(&grown, &closed, action, (visible, count));
+    let deflated = deflate::<P>(&grown, &closed, action, (visible, count), Some(deadline));
     // Without distinct eigenvalues the quotient's characteristic polynomial still tells
     // whether a deflated basis spans the quotient.
     let own = match quotient {

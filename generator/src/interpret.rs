@@ -285,7 +285,7 @@ pub fn action_matrix_and_readouts(
 
 /// The action matrix `M = T1^-1 T0` of a pencil template from its relation matrix `rel`
 /// (see the template convention in [`crate::template`]): the flipped rows `F` solve
-/// `rel_FF M_F = E_F - rel_FU rel_U` by LU with partial pivoting; `None` when `rel_FF` is
+/// `rel_FF M_F = E_F - rel_FU rel_U` by Gauss-Jordan elimination with partial pivoting; `None` when `rel_FF` is
 /// singular. The emitted solvers do the same ([`mingen_runtime::pencil_action_rows`]).
 fn pencil_action_matrix(rel: &DMatrix<f64>, flipped: &[usize]) -> Option<DMatrix<f64>> {
     let n = rel.nrows();

@@ -9,8 +9,9 @@
 //! `B0 = B \ E` of `count` monomials whose pencil `action T1 v = T0 v` has exactly the
 //! solutions' eigenvalues: the k spurious eigenvalues (a Jordan block at 0 for a
 //! Laurent action, which costs the solver accuracy) are gone, and so is the residual screen
-//! of the read-outs. Martyushev, Bhayani and Pajdla's redundant templates read this way
-//! (`unsynch_relpose`: B = `z Q' ∪ z^2 {1, w, x, y}`, E = `z^2 {1, w, x, y}`).
+//! of the read-outs. Martyushev, Bhayani and Pajdla's `unsynch_relpose` basis has this
+//! shape (B = `z Q' ∪ z^2 {1, w, x, y}`, E = `z^2 {1, w, x, y}`); their solvers keep the
+//! 20x20 pencil and drop its infinite eigenvalues instead.
 //!
 //! Whether the template's rows reduce the new reducible set is the usual test
 //! ([`Blocks::reducible_by`]); whether B0 spans the quotient, the action matrix's

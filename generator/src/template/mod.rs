@@ -42,8 +42,8 @@
 //! and its flipped rows `F` solve the `|F| x |F|` system `R_FF M_F = E_F - R_FU R_U` (`U` the
 //! unflipped rows, `E_F` the flipped rows of the identity). A redundant basis whose spurious
 //! eigenvalues come from relations that map basis monomials onto each other deflates to
-//! such a pencil on a basis of the solution count (Martyushev, Bhayani and Pajdla's
-//! templates read that way, see `redundant.rs`), with no spurious eigenvalue.
+//! such a pencil on a basis of the solution count (`deflate.rs`), with no spurious
+//! eigenvalue.
 //!
 //! ## Modules, lowest first
 //! Each uses only those before it (and the types of this file), so dependencies go one way:

@@ -171,7 +171,7 @@ fn template_matrices<const P: u32>(
 /// from its relation matrix `rel` (row j: the basis coordinates of `action * b_j`, or of
 /// `b_j / action` for `j` in `flipped`): unflipped rows are `rel`'s, the flipped rows `F`
 /// solve `rel_FF M_F = E_F - rel_FU rel_U`. `None` when `rel_FF` is singular.
-pub(crate) fn pencil_action_matrix<const P: u32>(
+fn pencil_action_matrix<const P: u32>(
     rel: &[Vec<u32>],
     flipped: &[usize],
 ) -> Option<Vec<Vec<u32>>> {
